@@ -16,7 +16,8 @@ from pathlib import Path
 import numpy
 
 PY_INCLUDE_RE = re.compile(r"/opt/python/cp3\d+-cp3\d+/include/python3\.\d+")
-NUMPY_INCLUDE_RE = re.compile(r"/opt/python/cp3\d+-cp3\d+/lib/python3\.\d+/site-packages/numpy/_core/include")
+NUMPY_INCLUDE_RE = re.compile(
+    r"/opt/python/cp3\d+-cp3\d+/lib/python3\.\d+/site-packages/numpy/_core/include")
 
 
 def fix_file(path: Path, py_include: str, numpy_include: str) -> bool:
@@ -39,7 +40,8 @@ def main(argv: list[str]) -> int:
     py_include = sysconfig.get_paths()["include"]
     numpy_include = numpy.get_include()
     if not Path(py_include, "Python.h").is_file():
-        print(f"fix_cmake_paths: no Python.h in {py_include} (install python3-dev)", file=sys.stderr)
+        print(f"fix_cmake_paths: no Python.h in {py_include} (install python3-dev)",
+              file=sys.stderr)
         return 1
     changed = 0
     for path in share.rglob("*.cmake"):

@@ -1,0 +1,22 @@
+"""The umbrella `shiproute` command: dispatches to subcommands registered by all packages."""
+
+from __future__ import annotations
+
+import sys
+
+from shiproute_bringup.dispatch import dispatch
+
+GROUP = "shiproute.commands"
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Console-script entry: ``shiproute <subcommand> [args...]``."""
+    args = sys.argv[1:] if argv is None else argv
+    try:
+        return dispatch("shiproute", GROUP, args, what="subcommand")
+    except KeyboardInterrupt:
+        return 130
+
+
+if __name__ == "__main__":
+    sys.exit(main())
