@@ -1,0 +1,39 @@
+"""Errors raised by the planner library: one base class, specific subclasses naming the input."""
+
+from __future__ import annotations
+
+
+class PlannerError(Exception):
+    """Base class of every error the planner library raises on purpose."""
+
+
+class PortNotFoundError(PlannerError):
+    """A port name, UN/LOCODE or coordinate string could not be resolved."""
+
+
+class PositionOnLandError(PlannerError):
+    """A port or waypoint lies on land too far from navigable water."""
+
+
+class InvalidVoyageError(PlannerError):
+    """Voyage inputs (times, RTA, stages, bounds) are inconsistent."""
+
+
+class LandDataError(PlannerError):
+    """Coastline data is missing or unreadable."""
+
+
+class SeedPoolError(PlannerError):
+    """The seed pool file exists but cannot be read or written."""
+
+
+class UnknownMethodError(PlannerError):
+    """A planning method name is not in the registry."""
+
+
+class PlanCancelledError(PlannerError):
+    """Planning was cancelled or superseded before any plan was available."""
+
+
+class OutputError(PlannerError):
+    """A plan could not be written (RTZ, GeoJSON, JSON, PNG) or fails schema validation."""

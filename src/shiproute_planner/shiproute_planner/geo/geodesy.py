@@ -1,0 +1,66 @@
+"""Geodesy on the WGS 84 ellipsoid (pyproj.Geod) in a continuous longitude frame.
+
+Routes are kept in an unwrapped longitude frame (e.g. Busan 129 E -> Long Beach 241.7 E) so
+that crossing the antimeridian is not a discontinuity; `wrap_lon` maps back to -180..180.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from pyproj import Geod
+
+GEOD = Geod(ellps="WGS84")
+M_PER_NM = 1852.0
+
+
+def wrap_lon(lon_deg: np.ndarray | float) -> np.ndarray:
+    """Longitudes in -180..180."""
+    return (np.asarray(lon_deg, dtype=float) + 180.0) % 360.0 - 180.0
+
+
+def unwrap_near(lon_deg: np.ndarray | float, ref_deg: np.ndarray | float) -> np.ndarray:
+    """Longitudes shifted by multiples of 360 to lie within 180 degrees of `ref_deg`."""
+    lon = np.asarray(lon_deg, dtype=float)
+    return ref_deg + (lon - ref_deg + 180.0) % 360.0 - 180.0
+
+
+def direct(lon_deg, lat_deg, azimuth_deg, distance_m) -> tuple[np.ndarray, np.ndarray]:
+    """Geodesic direct problem; returned longitudes continue the input frame."""
+    lon0 = np.asarray(lon_deg, dtype=float)
+    lon, lat, _ = GEOD.fwd(
+        wrap_lon(lon0), np.asarray(lat_deg, dtype=float), azimuth_deg, distance_m
+    )
+    return unwrap_near(lon, lon0), np.asarray(lat)
+
+
+def inverse(lon0_deg, lat0_deg, lon1_deg, lat1_deg) -> tuple[np.ndarray, np.ndarray]:
+    """Forward azimuth [deg] and distance [m] from point 0 to point 1."""
+    az, _, dist = GEOD.inv(
+        wrap_lon(lon0_deg), np.asarray(lat0_deg, dtype=float),
+        wrap_lon(lon1_deg), np.asarray(lat1_deg, dtype=float),
+    )
+    return np.asarray(az) % 360.0, np.asarray(dist)
+
+
+def great_circle_points(lon0, lat0, lon1, lat1, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """`n` >= 2 points from point 0 to point 1 along the geodesic, both ends included."""
+    az, dist = inverse(lon0, lat0, lon1, lat1)
+    frac = np.linspace(0.0, 1.0, n)
+    lon, lat = direct(np.full(n, lon0), np.full(n, lat0), np.full(n, az), dist * frac)
+    return np.unwrap(lon, period=360.0), lat
+
+
+def densify_track(lon_deg, lat_deg, step_m: float) -> tuple[np.ndarray, np.ndarray]:
+    """Points along each geodesic leg of a track, at most `step_m` apart."""
+    lon = np.asarray(lon_deg, dtype=float)
+    lat = np.asarray(lat_deg, dtype=float)
+    out_lon, out_lat = [lon[:1]], [lat[:1]]
+    az, dist = inverse(lon[:-1], lat[:-1], lon[1:], lat[1:])
+    n = np.maximum(1, np.ceil(dist / step_m).astype(int))
+    idx = np.repeat(np.arange(lon.size - 1), n)
+    first = np.concatenate([[0], np.cumsum(n)[:-1]])
+    frac = (np.arange(idx.size) - first[idx] + 1) / n[idx]
+    plon, plat = direct(lon[idx], lat[idx], az[idx], dist[idx] * frac)
+    out_lon.append(plon)
+    out_lat.append(plat)
+    return np.concatenate(out_lon), np.concatenate(out_lat)

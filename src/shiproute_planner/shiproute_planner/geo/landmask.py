@@ -1,0 +1,94 @@
+"""Land mask used by the planner: cached raster pre-check + exact GSHHG test near coasts.
+
+The raster (default 0.05 deg) is built once per GSHHG resolution and cell size and cached as a
+.npy file in the shiproute data directory. Samples in sea or land cells are decided by the
+raster; samples in coastal cells are tested exactly against the polygons.
+"""
+
+from __future__ import annotations
+
+import functools
+import os
+from pathlib import Path
+
+import numpy as np
+
+from ._kernels import raster_lookup, scan_segments
+from .datadir import data_dir
+from .gshhg import load_land_polygons
+from .landexact import ExactLand
+from .raster import COAST, LAND, build_land_raster
+
+RASTER_VERSION = 1
+
+
+class LandMask:
+    """Land tests of points and great-circle segments (longitudes in any 360-degree frame)."""
+
+    def __init__(
+        self, resolution: str = "i", cell_deg: float = 0.05, cache_dir: Path | None = None
+    ) -> None:
+        self.resolution = resolution
+        self.cell_deg = float(cell_deg)
+        self.polygons = load_land_polygons(resolution)
+        self.exact = ExactLand(self.polygons)
+        self.raster = self._load_or_build(cache_dir or data_dir())
+
+    def _load_or_build(self, cache_dir: Path) -> np.ndarray:
+        name = f"landmask_v{RASTER_VERSION}_gshhg_{self.resolution}_{self.cell_deg:g}deg.npy"
+        path = cache_dir / name
+        if path.is_file():
+            try:
+                return np.load(path, mmap_mode="r")
+            except (OSError, ValueError):
+                pass  # corrupt cache: rebuild below
+        raster = build_land_raster(self.polygons, self.exact, self.cell_deg)
+        tmp = path.with_suffix(f".{os.getpid()}.tmp.npy")
+        np.save(tmp, raster)
+        os.replace(tmp, path)
+        return raster
+
+    def is_land(self, lon_deg: np.ndarray, lat_deg: np.ndarray) -> np.ndarray:
+        """True where a point is on land (raster, exact in coastal cells)."""
+        lon = np.ascontiguousarray(lon_deg, dtype=float).ravel()
+        lat = np.ascontiguousarray(lat_deg, dtype=float).ravel()
+        cls = raster_lookup(lon, lat, np.asarray(self.raster), self.cell_deg)
+        out = cls == LAND
+        coast = np.flatnonzero(cls == COAST)
+        if coast.size:
+            out[coast] = self.exact.contains(lon[coast], lat[coast])
+        return out.reshape(np.shape(lon_deg))
+
+    def segment_land_samples(
+        self,
+        lon0: np.ndarray,
+        lat0: np.ndarray,
+        lon1: np.ndarray,
+        lat1: np.ndarray,
+        spacing_deg: float | None = None,
+    ) -> np.ndarray:
+        """Number of samples on land along each great-circle segment (0 = clear)."""
+        shape = np.shape(lon0)
+        arrays = [np.ascontiguousarray(a, dtype=float).ravel() for a in (lon0, lat0, lon1, lat1)]
+        spacing = float(spacing_deg or self.cell_deg)
+        n_seg = arrays[0].size
+        land = np.zeros(n_seg, dtype=np.int64)
+        cap = max(1024, 64 * n_seg)
+        raster = np.asarray(self.raster)
+        while True:
+            c_lon, c_lat = np.empty(cap), np.empty(cap)
+            c_seg = np.empty(cap, dtype=np.int64)
+            n = scan_segments(*arrays, raster, self.cell_deg, spacing, land, c_lon, c_lat, c_seg)
+            if n >= 0:
+                break
+            cap *= 4
+        if n:
+            hit = self.exact.contains(c_lon[:n], c_lat[:n])
+            land += np.bincount(c_seg[:n][hit], minlength=n_seg)
+        return land.reshape(shape)
+
+
+@functools.lru_cache(maxsize=2)
+def default_land_mask(resolution: str = "i", cell_deg: float = 0.05) -> LandMask:
+    """Process-wide shared land mask (loading costs ~0.5 s, building ~3 s once)."""
+    return LandMask(resolution, cell_deg)

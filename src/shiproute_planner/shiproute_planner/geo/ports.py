@@ -1,0 +1,127 @@
+"""Port gazetteer: names, UN/LOCODEs and "lat,lon" strings -> positions at sea.
+
+Names come from the `searoute` port list (3,955 ports, some under historical names such as
+Pusan for Busan); a small alias table maps common modern names to them. Port coordinates that
+fall on the GSHHG coastline are moved to the nearest water within `max_snap_km`.
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+import re
+from dataclasses import dataclass
+from importlib import resources
+
+import numpy as np
+
+from ..errors import PortNotFoundError, PositionOnLandError
+from .landmask import LandMask
+
+# Modern or common name -> name in searoute's ports.geojson.
+ALIASES: dict[str, str] = {
+    "busan": "pusan",
+    "kolkata": "calcutta",
+    "yangon": "yangon",
+    "rangoon": "yangon",
+    "bombay": "mumbai",
+    "saigon": "ho chi minh city",
+    "los angeles-long beach": "long beach",
+    "new york city": "new york",
+    "nyc": "new york",
+    "gdańsk": "gdansk",
+    "hong kong sar": "hong kong",
+}
+
+_LATLON = re.compile(r"^\s*([-+]?\d+(?:\.\d*)?)\s*[, ]\s*([-+]?\d+(?:\.\d*)?)\s*$")
+
+
+@dataclass(frozen=True)
+class Port:
+    """A resolved port or position: name, UN/LOCODE ('' for coordinates), position at sea."""
+
+    name: str
+    locode: str
+    lat_deg: float
+    lon_deg: float
+    snapped_km: float = 0.0  # how far the given position was moved to reach water
+
+
+@functools.lru_cache(maxsize=1)
+def _gazetteer() -> tuple[dict[str, list[dict]], dict[str, dict]]:
+    path = resources.files("searoute") / "data" / "ports.geojson"
+    features = json.loads(path.read_text())["features"]
+    by_name: dict[str, list[dict]] = {}
+    by_code: dict[str, dict] = {}
+    for f in features:
+        p = dict(f["properties"])
+        p["t"] = float(p.get("t") or 0.0)
+        p["lon"], p["lat"] = f["geometry"]["coordinates"][:2]
+        by_name.setdefault(p["name"].lower(), []).append(p)
+        code = (p.get("port") or "").upper()
+        if code and (code not in by_code or p.get("t", 0) > by_code[code].get("t", 0)):
+            by_code[code] = p
+    return by_name, by_code
+
+
+def _rank(p: dict) -> tuple[float, int]:
+    """Prefer main entries (t = 1) with the most connections."""
+    return (float(p.get("t", 0.0)), len(p.get("to_cty", []) or []))
+
+
+def lookup_port(text: str) -> Port:
+    """Resolve a name, UN/LOCODE or 'lat,lon' to a position (not yet checked against land)."""
+    query = text.strip()
+    m = _LATLON.match(query)
+    if m:
+        lat, lon = float(m.group(1)), float(m.group(2))
+        if not (-90.0 <= lat <= 90.0) or not (-180.0 <= lon <= 360.0):
+            raise PortNotFoundError(
+                f"coordinates {text!r} are out of range: expected 'lat,lon' with lat in "
+                "-90..90 and lon in -180..360 degrees"
+            )
+        return Port(f"{lat:.4f},{lon:.4f}", "", lat, (lon + 180.0) % 360.0 - 180.0)
+    by_name, by_code = _gazetteer()
+    key = query.lower()
+    compact = key.replace(" ", "")
+    if len(compact) == 5 and compact.isalnum() and compact.upper() in by_code:
+        p = by_code[compact.upper()]
+    else:
+        key = ALIASES.get(key, key)
+        cands = by_name.get(key)
+        if not cands:
+            close = sorted(n for n in by_name if n.startswith(key[:4]))[:5]
+            hint = f"; similar names: {', '.join(close)}" if close else ""
+            raise PortNotFoundError(
+                f"port {text!r} not found in the searoute gazetteer (use a port name, a "
+                f"UN/LOCODE such as KRPUS, or 'lat,lon'){hint}"
+            )
+        p = max(cands, key=_rank)
+    return Port(p["name"], p.get("port") or "", float(p["lat"]), float(p["lon"]))
+
+
+def snap_to_sea(port: Port, land: LandMask, max_snap_km: float = 25.0) -> Port:
+    """Move a port on land to the nearest water sample within `max_snap_km`, else raise."""
+    if not land.is_land(np.array([port.lon_deg]), np.array([port.lat_deg]))[0]:
+        return port
+    step_km = 0.5
+    radii = np.arange(step_km, max_snap_km + 1e-9, step_km)
+    az = np.radians(np.arange(0.0, 360.0, 7.5))
+    rr, aa = np.meshgrid(radii, az, indexing="ij")
+    dlat = rr * np.cos(aa) / 111.2
+    dlon = rr * np.sin(aa) / (111.2 * max(np.cos(np.radians(port.lat_deg)), 0.05))
+    lat = port.lat_deg + dlat.ravel()
+    lon = port.lon_deg + dlon.ravel()
+    wet = ~land.is_land(lon, lat)
+    if not wet.any():
+        raise PositionOnLandError(
+            f"{port.name} ({port.lat_deg:.4f}, {port.lon_deg:.4f}) is on land and no "
+            f"navigable water lies within {max_snap_km:g} km: give a position at sea"
+        )
+    k = int(np.flatnonzero(wet)[0])
+    return Port(port.name, port.locode, float(lat[k]), float(lon[k]), float(rr.ravel()[k]))
+
+
+def resolve_port(text: str, land: LandMask, max_snap_km: float = 25.0) -> Port:
+    """Look up `text` and make sure the position is at sea (snapping short distances)."""
+    return snap_to_sea(lookup_port(text), land, max_snap_km)
