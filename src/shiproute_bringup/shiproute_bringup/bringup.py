@@ -12,9 +12,9 @@ File format (``ros2_ws/params/demo.yaml`` is the bundled one)::
         env: {RCUTILS_LOGGING_USE_STDOUT: "1"} # extra environment
         required: false                        # true: bringup ends when this node exits
 
-``${VAR}`` in string parameters, args and env values expands from the environment, plus
-``SHIPROUTE_PARAMS_DIR`` = the YAML file's directory. Each node gets a ROS params file
-(``/**: ros__parameters: ...``) written to a temporary directory.
+``${VAR}`` in string parameters, args and env values expands from the environment, the
+node's own ``env`` entries, and ``SHIPROUTE_PARAMS_DIR`` = the YAML file's directory. Each
+node gets a ROS params file (``/**: ros__parameters: ...``) written to a temporary directory.
 """
 
 from __future__ import annotations

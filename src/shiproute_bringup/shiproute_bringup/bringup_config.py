@@ -88,6 +88,8 @@ def _node(entry: Any, index: int, path: Path, common: dict[str, Any],
     env = entry.get("env") or {}
     if not isinstance(env, dict):
         raise BringupFileError(f"{where}.env must be a mapping")
+    env = {str(k): str(_expand(str(v), variables)) for k, v in env.items()}
+    variables = {**variables, **env}  # the node's own env entries expand in its values too
     lists = {}
     for key in ("args", "ros_args"):
         value = entry.get(key) or []
@@ -98,7 +100,7 @@ def _node(entry: Any, index: int, path: Path, common: dict[str, Any],
         name=name, executable=resolve_executable(exe, where),
         parameters=_expand({**common, **params}, variables), args=lists["args"],
         ros_args=lists["ros_args"],
-        env={str(k): str(_expand(str(v), variables)) for k, v in env.items()},
+        env=env,
         required=bool(entry.get("required", False)))
 
 

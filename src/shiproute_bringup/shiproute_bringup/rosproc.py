@@ -143,9 +143,9 @@ class RosProcess:
         return cls([sys.executable, "-u", "-c", code, *args], **kwargs)  # type: ignore[arg-type]
 
     @classmethod
-    def script(cls, name: str, *args: str, **kwargs: object) -> RosProcess:
+    def script(cls, script_name: str, *args: str, **kwargs: object) -> RosProcess:
         """Run a console script of this venv, e.g. ``shiproute_weather_node --ros-args ...``."""
-        return cls([console_script(name), *args], **kwargs)  # type: ignore[arg-type]
+        return cls([console_script(script_name), *args], **kwargs)  # type: ignore[arg-type]
 
     def _start_reader(self, stream: IO[str] | None, label: str) -> threading.Thread:
         def pump() -> None:
