@@ -1,0 +1,138 @@
+"""Voyage inputs for ``bag simulate``: RTZ route + schedule, planner plan JSON, or great circle.
+
+A ``VoyagePlan`` lists waypoints and, per leg, what to hold: shaft RPM, or a speed through
+water, or an ETA at the leg's end (NaN where not given; the CLI default RPM fills gaps).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .ais_nmea import parse_time_ns
+from .errors import SimulationError
+
+
+@dataclass(frozen=True)
+class VoyagePlan:
+    """Waypoints [deg] and per-leg targets (arrays of length n_waypoints - 1)."""
+
+    lat_deg: np.ndarray
+    lon_deg: np.ndarray
+    leg_rpm: np.ndarray
+    leg_stw_kn: np.ndarray
+    leg_eta_s: np.ndarray  # POSIX s at the END of each leg
+    departure_s: float  # NaN when the input has none
+    ship: str = ""
+    source: str = ""
+
+    def __post_init__(self) -> None:
+        n = len(self.lat_deg)
+        if n < 2 or len(self.lon_deg) != n:
+            raise SimulationError(f"voyage from {self.source or 'input'} needs >= 2 waypoints")
+        for name in ("leg_rpm", "leg_stw_kn", "leg_eta_s"):
+            if len(getattr(self, name)) != n - 1:
+                raise SimulationError(f"{name} of {self.source} must have {n - 1} legs")
+
+
+def _local(tag: str) -> str:
+    return tag.rsplit("}", 1)[-1]
+
+
+def _num(text: str | None) -> float:
+    try:
+        return float(text) if text not in (None, "") else math.nan
+    except ValueError:
+        return math.nan
+
+
+def _time_s(text: str | None) -> float:
+    t_ns = parse_time_ns(text) if text else None
+    return t_ns / 1e9 if t_ns is not None else math.nan
+
+
+def read_rtz(path: str | Path) -> VoyagePlan:
+    """Read an RTZ (1.0-1.2) route: waypoints and the first (calculated, else manual) schedule.
+
+    scheduleElement attributes used: ``rpm``, ``speed`` (kn, taken as speed through water),
+    ``eta`` (at that waypoint) and ``etd`` (of the first waypoint = departure)."""
+    path = Path(path)
+    try:
+        root = ET.parse(path).getroot()
+    except (OSError, ET.ParseError) as exc:
+        raise SimulationError(f"cannot read RTZ file {path}: {exc}") from exc
+    ids, lats, lons = [], [], []
+    for wp in root.iter():
+        if _local(wp.tag) != "waypoint":
+            continue
+        pos = next((c for c in wp if _local(c.tag) == "position"), None)
+        if pos is None:
+            continue
+        ids.append(wp.get("id", str(len(ids))))
+        lats.append(_num(pos.get("lat")))
+        lons.append(_num(pos.get("lon")))
+    n = len(ids)
+    rpm, stw, eta = (np.full(max(n - 1, 0), math.nan) for _ in range(3))
+    departure = math.nan
+    elements = {}
+    for kind in ("calculated", "manual"):
+        found = [e for e in root.iter() if _local(e.tag) == kind]
+        if found:
+            elements = {e.get("waypointId"): e for e in found[0].iter()
+                        if _local(e.tag) == "scheduleElement"}
+            break
+    for i, wid in enumerate(ids):
+        el = elements.get(wid)
+        if el is None:
+            continue
+        if i == 0:
+            departure = _time_s(el.get("etd"))
+        if i < n - 1:  # values at a waypoint apply to the leg starting there
+            rpm[i], stw[i] = _num(el.get("rpm")), _num(el.get("speed"))
+        if i > 0:
+            eta[i - 1] = _time_s(el.get("eta"))
+    return VoyagePlan(np.array(lats), np.array(lons), rpm, stw, eta, departure,
+                      source=str(path))
+
+
+def read_plan_json(path: str | Path) -> VoyagePlan:
+    """Read a planner plan JSON: ``waypoints`` with ``lat_deg``/``lon_deg`` (or
+    ``latitude_deg``/``longitude_deg``), ``time_s`` (or ISO ``time``), ``shaft_rpm``;
+    top level ``departure_s`` and ``ship_name`` when present."""
+    path = Path(path)
+    try:
+        doc = json.loads(path.read_text(encoding="utf-8"))
+        wps = doc["waypoints"]
+        lat = np.array([float(w.get("lat_deg", w.get("latitude_deg"))) for w in wps])
+        lon = np.array([float(w.get("lon_deg", w.get("longitude_deg"))) for w in wps])
+    except (OSError, ValueError, KeyError, TypeError) as exc:
+        raise SimulationError(f"cannot read plan JSON {path}: {exc}") from exc
+    times = np.array([float(w["time_s"]) if "time_s" in w else _time_s(w.get("time"))
+                      for w in wps])
+    rpm = np.array([_num(str(w.get("shaft_rpm", ""))) for w in wps[:-1]])
+    stw = np.array([_num(str(w.get("stw_kn", ""))) for w in wps[:-1]])
+    dep = float(doc.get("departure_s", times[0] if len(times) else math.nan))
+    return VoyagePlan(lat, lon, rpm, stw, times[1:], dep, str(doc.get("ship_name", "")),
+                      str(path))
+
+
+def great_circle(from_lat: float, from_lon: float, to_lat: float, to_lon: float,
+                 rpm: float) -> VoyagePlan:
+    """Two-waypoint voyage held at one RPM (steering recomputes the great-circle bearing)."""
+    one = np.array([rpm])
+    return VoyagePlan(np.array([from_lat, to_lat]), np.array([from_lon, to_lon]), one,
+                      np.array([math.nan]), np.array([math.nan]), math.nan,
+                      source="great circle")
+
+
+def read_voyage(path: str | Path) -> VoyagePlan:
+    """RTZ or plan JSON by file suffix."""
+    path = Path(path)
+    if path.suffix.lower() == ".json":
+        return read_plan_json(path)
+    return read_rtz(path)
