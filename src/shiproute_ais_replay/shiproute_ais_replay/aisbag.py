@@ -51,9 +51,7 @@ def write_tracks(tracks: list[Track], out: str | Path, with_fix: bool = True) ->
     """Write tracks in time order; a single track goes on the own-ship topics."""
     store = build_typestore()
     own = len(tracks) == 1
-    streams = [
-        ((rec.time_ns, i, rec) for rec in tr.states) for i, tr in enumerate(tracks)
-    ]
+    streams = [[(rec.time_ns, i, rec) for rec in tr.states] for i, tr in enumerate(tracks)]
     with BagWriter(out, store) as writer:
         topics = [track_topics(tr, own) for tr in tracks]
         for state_topic, fix_topic in topics:
