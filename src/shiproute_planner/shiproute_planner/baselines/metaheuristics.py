@@ -1,0 +1,89 @@
+"""Metaheuristic rows of the comparison at an equal route-evaluation budget.
+
+The seed GA (the planner's `SeedGA`, driven here by evaluations instead of wall time) and the
+pymoo algorithms all evaluate genes with `route.generate.evaluate_genes`, so a budget of N
+evaluations means N routes generated and judged the same way for every algorithm.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from ..ga.loop import GAConfig, SeedGA
+from ..ga.seeds import TrackSeed, great_circle_track, sea_lane_track, track_to_genes
+from ..route.encoding import gene_bounds
+from ..route.generate import evaluate_genes
+from .inputs import BaselineInputs
+from .pymoo_methods import run_pymoo
+from .result import BaselineResult
+from .rpm_fit import constant_rpm_for_rta
+
+
+def default_seeds(inp: BaselineInputs) -> np.ndarray:
+    """Seed genes as the planner builds them without a pool: great circle and sea lane, each
+    at the constant RPM that meets the RTA on its own track."""
+    if inp.seeds is not None and len(inp.seeds):
+        return np.atleast_2d(inp.seeds)
+    p = inp.problem
+    tracks = [("great_circle", *great_circle_track(p))]
+    lane = sea_lane_track(p)
+    if lane is not None:
+        tracks.append(("sea_lane", *lane))
+    seeds = []
+    for name, lon, lat in tracks:
+        rpm, _, _ = constant_rpm_for_rta(p, inp.env, inp.land, lon, lat)
+        seeds.append(TrackSeed(name, lon, lat, np.full(lon.size - 1, rpm)))
+    return track_to_genes(p, inp.env, seeds)
+
+
+def _gene_evaluator(inp: BaselineInputs):
+    p = inp.problem
+
+    def evaluate(x: np.ndarray):
+        ev = evaluate_genes(p, inp.env, inp.land, x)
+        late_h = np.maximum(0.0, ev.eta_s - p.rta_s) / 3600.0
+        rta_viol = np.where(late_h > 0, 1.0 + late_h, 0.0)
+        return ev.fuel_t, ev.eta_s, ev.violation, rta_viol
+
+    return evaluate
+
+
+def run_seed_ga(inp: BaselineInputs, n_evaluations: int, rng: np.random.Generator,
+                config: GAConfig | None = None, seeded: bool = True) -> BaselineResult:
+    """The planner's seed GA for (at least) `n_evaluations` route evaluations."""
+    t0 = time.perf_counter()
+    p = inp.problem
+    lo, hi = gene_bounds(p)
+    seeds = default_seeds(inp) if seeded else None
+    ga = SeedGA(lo, hi, p.n_stages, config or GAConfig(), rng, seeds)
+    while ga.evaluations < n_evaluations:
+        x = ga.ask()
+        x = x[: max(n_evaluations - ga.evaluations, 1)]
+        ev = evaluate_genes(p, inp.env, inp.land, x)
+        ga.tell(x, ev.violation, ev.objective)
+    genes, _, _ = ga.best
+    final = evaluate_genes(p, inp.env, inp.land, genes[None])
+    return BaselineResult("seed_ga" if seeded else "ga", final, time.perf_counter() - t0, True,
+                          route_evaluations=ga.evaluations, genes=genes)
+
+
+def run_pymoo_method(inp: BaselineInputs, algorithm: str, n_evaluations: int,
+                     rng: np.random.Generator, seeded: bool, two_objective: bool = False,
+                     pop_size: int = 50) -> BaselineResult:
+    """NSGA-II / SPEA2 / PSO on the gene encoding; `two_objective` = (ETA, fuel) NSGA-II."""
+    t0 = time.perf_counter()
+    p = inp.problem
+    lo, hi = gene_bounds(p)
+    seeds = default_seeds(inp) if seeded else None
+    r = run_pymoo(algorithm, _gene_evaluator(inp), lo, hi, n_evaluations, rng, seeds,
+                  pop_size=pop_size, two_objective=two_objective, rta_s=p.rta_s)
+    final = evaluate_genes(p, inp.env, inp.land, r.genes[None])
+    name = algorithm + ("_2obj" if two_objective else "") + ("_seeded" if seeded else "")
+    return BaselineResult(
+        name, final, time.perf_counter() - t0, True, route_evaluations=r.evaluations,
+        genes=r.genes,
+        pareto_eta_s=r.pareto_eta_s if two_objective else None,
+        pareto_fuel_t=r.pareto_fuel_t if two_objective else None,
+    )
