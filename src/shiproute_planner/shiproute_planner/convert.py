@@ -1,0 +1,130 @@
+"""The only place where planner values become ROS messages (and ship states come back).
+
+`nav_msgs/Path` poses are in the REP 105 ``earth`` frame (WGS 84 ECEF metres, see
+`path_frame`), stamped with the planned time at each node; `RpmProfile` holds one stage per leg;
+`RoutePlan` copies the frozen plan field by field.
+"""
+
+from __future__ import annotations
+
+import math
+
+from builtin_interfaces.msg import Time
+from geometry_msgs.msg import PoseStamped
+from nav_msgs.msg import Path
+
+from shiproute_msgs.msg import RoutePlan as RoutePlanMsg
+from shiproute_msgs.msg import RouteWaypoint, RpmProfile, RpmStage, ShipState
+
+from .path_frame import track_to_ecef
+from .plan_types import RoutePlan
+
+EARTH_FRAME = "earth"
+
+
+def time_msg(posix_s: float) -> Time:
+    """POSIX seconds (UTC) -> builtin_interfaces/Time (NaN/inf -> zero time)."""
+    if not math.isfinite(posix_s):
+        return Time()
+    ns = round(posix_s * 1e9)
+    return Time(sec=int(ns // 1_000_000_000), nanosec=int(ns % 1_000_000_000))
+
+
+def posix_s(stamp: Time) -> float:
+    """builtin_interfaces/Time -> POSIX seconds."""
+    return stamp.sec + stamp.nanosec * 1e-9
+
+
+def plan_to_msg(plan: RoutePlan, stamp: Time) -> RoutePlanMsg:
+    """Frozen plan -> shiproute_msgs/RoutePlan."""
+    msg = RoutePlanMsg()
+    msg.header.stamp = stamp
+    msg.header.frame_id = "wgs84"
+    msg.plan_id = plan.plan_id
+    msg.cycle_id = plan.cycle_id
+    msg.method = plan.method
+    msg.seed_source = plan.seed_source
+    msg.objective = plan.objective
+    msg.ship_name = plan.ship_name
+    msg.departure_time = time_msg(plan.departure_s)
+    msg.rta = time_msg(plan.rta_s)
+    msg.eta = time_msg(plan.eta_s)
+    msg.feasible = bool(plan.feasible)
+    msg.infeasible_reasons = list(plan.infeasible_reasons)
+    msg.total_fuel_t = float(plan.total_fuel_t)
+    msg.total_distance_nm = float(plan.total_distance_nm)
+    msg.total_time_s = float(plan.total_time_s)
+    msg.baseline_fuel_t = float(plan.baseline_fuel_t)
+    msg.compute_time_s = float(plan.compute_time_s)
+    msg.waypoints = [_waypoint_msg(w) for w in plan.waypoints]
+    return msg
+
+
+def _waypoint_msg(w) -> RouteWaypoint:
+    m = RouteWaypoint()
+    m.latitude_deg = float(w.lat_deg)
+    m.longitude_deg = float(w.lon_deg)
+    m.time = time_msg(w.time_s)
+    for name in (
+        "heading_deg", "stw_kn", "sog_kn", "leg_distance_nm", "leg_duration_s", "leg_fuel_t",
+        "brake_power_kw", "hs_m", "wave_from_deg", "wind_speed_m_s", "wind_from_deg",
+        "p_slamming", "p_deck_wetness", "p_propeller_emergence",
+    ):
+        setattr(m, name, float(getattr(w, name)))
+    m.shaft_rpm = float(w.shaft_rpm)
+    m.constraint_flags = int(w.constraint_flags)
+    return m
+
+
+def plan_to_rpm_profile(plan: RoutePlan, stamp: Time) -> RpmProfile:
+    """The engine-room schedule: one stage per leg (start time, duration, RPM, heading)."""
+    msg = RpmProfile()
+    msg.header.stamp = stamp
+    msg.header.frame_id = "wgs84"
+    msg.plan_id = plan.plan_id
+    for w in plan.waypoints[:-1]:
+        msg.stages.append(
+            RpmStage(
+                start_time=time_msg(w.time_s),
+                duration_s=float(w.leg_duration_s),
+                shaft_rpm=float(w.shaft_rpm),
+                heading_deg=float(w.heading_deg),
+            )
+        )
+    return msg
+
+
+def plan_to_path(plan: RoutePlan, stamp: Time) -> Path:
+    """Planned track as nav_msgs/Path in the REP 105 earth frame (ECEF), one pose per node.
+
+    The arrival node has no leg of its own; it carries the heading of the last leg.
+    """
+    lat = [w.lat_deg for w in plan.waypoints]
+    lon = [w.lon_deg for w in plan.waypoints]
+    heading = [w.heading_deg for w in plan.waypoints]
+    if len(heading) > 1 and not math.isfinite(heading[-1]):
+        heading[-1] = heading[-2]
+    poses = track_to_ecef(lat, lon, heading)
+    path = Path()
+    path.header.stamp = stamp
+    path.header.frame_id = EARTH_FRAME
+    for i, w in enumerate(plan.waypoints):
+        pose = PoseStamped()
+        pose.header.stamp = time_msg(w.time_s)
+        pose.header.frame_id = EARTH_FRAME
+        pose.pose.position.x = float(poses.x_m[i])
+        pose.pose.position.y = float(poses.y_m[i])
+        pose.pose.position.z = float(poses.z_m[i])
+        qx, qy, qz, qw = (float(v) for v in poses.quaternion_xyzw[i])
+        pose.pose.orientation.x, pose.pose.orientation.y = qx, qy
+        pose.pose.orientation.z, pose.pose.orientation.w = qz, qw
+        path.poses.append(pose)
+    return path
+
+
+def ship_position(msg: ShipState) -> tuple[float, float, float] | None:
+    """(lat_deg, lon_deg, time POSIX s) of a ShipState, None when the fix is unusable."""
+    lat, lon = float(msg.latitude_deg), float(msg.longitude_deg)
+    if not (math.isfinite(lat) and math.isfinite(lon)) or abs(lat) > 90.0 or abs(lon) > 180.0:
+        return None
+    return lat, lon, posix_s(msg.header.stamp)
