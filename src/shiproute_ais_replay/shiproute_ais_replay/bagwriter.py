@@ -21,6 +21,17 @@ from .typestore import build_typestore, msgdef
 DEFAULT_CHUNK_BYTES = 1 << 20
 
 
+def qos_yaml(reliability: str = "reliable", durability: str = "volatile", depth: int = 10) -> str:
+    """Offered-QoS profile list as rosbag2 (metadata version 9) stores it in channel metadata."""
+    zero = {"sec": 0, "nsec": 0}
+    return yaml.safe_dump([{
+        "history": "keep_last", "depth": depth, "reliability": reliability,
+        "durability": durability, "deadline": zero, "lifespan": zero,
+        "liveliness": "automatic", "liveliness_lease_duration": zero,
+        "avoid_ros_namespace_conventions": False,
+    }], sort_keys=False)
+
+
 class BagWriter:
     """Streaming writer: ``add_topic`` once per topic, then ``write`` (or ``write_message``)."""
 
@@ -49,6 +60,7 @@ class BagWriter:
         self._schemas: dict[str, int] = {}
         self._topics: dict[str, tuple[int, str]] = {}
         self._counts: dict[str, int] = {}
+        self._qos: dict[str, list] = {}  # metadata.yaml must repeat the channel's QoS list
         self._t_min_ns = 2**63 - 1
         self._t_max_ns = 0
         self._closed = False
@@ -73,6 +85,7 @@ class BagWriter:
             metadata={"offered_qos_profiles": qos_yaml},
         )
         self._topics[topic] = (chan, typename)
+        self._qos[topic] = yaml.safe_load(qos_yaml) or []
         self._counts[topic] = 0
 
     def write(self, topic: str, time_ns: int, data: bytes | memoryview) -> None:
@@ -117,7 +130,7 @@ class BagWriter:
                     "name": topic,
                     "type": typename,
                     "serialization_format": "cdr",
-                    "offered_qos_profiles": [],
+                    "offered_qos_profiles": self._qos[topic],
                     "type_description_hash": self.store.hash_rihs01(typename),
                 },
                 "message_count": self._counts[topic],

@@ -15,12 +15,11 @@ import time
 from pathlib import Path
 
 import rclpy
-import yaml
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from rosbags.typesys.store import Typestore
 
-from .bagwriter import BagWriter
+from .bagwriter import BagWriter, qos_yaml
 from .convert import rclpy_class
 from .errors import MessageTypeError
 from .typestore import build_typestore, register_schema
@@ -81,11 +80,7 @@ class Recorder(Node):
 
     @staticmethod
     def _qos_yaml(qos: QoSProfile) -> str:
-        return yaml.safe_dump([{
-            "history": "keep_last", "depth": qos.depth,
-            "reliability": qos.reliability.name.lower(),
-            "durability": qos.durability.name.lower(),
-        }])
+        return qos_yaml(qos.reliability.name.lower(), qos.durability.name.lower(), qos.depth)
 
     def _on_msg(self, topic: str, data: bytes) -> None:
         self.writer.write(topic, time.time_ns(), data)

@@ -91,3 +91,20 @@ def test_reader_start_time_skips_earlier_messages(tmp_path: Path):
     reader = BagReader(path)
     got = [m.time_ns for m in reader.messages(start_ns=T0_NS + 600 * 10**9)]
     assert got == [s.time_ns for s in states[600:]]
+
+
+def test_topic_with_offered_qos_reads_back_in_rosbags(tmp_path: Path):
+    from shiproute_ais_replay.bagwriter import BagWriter, qos_yaml
+    from shiproute_ais_replay.shipstate import to_rosbags
+    from shiproute_ais_replay.typestore import SHIP_STATE_TYPE, build_typestore
+
+    store = build_typestore()
+    states = make_states(3)
+    with BagWriter(tmp_path / "q", store) as w:
+        w.add_topic("/latched", SHIP_STATE_TYPE, qos_yaml("reliable", "transient_local", 1))
+        for rec in states:
+            w.write_message("/latched", rec.time_ns, to_rosbags(store, rec))
+    with AnyReader([tmp_path / "q"]) as reader:
+        (conn,) = reader.connections
+        assert conn.ext.offered_qos_profiles[0].durability.name == "TRANSIENT_LOCAL"
+        assert sum(1 for _ in reader.messages()) == 3
