@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import sys
 
 from shiproute_bringup.dispatch import dispatch
@@ -16,6 +17,11 @@ def main(argv: list[str] | None = None) -> int:
         return dispatch("shiproute", GROUP, args, what="subcommand")
     except KeyboardInterrupt:
         return 130
+    except BrokenPipeError:
+        # output piped into e.g. `head`: stop quietly, like other Unix tools
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return 141
 
 
 if __name__ == "__main__":
