@@ -136,10 +136,15 @@ if ! stamp_ok msgs "$H_MSGS" || ! msgs_importable; then
     cmake -S "$REPO/src/shiproute_msgs" -B "$MB" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=OFF \
       -DCMAKE_PREFIX_PATH="$VENV" -DCMAKE_INSTALL_PREFIX="$VENV" -DPython3_EXECUTABLE="$VENV/bin/python" >> "$LOG" 2>&1
   }
-  # A cache from an earlier failed or foreign configure is discarded and configured afresh.
+  # A build dir made for another venv (recreated, other Python) is discarded: its CMake cache
+  # would point at stale interpreter paths.
+  VENV_ID="$({ cat "$VENV/pyvenv.cfg"; readlink -f "$VENV/bin/python"; } 2>/dev/null | sha256sum | cut -c1-64)"
+  if [[ -d "$MB" && "$(cat "$MB/.venv-id" 2>/dev/null)" != "$VENV_ID" ]]; then rm -rf "$MB"; fi
+  mkdir -p "$MB" && printf '%s\n' "$VENV_ID" > "$MB/.venv-id"
+  # A cache from an earlier failed configure is discarded and configured afresh.
   if ! configure; then
     say "configure failed; retrying with a clean build directory"
-    rm -rf "$MB"
+    rm -rf "$MB" && mkdir -p "$MB" && printf '%s\n' "$VENV_ID" > "$MB/.venv-id"
     run_logged configure
   fi
   run_logged cmake --build "$MB"
