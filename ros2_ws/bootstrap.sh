@@ -51,7 +51,11 @@ stamp_ok() { [[ "${SHIPROUTE_BOOTSTRAP_FORCE:-0}" != 1 && -f "$STAMPS/$1" && "$(
 stamp_set() { mkdir -p "$STAMPS"; printf '%s\n' "$2" > "$STAMPS/$1"; }
 
 # ---- fast path: everything stamped and the entry point exists --------------------------
-if stamp_ok all "$H_ALL" && [[ -x "$VENV/bin/shiproute" && -x "$VENV/bin/python" ]]; then
+installed() {  # cheap presence check of what the stamps vouch for
+  local m=("$VENV"/lib/python3*/site-packages/shiproute_msgs/msg/__init__.py)
+  [[ -x "$VENV/bin/shiproute" && -x "$VENV/bin/python" && -f "${m[0]}" ]]
+}
+if stamp_ok all "$H_ALL" && installed; then
   [[ "${SHIPROUTE_BOOTSTRAP_QUIET:-0}" == 1 ]] || say "workspace up to date ($VENV)"
   exit 0
 fi
@@ -63,7 +67,7 @@ if ! flock -n 9; then
   say "another bootstrap is running; waiting for it"
   flock 9
 fi
-if stamp_ok all "$H_ALL" && [[ -x "$VENV/bin/shiproute" ]]; then exit 0; fi
+if stamp_ok all "$H_ALL" && installed; then exit 0; fi
 : > "$LOG"
 T0=$SECONDS
 
