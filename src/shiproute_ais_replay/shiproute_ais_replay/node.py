@@ -27,7 +27,6 @@ from .convert import clock_msg, diagnostic_array, rclpy_class, ship_state_to_rcl
 from .errors import AisReplayError
 from .replay import ReplayConfig, ReplayEngine, ReplayEvent
 
-STATE_QOS = QoSProfile(depth=1000, reliability=ReliabilityPolicy.RELIABLE)
 CLOCK_QOS = QoSProfile(depth=1, reliability=ReliabilityPolicy.BEST_EFFORT)
 
 
@@ -51,6 +50,7 @@ class ReplayNode(Node):
         self.publish_clock = bool(p("publish_clock", True).value)
         self.clock_period_s = float(p("clock_period_s", 0.01).value)
         self.exit_at_end = bool(p("exit_at_end", False).value)
+        depth = int(p("qos_depth", 1000).value)
         config = ReplayConfig(
             rate=float(p("rate", 1.0).value),
             start_offset_s=float(p("start_offset_s", 0.0).value),
@@ -65,7 +65,9 @@ class ReplayNode(Node):
         self.engine = ReplayEngine(self.bag, config)
         if start_paused:
             self.engine.pause()
-        self.state_pub = self.create_publisher(ShipState, "/shiproute/ship_state", STATE_QOS)
+        self.state_pub = self.create_publisher(
+            ShipState, "/shiproute/ship_state",
+            QoSProfile(depth=depth, reliability=ReliabilityPolicy.RELIABLE))
         self.clock_pub = self.create_publisher(Clock, "/clock", CLOCK_QOS)
         self.diag_pub = self.create_publisher(DiagnosticArray, "/diagnostics", 10)
         self.pass_pubs: dict[str, Any] = {}
@@ -85,8 +87,9 @@ class ReplayNode(Node):
         except AisReplayError as exc:
             self.get_logger().error(f"replay of {self.bag} stopped: {exc}")
             self.errors += 1
-        self._publish_diagnostics()
-        self.get_logger().info(f"replay finished: {self.engine.status()['published']}")
+        if self.context.ok():
+            self._publish_diagnostics()
+            self.get_logger().info(f"replay finished: {self.engine.status()['published']}")
 
     def _on_clock(self, bag_ns: int) -> None:
         if not self.publish_clock:
@@ -94,7 +97,13 @@ class ReplayNode(Node):
         now = time.monotonic()
         if now - self._last_clock_wall >= self.clock_period_s:
             self._last_clock_wall = now
-            self.clock_pub.publish(clock_msg(bag_ns))
+            try:
+                self.clock_pub.publish(clock_msg(bag_ns))
+            except Exception:  # context shut down (Ctrl-C) while the worker runs
+                if not self.context.ok():
+                    self.engine.stop()
+                    return
+                raise
 
     def _on_emit(self, ev: ReplayEvent) -> None:
         try:
@@ -110,6 +119,9 @@ class ReplayNode(Node):
             else:
                 pub.publish(to_rclpy(self.engine.deserialize(ev), pub.msg_type))
         except Exception as exc:  # a bad message must not stop the replay
+            if not self.context.ok():  # shutting down: end the replay quietly
+                self.engine.stop()
+                return
             self.errors += 1
             if self.errors <= 5:
                 self.get_logger().warning(f"cannot publish {ev.typename} on {ev.topic}: {exc}")
