@@ -77,7 +77,7 @@ class PhysicsModel:
         n_legs = int(np.prod(shape))
         rpm1 = np.broadcast_to(rpm, shape).reshape(n_legs)
         hdg = np.broadcast_to(heading_deg, shape).reshape(n_legs)
-        s = _flat(sea, shape, n_legs)
+        s = flatten_sea(sea, shape, n_legs)
         c, p = self.const, self.ship.propeller
         n_rps = rpm1 / 60.0
         s_ws, s_sw = self._wave_spectra(hdg, s)
@@ -95,10 +95,10 @@ class PhysicsModel:
         kq = c.curve.kq(j)
         torque_nm = kq * c.rho_kg_m3 * n_rps**2 * p.diameter_m**5 / c.hm.eta_r
         pb_kw = 2 * np.pi * n_rps * torque_nm / p.shaft_efficiency / 1000.0
-        out = self._finish(rpm1, hdg, s, v, pb_kw)
+        out = self.finish_legs(rpm1, hdg, s, v, pb_kw)
         return LegPerformance(**{k: a.reshape(shape) for k, a in out.items()})
 
-    def _finish(
+    def finish_legs(
         self, rpm: np.ndarray, hdg: np.ndarray, s: SeaState, v: np.ndarray, pb_kw: np.ndarray
     ) -> dict[str, np.ndarray]:
         """Fuel, limits, currents and seakeeping from speed and brake power (1-D)."""
@@ -153,7 +153,7 @@ class PhysicsModel:
         n_legs = int(np.prod(shape))
         v = np.broadcast_to(stw, shape).reshape(n_legs).copy()
         hdg = np.broadcast_to(heading_deg, shape).reshape(n_legs)
-        s = _flat(sea, shape, n_legs)
+        s = flatten_sea(sea, shape, n_legs)
         c = self.const
         r_calm, w = c.calm_resistance_n(v)
         r_wind, r_wave = self.added_resistance_n(v, hdg, s)
@@ -177,7 +177,7 @@ class PhysicsModel:
         return va_m_s / (j * d)
 
 
-def _flat(sea: SeaState, shape: tuple[int, ...], n: int) -> SeaState:
+def flatten_sea(sea: SeaState, shape: tuple[int, ...], n: int) -> SeaState:
     b = sea.broadcast(shape)
     return SeaState(**{k: np.ascontiguousarray(a).reshape(n) for k, a in vars(b).items()})
 
