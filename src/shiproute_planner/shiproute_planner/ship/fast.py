@@ -18,6 +18,7 @@ from itertools import pairwise
 import numpy as np
 
 from . import fast_kernel as fk
+from .errors import ShipModelError
 from .hull import ShipConstants
 from .performance import LegPerformance
 from .physics import PhysicsModel
@@ -68,6 +69,10 @@ class FastModel:
         )
         ref_n = e.rpm_mcr / 60.0
         v_ref = self.physics.evaluate(e.rpm_mcr, 0.0, SeaState.calm()).stw_m_s
+        for name, tab in (("calm resistance", r_calm), ("wake", wake), ("wave", u_ws),
+                          ("swell", u_sw), ("motion", m0_ws), ("swell motion", m0_sw)):
+            if not np.all(np.isfinite(tab)):
+                raise ShipModelError(f"ship '{ship.name}': non-finite {name} table; check the file")
         par = np.zeros(fk.N_PAR)
         kt, kq = c.curve.kt_poly, c.curve.kq_poly
         values = {

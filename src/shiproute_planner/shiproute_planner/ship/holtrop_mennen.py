@@ -167,8 +167,10 @@ def resistance(
     )
     abt, hb, tf = h.bulb_area_m2, h.bulb_center_height_m, h.draft_fore_m
     if abt > 0:
-        pb = 0.56 * np.sqrt(abt) / (tf - 1.5 * hb)
-        fni = v / np.sqrt(G_M_S2 * (tf - hb - 0.25 * np.sqrt(abt)) + 0.15 * v**2)
+        # near-surface bulbs (ballast drafts) are clamped to the formula's defined range
+        pb = 0.56 * np.sqrt(abt) / max(tf - 1.5 * hb, 0.1)
+        immersion = max(tf - hb - 0.25 * np.sqrt(abt), 0.1)
+        fni = v / np.sqrt(G_M_S2 * immersion + 0.15 * v**2)
         rb = 0.11 * np.exp(-3.0 / pb**2) * fni**3 * abt**1.5 * rho_kg_m3 * G_M_S2 / (1 + fni**2)
     else:
         rb = np.zeros_like(v)

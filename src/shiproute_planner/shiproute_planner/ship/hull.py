@@ -42,7 +42,10 @@ def ship_constants(ship: ShipSpec) -> ShipConstants:
         lwl_m=h.lwl_m, breadth_m=h.breadth_m, draft_fore_m=c.draft_fore_m,
         draft_aft_m=c.draft_aft_m, volume_m3=volume, midship_coefficient=h.midship_coefficient,
         waterplane_coefficient=h.waterplane_coefficient, lcb_percent=h.lcb_percent,
-        bulb_area_m2=h.bulb_area_m2, bulb_center_height_m=h.bulb_center_height_m,
+        bulb_area_m2=h.bulb_area_m2 if c.bulb_area_m2 is None else c.bulb_area_m2,
+        bulb_center_height_m=(
+            h.bulb_center_height_m if c.bulb_center_height_m is None else c.bulb_center_height_m
+        ),
         transom_area_m2=h.transom_area_m2, appendage_area_m2=h.appendage_area_m2,
         appendage_form_factor=h.appendage_form_factor,
         stern_shape_coefficient=h.stern_shape_coefficient, wetted_surface_m2=h.wetted_surface_m2,

@@ -144,6 +144,8 @@ def parse_ship(text: str, source: str, condition: str | None = None) -> ShipSpec
         displacement_t=r.num(c_m, "displacement_t", key, 50, 700000),
         gm_m=r.num(c_m, "gm_m", key, 0.05, 20),
         roll_period_s=r.opt_num(c_m, "roll_period_s", key, 3, 60),
+        bulb_area_m2=r.opt_num(c_m, "bulb_area_m2", key, 0, 200),
+        bulb_center_height_m=r.opt_num(c_m, "bulb_center_height_m", key, 0, 20),
     )
     if max(cond.draft_fore_m, cond.draft_aft_m) >= hull.depth_m:
         raise ShipFileError(source, key, "drafts must be below hull.depth_m")

@@ -74,6 +74,8 @@ class LoadingCondition:
     displacement_t: float
     gm_m: float
     roll_period_s: float | None  # None: IMO IS Code estimate from GM
+    bulb_area_m2: float | None = None  # immersed bulb section at this draft (None: hull's)
+    bulb_center_height_m: float | None = None
 
 
 @dataclass(frozen=True)
