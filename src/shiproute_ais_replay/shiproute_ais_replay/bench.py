@@ -27,17 +27,18 @@ QOS_DEPTH = 10000  # history on both sides, so an unthrottled replay loses nothi
 def bench_bag(days: float, rebuild: bool = False) -> tuple[Path, float]:
     """Cached voyage bag (Busan -> Long Beach at 70 rpm, calm, 1 Hz); (path, seconds spent)."""
     base = Path(os.environ.get("SHIPROUTE_DATA_DIR") or Path(tempfile.gettempdir()) / "shiproute")
-    path = base / "bench" / f"replay_voyage_{days:g}d_1hz"
+    path = base / "bench" / f"replay_voyage_{days:g}d_1hz_v2"
     if path.exists() and not rebuild:
         return path, 0.0
     from shiproute_planner.ship import PhysicsModel, bundled_ships, load_ship
 
     from .aisbag import write_states
     from .simulate import SimulationOptions, VoyageSimulator
+    from .simulate_cli import default_ship
     from .voyage_input import great_circle
 
     t0 = time.monotonic()
-    ship = load_ship(bundled_ships()[0])
+    ship = load_ship(default_ship(bundled_ships()))
     opts = SimulationOptions(departure_s=1_772_668_800.0, rate_hz=1.0, model_step_s=1800.0,
                              seed=1, max_duration_s=days * 86400.0, mmsi=440123456)
     sim = VoyageSimulator(great_circle(*BUSAN, *LONG_BEACH, 70.0), PhysicsModel(ship), ship, opts)

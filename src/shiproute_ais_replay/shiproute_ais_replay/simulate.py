@@ -83,7 +83,7 @@ class VoyageSimulator:
             stw_kn = p.leg_stw_kn[leg]
             if not math.isfinite(stw_kn) and math.isfinite(p.leg_eta_s[leg]):
                 left_m = float(distance_m(lat, lon, p.lat_deg[leg + 1], p.lon_deg[leg + 1]))
-                stw_kn = left_m / max(p.leg_eta_s[leg] - t_s, 600.0) / M_S_PER_KN
+                stw_kn = left_m / max(p.leg_eta_s[leg] - t_s, 60.0) / M_S_PER_KN
             if math.isfinite(stw_kn):
                 rpm = float(self.model.rpm_for_speed(
                     np.array(stw_kn * M_S_PER_KN), np.array(heading), sea))

@@ -11,6 +11,8 @@ from typing import Any
 from .ais_nmea import parse_time_ns
 from .errors import SimulationError
 
+DEFAULT_SHIP = "container_4600teu"
+
 
 def add_simulate_parser(sub: Any) -> None:
     """Register the ``simulate`` sub-command on an argparse sub-parser collection."""
@@ -26,7 +28,8 @@ def add_simulate_parser(sub: Any) -> None:
                    help="shaft rpm for legs without rpm/speed/eta (required for great circle)")
     p.add_argument("--forecast", default="",
                    help="forecast NetCDF/GRIB file or bundled scenario name (default: calm)")
-    p.add_argument("--ship", default="", help="bundled ship name or ship file")
+    p.add_argument("--ship", default="",
+                   help=f"bundled ship name or ship file (default {DEFAULT_SHIP})")
     p.add_argument("--rate-hz", type=float, default=1.0, help="ShipState output rate")
     p.add_argument("--model-step-s", type=float, default=600.0,
                    help="ship-model evaluation step")
@@ -35,6 +38,11 @@ def add_simulate_parser(sub: Any) -> None:
     p.add_argument("--mmsi", type=int, default=0)
     p.add_argument("--no-fix", action="store_true", help="do not write NavSatFix")
     p.set_defaults(func=cmd_simulate)
+
+
+def default_ship(names: list[str]) -> str:
+    """The demo ship (4,600 TEU container ship) when bundled, else the first bundled ship."""
+    return DEFAULT_SHIP if DEFAULT_SHIP in names else names[0]
 
 
 def forecast_sampler(spec: str) -> Any:
@@ -69,7 +77,7 @@ def cmd_simulate(args: argparse.Namespace) -> int:
         if t_ns is None:
             raise SimulationError(f"--depart {args.depart!r} is not an ISO 8601 time")
         depart_s = t_ns / 1e9
-    ship = load_ship(args.ship or plan.ship or bundled_ships()[0])
+    ship = load_ship(args.ship or plan.ship or default_ship(bundled_ships()))
     opts = SimulationOptions(departure_s=depart_s, rate_hz=args.rate_hz,
                              model_step_s=args.model_step_s, default_rpm=args.rpm,
                              noise=not args.no_noise, seed=args.seed, mmsi=args.mmsi)

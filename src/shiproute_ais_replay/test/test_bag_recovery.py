@@ -102,3 +102,33 @@ def test_not_an_mcap_file_is_a_clear_error(tmp_path: Path):
     bad.write_bytes(b"hello world, not mcap")
     with pytest.raises(BagFormatError, match=r"x\.mcap"):
         list(BagReader(bad).messages())
+
+
+def test_info_scans_truncated_bare_mcap_without_summary(tmp_path: Path):
+    from shiproute_ais_replay.cli import bag_info
+
+    path = write_bag(tmp_path / "t.mcap", make_states(400), chunk_bytes=4000, with_fix=False)
+    size = path.stat().st_size
+    with path.open("r+b") as f:
+        f.truncate(size * 2 // 3)
+    info = bag_info(path)
+    assert info["scan"]["truncated"] is True
+    n = info["message_count"]
+    assert 0 < n < 400
+    assert info["duration_s"] == pytest.approx(n - 1)  # 1 Hz, contiguous from the start
+
+
+def test_engine_start_offset_and_loop(tmp_path: Path):
+    path = write_bag(tmp_path / "l", make_states(100), with_fix=False)
+    engine = ReplayEngine(path, ReplayConfig(rate=0.0, start_offset_s=90.0, loop=True))
+    events = []
+
+    def emit(ev):
+        events.append(ev.time_ns)
+        if len(events) == 25:
+            engine.stop()
+
+    engine.run(emit, lambda _ns: None)
+    t0 = events[0]
+    assert [(t - t0) // 10**9 for t in events[:12]] == [*range(10), 0, 1]  # 90..99, 90, 91
+    assert engine.loops == 2

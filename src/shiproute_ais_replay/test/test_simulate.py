@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+from datetime import UTC, datetime
 from pathlib import Path
 
 import numpy as np
@@ -21,7 +22,7 @@ T0 = 1_772_668_800.0  # 2026-03-05T00:00:00Z
 
 @pytest.fixture(scope="module")
 def ship_model():
-    ship = ship_mod.load_ship(ship_mod.bundled_ships()[0])
+    ship = ship_mod.load_ship("container_4600teu")
     return ship, ship_mod.PhysicsModel(ship)
 
 
@@ -49,7 +50,7 @@ def test_great_circle_calm_matches_model(ship_model):
     assert mid.draft_fore_m == ship.condition.draft_fore_m
 
 
-RTZ = """<?xml version="1.0" encoding="UTF-8"?>
+RTZ_TEMPLATE = """<?xml version="1.0" encoding="UTF-8"?>
 <route xmlns="http://www.cirm.org/RTZ/1/2" version="1.2">
   <routeInfo routeName="test"/>
   <waypoints>
@@ -60,7 +61,7 @@ RTZ = """<?xml version="1.0" encoding="UTF-8"?>
   <schedules><schedule id="1"><calculated>
     <scheduleElement waypointId="1" etd="2026-03-05T00:00:00Z" rpm="60"/>
     <scheduleElement waypointId="2"/>
-    <scheduleElement waypointId="3" eta="2026-03-05T06:00:00Z"/>
+    <scheduleElement waypointId="3" eta="{eta}"/>
   </calculated></schedule></schedules>
 </route>
 """
@@ -68,20 +69,28 @@ RTZ = """<?xml version="1.0" encoding="UTF-8"?>
 
 def test_rtz_schedule_rpm_then_eta(tmp_path: Path, ship_model):
     ship, model = ship_model
+    calm = ship_mod.SeaState.calm(())
+    v60 = float(model.evaluate(np.array(60.0), np.array(90.0), calm).sog_m_s)
+    v70 = float(model.evaluate(np.array(70.0), np.array(0.0), calm).sog_m_s)
+    # feasible ETA: first leg at 60 rpm, second leg (due north) at the 70 rpm speed
+    eta_s = round(T0 + 0.5 * DEG_M / v60 + 0.5 * DEG_M / v70)
+    eta_iso = datetime.fromtimestamp(eta_s, tz=UTC).isoformat().replace("+00:00", "Z")
     path = tmp_path / "r.rtz"
-    path.write_text(RTZ)
+    path.write_text(RTZ_TEMPLATE.replace("{eta}", eta_iso))
     plan = read_rtz(path)
     assert plan.departure_s == T0
     assert plan.leg_rpm[0] == 60.0 and math.isnan(plan.leg_rpm[1])
-    assert plan.leg_eta_s[1] == T0 + 6 * 3600
+    assert plan.leg_eta_s[1] == eta_s
     opts = SimulationOptions(departure_s=plan.departure_s, rate_hz=0.01, noise=False)
     sim = VoyageSimulator(plan, model, ship, opts)
     states = list(sim.states())
     assert sim.summary.arrived
     # second leg re-plans the speed every step so the ship arrives at the ETA
-    assert sim.summary.duration_s == pytest.approx(6 * 3600, abs=60)
+    assert sim.summary.duration_s == pytest.approx(eta_s - T0, abs=60)
     first_leg = [s for s in states if s.longitude_deg < 0.49]
     assert {s.shaft_rpm for s in first_leg} == {60.0}
+    second_leg = [s for s in states if s.latitude_deg > 0.01 and s.shaft_rpm > 0]
+    assert np.mean([s.shaft_rpm for s in second_leg]) == pytest.approx(70.0, abs=1.0)
 
 
 def test_simulate_cli_writes_bag(tmp_path: Path, capsys):
