@@ -1,4 +1,4 @@
-"""Open forecast files (NetCDF, GRIB2) and turn them into one canonical dataset."""
+"""Open forecast files (GRIB1/2, NetCDF3/4) and turn them into one canonical dataset."""
 
 from __future__ import annotations
 
@@ -7,8 +7,28 @@ from pathlib import Path
 
 import xarray as xr
 
-from .canonical import annotate
-from .errors import ForecastFileError
+from .combine import combine
+from .errors import ForecastFileError, WeatherError
+from .grib import open_grib
+from .normalise import to_canonical
+from .validate import validate
+
+
+def detect_format(path: Path) -> str:
+    """'grib' or 'netcdf' from the file's first bytes."""
+    try:
+        with path.open("rb") as f:
+            head = f.read(8)
+    except OSError as exc:
+        raise ForecastFileError(str(path), f"cannot be opened ({exc.strerror})") from exc
+    if head.startswith(b"GRIB"):
+        return "grib"
+    if head.startswith((b"CDF\x01", b"CDF\x02", b"CDF\x05", b"\x89HDF")):
+        return "netcdf"
+    if not head:
+        raise ForecastFileError(str(path), "file is empty")
+    raise ForecastFileError(str(path), f"unknown format (first bytes {head[:4]!r}); expected "
+                                       "GRIB or NetCDF")
 
 
 def open_netcdf_raw(path: Path) -> xr.Dataset:
@@ -23,10 +43,31 @@ def open_netcdf_raw(path: Path) -> xr.Dataset:
     raise ForecastFileError(str(path), f"cannot be read as NetCDF ({last})")
 
 
-def open_forecast(paths: Sequence[str | Path]) -> xr.Dataset:
-    """Load one or more forecast files into a canonical dataset."""
-    path = Path(paths[0])
-    if not path.exists():
-        raise ForecastFileError(str(path), "file does not exist")
-    ds = open_netcdf_raw(path)
-    return annotate(ds.sortby("latitude"))
+def open_file(path: str | Path) -> xr.Dataset:
+    """One forecast file as a canonical dataset (not yet validated)."""
+    p = Path(path)
+    if not p.exists():
+        raise ForecastFileError(str(p), "file does not exist")
+    raw = open_grib(p) if detect_format(p) == "grib" else open_netcdf_raw(p)
+    try:
+        return to_canonical(raw, str(p))
+    except WeatherError:
+        raise
+    except Exception as exc:
+        raise ForecastFileError(str(p), f"cannot be interpreted as a forecast ({exc})") from exc
+
+
+def open_forecast(paths: Sequence[str | Path], required: Sequence[str] = (),
+                  cycle_id: str | None = None) -> xr.Dataset:
+    """Load, combine and validate forecast files into one canonical dataset.
+
+    Several files are combined onto the grid/times of the first one holding wind (see
+    `combine.combine`). `required` canonical variables must be present after combining.
+    """
+    if not paths:
+        raise ForecastFileError("(no files)", "no forecast files given")
+    datasets = [validate(open_file(p), str(p)) for p in paths]
+    ds = combine(datasets)
+    if cycle_id:
+        ds.attrs["cycle_id"] = cycle_id
+    return validate(ds, ", ".join(str(p) for p in paths), required)

@@ -1,0 +1,67 @@
+"""Physical-range and contract checks of a canonical dataset (NaN is allowed: missing)."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+import numpy as np
+import xarray as xr
+
+from . import canonical as cv
+from .errors import GridError, MissingVariableError, ValueRangeError
+
+#: Physical limits (beyond the contract's storage ranges): Hs 0-25 m, |wind| < 100 m/s,
+#: periods 0-30 s, currents below 10 m/s, directions 0-360 deg.
+WIND_SPEED_MAX_M_S = 100.0
+CURRENT_SPEED_MAX_M_S = 10.0
+
+
+def _check_range(ds: xr.Dataset, name: str, where: str) -> None:
+    spec = cv.VARIABLES[name]
+    a = ds[name].values
+    finite = a[np.isfinite(a)]
+    if np.isinf(a).any():
+        raise ValueRangeError(where, name, "holds infinite values", "finite values or NaN")
+    if finite.size == 0:
+        return
+    lo, hi = float(finite.min()), float(finite.max())
+    if lo < spec.valid_min or hi > spec.valid_max:
+        raise ValueRangeError(where, name, f"spans {lo:.6g}..{hi:.6g} {spec.units}",
+                              f"{spec.long_name} within {spec.valid_min:g}..{spec.valid_max:g} "
+                              f"{spec.units}")
+
+
+def _check_speed(ds: xr.Dataset, u: str, v: str, limit: float, where: str) -> None:
+    if u in ds and v in ds:
+        speed = np.hypot(ds[u].values, ds[v].values)
+        top = float(np.nanmax(speed)) if np.isfinite(speed).any() else 0.0
+        if top >= limit:
+            raise ValueRangeError(where, f"{u}/{v}", f"reach a speed of {top:.6g} m s-1",
+                                  f"speeds below {limit:g} m s-1")
+
+
+def validate(ds: xr.Dataset, where: str = "dataset",
+             required: Iterable[str] = ()) -> xr.Dataset:
+    """Check attrs, grid, required variables and physical ranges; return `ds` unchanged."""
+    for attr in cv.REQUIRED_ATTRS:
+        if not ds.attrs.get(attr):
+            raise GridError(where, f"attribute {attr!r} missing")
+    grid = cv.grid_of(ds, where)
+    if not (grid.lat0_deg >= -90.0 and grid.latitudes_deg[-1] <= 90.0):
+        raise GridError(where, "latitudes outside -90..90")
+    t = ds["time"].values
+    if t.size > 1 and np.any(np.diff(t.astype(np.int64)) <= 0):
+        raise GridError(where, "times are not strictly ascending")
+    cv.require_variables(ds, list(required), where)
+    present = cv.present_variables(ds)
+    if not present:
+        raise MissingVariableError(where, "any canonical variable",
+                                   ", ".join(cv.CANONICAL_ORDER))
+    for name in present:
+        if ds[name].dims != ("time", "latitude", "longitude"):
+            raise GridError(where, f"variable {name!r} has dims {ds[name].dims}; expected "
+                                   "(time, latitude, longitude)")
+        _check_range(ds, name, where)
+    _check_speed(ds, cv.WIND_U, cv.WIND_V, WIND_SPEED_MAX_M_S, where)
+    _check_speed(ds, cv.CURRENT_U, cv.CURRENT_V, CURRENT_SPEED_MAX_M_S, where)
+    return ds
