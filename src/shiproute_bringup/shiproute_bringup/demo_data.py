@@ -1,0 +1,70 @@
+"""Data of the end-to-end demo, made once and cached: forecast scenarios and the voyage bag.
+
+The recorded voyage is what a ship of the bundled 4,600 TEU class sails from Busan to Long Beach
+in the March storm scenario on the constant-RPM sea-lane/great-circle baseline that meets the
+13-day RTA; `shiproute bag simulate` writes it from that plan with the same ship model.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+ORIGIN = "Busan"
+DESTINATION = "Long Beach"
+DEPARTURE = "2026-03-03T18:00:00Z"
+RTA = "2026-03-16T18:00:00Z"
+SHIP = "container_4600teu"
+FIRST_CYCLE = "storm_march"
+SECOND_CYCLE = "storm_march_cycle2"
+STATE_RATE_HZ = 1.0 / 60.0  # one ShipState a minute: 18,720 messages for 13 days
+
+
+@dataclass(frozen=True)
+class DemoData:
+    """Paths of the demo's inputs."""
+
+    first_forecast: Path
+    second_forecast: Path
+    voyage_bag: Path
+    seed_pool_dir: Path
+
+
+def data_dir() -> Path:
+    """The workspace data directory ($SHIPROUTE_DATA_DIR, else ~/.cache/shiproute)."""
+    root = os.environ.get("SHIPROUTE_DATA_DIR") or str(Path.home() / ".cache" / "shiproute")
+    return Path(root)
+
+
+def _voyage_bag(path: Path, log) -> Path:
+    """Plan the constant-RPM baseline and simulate the voyage along it (skipped when cached)."""
+    if (path / "metadata.yaml").exists():
+        return path
+    from shiproute_ais_replay.cli import main as bag_main
+    from shiproute_planner.io import write_plan_files
+    from shiproute_planner.planning import plan_voyage
+    from shiproute_weather.scenarios import scenario_dataset
+
+    log(f"making the demo voyage bag {path} (once)")
+    forecast = scenario_dataset(FIRST_CYCLE)
+    plan = plan_voyage(ORIGIN, DESTINATION, DEPARTURE, RTA, SHIP, forecast,
+                       method="great_circle", budget_s=5.0, with_baseline=False)
+    plan_dir = path.parent / "demo_voyage_plan"
+    files = write_plan_files(plan, plan_dir, forecast=forecast, png=False)
+    tmp = path.with_name(path.name + ".tmp")
+    bag_main(["simulate", str(tmp), "--plan", str(files["json"]), "--forecast", FIRST_CYCLE,
+                   "--ship", SHIP, "--rate-hz", str(STATE_RATE_HZ)])
+    tmp.rename(path)
+    return path
+
+
+def prepare(log=print) -> DemoData:
+    """Build (or reuse) the scenario files and the voyage bag."""
+    from shiproute_weather.scenarios import scenario_path
+
+    root = data_dir()
+    first = scenario_path(FIRST_CYCLE)
+    second = scenario_path(SECOND_CYCLE)
+    bag = _voyage_bag(root / "demo" / "busan_long_beach_march_voyage", log)
+    return DemoData(first, second, bag, root / "seed_pool")
