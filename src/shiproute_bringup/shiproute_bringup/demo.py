@@ -115,7 +115,8 @@ def main(argv: list[str] | None = None) -> int:
     bringup = RosProcess([console_script("shiproute"), "bringup", str(params)], name="bringup",
                          on_line=lambda _s, line: log.write(line + "\n"))
     record = RosProcess([console_script("shiproute"), "bag", "record", str(out / "recording")],
-                        name="record", on_line=lambda _s, line: log.write("[record] " + line + "\n"))
+                        name="record",
+                        on_line=lambda _s, line: log.write("[record] " + line + "\n"))
     watcher = _Watcher()
     depart_s = datetime.fromisoformat(demo_data.DEPARTURE.replace("Z", "+00:00")).timestamp()
     second_dropped = False
