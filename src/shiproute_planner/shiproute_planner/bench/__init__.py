@@ -1,0 +1,1 @@
+"""Benchmark scripts registered in the ``shiproute.bench`` entry-point group."""

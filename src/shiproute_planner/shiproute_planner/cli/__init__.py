@@ -1,0 +1,1 @@
+"""Command-line subcommands registered in the ``shiproute.commands`` entry-point group."""

@@ -1,0 +1,45 @@
+"""Ship files: list bundled ships, show one, export its performance profile (NetCDF)."""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import json
+
+from ..ship import ShipModelError, bundled_ships, fast_model, load_ship
+from ..ship.physics import PhysicsModel
+from ..ship.profile import ProfileGrid, export_profile
+
+
+def main(argv: list[str]) -> int:
+    """``shiproute ship list | show NAME | profile NAME OUT.nc``."""
+    ap = argparse.ArgumentParser(prog="shiproute ship", description=__doc__)
+    sub = ap.add_subparsers(dest="cmd", required=True)
+    sub.add_parser("list", help="bundled ship names")
+    show = sub.add_parser("show", help="print a resolved ship file as JSON")
+    show.add_argument("name", help="bundled name or path to a YAML ship file")
+    show.add_argument("--condition", default=None)
+    prof = sub.add_parser("profile", help="export the performance profile as NetCDF")
+    prof.add_argument("name")
+    prof.add_argument("out", help="output .nc path")
+    prof.add_argument("--condition", default=None)
+    prof.add_argument("--n-rpm", type=int, default=12)
+    prof.add_argument("--model", choices=("fast", "physics"), default="fast",
+                      help="fast (tables, < 0.5 %% from physics) or the direct physics solve")
+    args = ap.parse_args(argv)
+    try:
+        if args.cmd == "list":
+            for name in bundled_ships():
+                print(name)
+            return 0
+        ship = load_ship(args.name, args.condition)
+        if args.cmd == "show":
+            print(json.dumps(dataclasses.asdict(ship), indent=2))
+            return 0
+        model = fast_model(ship) if args.model == "fast" else PhysicsModel(ship)
+        ds = export_profile(model, args.out, ProfileGrid.for_ship(ship, args.n_rpm))
+        print(f"wrote {args.out}: {dict(ds.sizes)}")
+        return 0
+    except (ShipModelError, OSError) as exc:
+        print(f"shiproute ship: error: {exc}")
+        return 2
