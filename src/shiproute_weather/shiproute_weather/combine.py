@@ -11,6 +11,7 @@ import xarray as xr
 from . import canonical as cv
 from .errors import GridError
 from .sampling import ForecastSampler
+from .slices import snap_grid
 
 
 @dataclass(frozen=True)
@@ -96,6 +97,6 @@ def subset(ds: xr.Dataset, box: Box, stride: int = 1) -> xr.Dataset:
                         f"region {box} does not intersect the forecast grid")
     cols = cols[np.argsort(rel[cols], kind="stable")]
     out = ds.isel(latitude=rows[::stride], longitude=cols[::stride])
-    out = out.assign_coords(longitude=box.lon_min_deg + rel[cols[::stride]])
+    out = snap_grid(out.assign_coords(longitude=box.lon_min_deg + rel[cols[::stride]]))
     cv.grid_of(out, str(ds.attrs.get("cycle_id", "dataset")))
     return out

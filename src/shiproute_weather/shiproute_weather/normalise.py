@@ -24,7 +24,9 @@ from .namemap import (
     Mapping,
     lookup,
 )
+from .slices import snap_grid
 from .spectral import to_tm01_factor
+from .timefmt import canonical_iso
 from .units import si_factor
 
 _DIMS = ("time", "latitude", "longitude")
@@ -118,6 +120,7 @@ def to_canonical(raw: xr.Dataset, where: str) -> xr.Dataset:
     res = xr.Dataset(data, coords={"time": ds["time"].values, "latitude": ds["latitude"].values,
                                    "longitude": ds["longitude"].values})
     res = utc_naive_times(ascending_latitude(normalise_longitude(res, where)), where)
+    res = snap_grid(res)
     attrs = raw.attrs
     ref = attrs.get("forecast_reference_time")
     if not ref and "forecast_reference_time" in raw.variables:
@@ -127,7 +130,7 @@ def to_canonical(raw: xr.Dataset, where: str) -> xr.Dataset:
         ref = np.datetime_as_string(res["time"].values[0], unit="s") + "Z"
     source = str(attrs.get("source") or attrs.get("institution") or attrs.get("title")
                  or "unknown")
-    ref = str(ref)
+    ref = canonical_iso(str(ref))
     cycle = str(attrs.get("cycle_id") or f"{_slug(source)}-{re.sub(r'[^0-9]', '', ref)[:10]}")
     res.attrs = {"forecast_reference_time": ref, "source": source, "cycle_id": cycle}
     return cv.annotate(res)
