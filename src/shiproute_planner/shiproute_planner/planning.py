@@ -1,0 +1,285 @@
+"""High-level planning API used by the CLI and the ROS node: voyage -> frozen `RoutePlan`.
+
+`plan_voyage` resolves ports, splits a multi-port voyage into legs with their own time
+windows, gathers seeds (seed pool, previous plan shifted to the ship's position), runs the
+chosen method per leg within the wall-time budget, computes the constant-RPM baseline with the
+same evaluator, stores the result in the seed pool and joins everything into one plan.
+"""
+
+from __future__ import annotations
+
+import itertools
+import time
+import uuid
+from collections.abc import Callable, Sequence
+from datetime import UTC, datetime, timedelta
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .errors import InvalidVoyageError, PlanCancelledError
+from .ga.loop import GAConfig
+from .ga.pool import Seed, SeedPool, pool_key
+from .ga.seeds import TrackSeed, shift_track
+from .geo.geodesy import inverse
+from .geo.landmask import LandMask, default_land_mask
+from .geo.ports import Port, resolve_port
+from .methods import MethodContext, Progress, baseline_track, get_method
+from .plan_types import RoutePlan, Waypoint, reasons_of, waypoints_from_evaluation
+from .route.environment import Environment
+from .route.evaluation import RouteEvaluation
+from .route.problem import RouteLimits, RouteProblem
+from .route.rta import constant_rpm_for_rta
+
+TimeLike = datetime | float | int | str
+
+
+def to_posix_s(value: TimeLike) -> float:
+    """UTC datetime, ISO 8601 string ('Z' allowed) or POSIX seconds -> POSIX seconds."""
+    if isinstance(value, int | float):
+        return float(value)
+    if isinstance(value, str):
+        value = datetime.fromisoformat(value.strip().replace("Z", "+00:00"))
+    if value.tzinfo is None:
+        value = value.replace(tzinfo=UTC)
+    return value.timestamp()
+
+
+def make_environment(ship: Any, forecast: Any = None) -> tuple[Environment, Any]:
+    """Environment from a ship (name, path, ShipSpec or model) and forecast (Dataset, sampler
+    or None for calm water). Returns (environment, ShipSpec or None)."""
+    from .ship import ShipSpec, load_ship
+
+    spec = None
+    if isinstance(ship, str | Path):
+        spec = load_ship(ship)
+    elif isinstance(ship, ShipSpec):
+        spec = ship
+    model = ship if spec is None else _fast_model(spec)
+    if spec is None:
+        spec = getattr(model, "ship", None) or getattr(model, "spec", None)
+    sampler, cycle = None, ""
+    if forecast is not None:
+        if hasattr(forecast, "sample"):
+            sampler = forecast
+        else:
+            from shiproute_weather.sampling import ForecastSampler
+
+            sampler = ForecastSampler(forecast)
+            cycle = str(forecast.attrs.get("cycle_id", ""))
+    return Environment(model, sampler, cycle), spec
+
+
+def _fast_model(spec: Any) -> Any:
+    """The tabulated ship model (cached per ship and loading condition)."""
+    from .ship.fast import fast_model
+
+    return fast_model(spec)
+
+
+def _limits(spec: Any, overrides: dict | None) -> RouteLimits:
+    kw: dict[str, Any] = {}
+    if spec is not None:
+        kw.update(rpm_min=spec.engine.rpm_min, rpm_max=spec.engine.rpm_max,
+                  max_hs_m=spec.seakeeping.max_hs_m, max_wind_m_s=spec.seakeeping.max_wind_m_s,
+                  p_slamming_max=spec.seakeeping.slamming_probability,
+                  p_deck_wetness_max=spec.seakeeping.deck_wetness_probability,
+                  p_propeller_emergence_max=spec.seakeeping.propeller_emergence_probability)
+    kw.update(overrides or {})
+    if "rpm_min" not in kw or "rpm_max" not in kw:
+        raise InvalidVoyageError("RPM range unknown: give a ship file or limits rpm_min/rpm_max")
+    return RouteLimits(**kw)
+
+
+def _port_id(p: Port) -> str:
+    return p.locode or f"{p.lat_deg:.2f},{p.lon_deg:.2f}"
+
+
+def _leg_rtas(ports: list[Port], depart_s: float, rta_s: float,
+              via_rtas: Sequence[TimeLike | None]) -> list[float]:
+    """RTA per leg: given ones, the rest split in proportion to great-circle distance."""
+    n = len(ports) - 1
+    given = [None if v is None else to_posix_s(v) for v in via_rtas] + [None] * n
+    given = [*given[: n - 1], rta_s]
+    d = np.array([float(inverse(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)[1])
+                  for a, b in itertools.pairwise(ports)])
+    out, t_prev, k_prev = [], depart_s, -1
+    for k in range(n):
+        if given[k] is None:
+            continue
+        span = d[k_prev + 1: k + 1]
+        cum = np.cumsum(span) / max(span.sum(), 1.0)
+        out.extend(t_prev + (given[k] - t_prev) * cum)
+        t_prev, k_prev = given[k], k
+    if any(b <= a for a, b in zip([depart_s, *out[:-1]], out, strict=True)):
+        raise InvalidVoyageError("leg RTAs must increase along the voyage")
+    return out
+
+
+def plan_voyage(
+    origin: str | Port,
+    destination: str | Port,
+    depart: TimeLike,
+    rta: TimeLike | timedelta,
+    ship: Any,
+    forecast: Any = None,
+    *,
+    via: Sequence[str | Port] = (),
+    via_rta: Sequence[TimeLike | None] = (),
+    objective: str = "fuel",
+    method: str = "seed_ga",
+    budget_s: float = 3.0,
+    seed: int | np.random.Generator = 0,
+    stage_hours: float = 12.0,
+    previous_plan: RoutePlan | None = None,
+    position: tuple[float, float, float] | None = None,
+    seed_pool_dir: str | Path | None = None,
+    progress: Callable[[Progress], None] | None = None,
+    cancel: Any = None,
+    limits: dict | None = None,
+    land: LandMask | None = None,
+    ga_config: GAConfig | None = None,
+    stall_generations: int = 0,
+    with_baseline: bool = True,
+) -> RoutePlan:
+    """Plan a voyage and return a frozen RoutePlan.
+
+    `position` = (lat_deg, lon_deg, time POSIX s) of the ship for a re-plan under way: the
+    voyage then starts there and `previous_plan` (shifted to it) seeds the GA. `cancel` is a
+    callable returning True or an object with `is_set()` (threading.Event); a cancelled run
+    returns the best plan so far. `budget_s` is the wall time of the whole call.
+    """
+    t0 = time.perf_counter()
+    land = land or default_land_mask()
+    env, spec = make_environment(ship, forecast)
+    lim = _limits(spec, limits)
+    ports = [p if isinstance(p, Port) else resolve_port(p, land)
+             for p in (origin, *via, destination)]
+    depart_s = to_posix_s(depart)
+    rta_s = depart_s + rta.total_seconds() if isinstance(rta, timedelta) else to_posix_s(rta)
+    if position is not None:
+        lat, lon, now_s = position
+        if land.is_land(np.array([lon]), np.array([lat]))[0]:
+            raise InvalidVoyageError(f"ship position {lat:.4f},{lon:.4f} is on land")
+        ports[0] = Port("ship position", "", float(lat), float(lon))
+        depart_s = float(now_s)
+    if not rta_s > depart_s:
+        raise InvalidVoyageError("the RTA must be after the departure time")
+    leg_rtas = _leg_rtas(ports, depart_s, rta_s, via_rta)
+    is_cancelled = _cancel_fn(cancel)
+    rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
+    pool = SeedPool(seed_pool_dir) if seed_pool_dir is not None else None
+    month = datetime.fromtimestamp(depart_s, UTC).month
+    fn = get_method(method)
+    dists = np.array([float(inverse(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)[1])
+                      for a, b in itertools.pairwise(ports)])
+    results, baselines, problems, sources = [], [], [], []
+    gens = evals = 0
+    leg_depart = depart_s
+    for k, (a, b) in enumerate(itertools.pairwise(ports)):
+        problem = RouteProblem(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg, leg_depart,
+                               leg_rtas[k], lim, stage_s=stage_hours * 3600.0,
+                               objective=objective, dep_name=a.name, arr_name=b.name)
+        seeds = _seeds(problem, pool, a, b, month, previous_plan if k == 0 else None, position)
+        used = time.perf_counter() - t0
+        share = dists[k] / dists[k:].sum()
+        reserve = 0.1 * budget_s if with_baseline else 0.0
+        leg_budget = max(0.0, (budget_s - used - reserve) * share)
+        ctx = MethodContext(problem, env, land, rng, leg_budget, seeds, progress, is_cancelled,
+                            k, time.perf_counter(), ga_config, stall_generations=stall_generations)
+        res = fn(ctx)
+        if res.evaluation is None:
+            raise PlanCancelledError("planning was cancelled before a route was found")
+        results.append(res.evaluation)
+        sources.append(res.seed_source)
+        problems.append(problem)
+        gens += res.generations
+        evals += res.evaluations
+        if with_baseline:
+            name, blon, blat = baseline_track(problem, land)
+            rpm_b, bev = constant_rpm_for_rta(problem, env, land, blon, blat)
+            baselines.append((name, rpm_b, bev))
+        if pool is not None:
+            _offer(pool, problem, a, b, month, res.evaluation, res.seed_source)
+        leg_depart = float(res.evaluation.eta_s[0])
+    return _assemble(ports, problems, results, baselines, sources, env, spec, method,
+                     objective, depart_s, rta_s, leg_rtas, gens, evals,
+                     time.perf_counter() - t0)
+
+
+def _cancel_fn(cancel: Any) -> Callable[[], bool]:
+    if cancel is None:
+        return lambda: False
+    if hasattr(cancel, "is_set"):
+        return cancel.is_set
+    return cancel
+
+
+def _seeds(problem: RouteProblem, pool: SeedPool | None, a: Port, b: Port, month: int,
+           previous: RoutePlan | None, position) -> list[TrackSeed]:
+    out = []
+    if previous is not None:
+        lon, lat, t = previous.track()
+        if position is not None:
+            s = shift_track(lon, lat, t, previous.leg_rpm(), problem.dep_lon_deg,
+                            problem.dep_lat_deg, problem.depart_s)
+        else:
+            s = TrackSeed("previous_plan", lon, lat, previous.leg_rpm())
+        if s is not None and s.lon_deg.size >= 2:
+            out.append(s)
+    if pool is not None:
+        stored = pool.get(pool_key(_port_id(a), _port_id(b), month))
+        if stored is not None:
+            out.append(TrackSeed("pool", np.array(stored.lon_deg), np.array(stored.lat_deg),
+                                 np.array(stored.rpm)))
+    return out
+
+
+def _offer(pool: SeedPool, problem: RouteProblem, a: Port, b: Port, month: int,
+           ev: RouteEvaluation, source: str) -> None:
+    pool.offer(Seed(pool_key(_port_id(a), _port_id(b), month),
+                    tuple(map(float, ev.lon_deg[0])), tuple(map(float, ev.lat_deg[0])),
+                    tuple(map(float, ev.legs["rpm"][0])), problem.objective,
+                    float(ev.objective[0]), float(ev.violation[0]), float(ev.fuel_t[0]),
+                    source))
+
+
+def _assemble(ports, problems, results, baselines, sources, env, spec, method, objective,
+              depart_s, rta_s, leg_rtas, gens, evals, compute_s) -> RoutePlan:
+    wps: list[Waypoint] = []
+    flags = 0
+    for k, (p, ev) in enumerate(zip(problems, results, strict=True)):
+        m = ev.legs["rpm"].shape[1]
+        weather = env.weather(ev.lon_deg[0, :m], ev.lat_deg[0, :m], ev.time_s[0, :m])
+        names = {0: ports[k].name, m: ports[k + 1].name}
+        w = waypoints_from_evaluation(ev, weather, names)
+        wps.extend(w if k == 0 else w[1:])
+        flags |= int(ev.flags[0])
+        if ev.eta_s[0] > p.rta_s:
+            flags |= 2
+    fuel = sum(float(ev.fuel_t[0]) for ev in results)
+    dist = sum(float(ev.distance_m[0]) for ev in results) / 1852.0
+    eta = float(results[-1].eta_s[0])
+    b_fuel = sum(float(b[2].fuel_t[0]) for b in baselines) if baselines else float("nan")
+    b_dist = sum(float(b[2].distance_m[0]) for b in baselines) / 1852.0 if baselines else 0.0
+    b_eta = float(baselines[-1][2].eta_s[0]) if baselines else float("nan")
+    b_ok = all(bool(b[2].feasible[0]) for b in baselines) if baselines else False
+    b_track = tuple((float(la), float(lo)) for b in baselines
+                    for lo, la in zip(b[2].lon_deg[0], b[2].lat_deg[0], strict=True))
+    return RoutePlan(
+        plan_id=uuid.uuid4().hex[:12], method=method, seed_source=sources[0],
+        objective=objective, ship_name=getattr(spec, "name", ""), cycle_id=env.cycle_id,
+        departure_s=depart_s, rta_s=rta_s, eta_s=eta, feasible=flags == 0,
+        infeasible_reasons=reasons_of(flags), total_fuel_t=fuel, total_distance_nm=dist,
+        total_time_s=eta - depart_s, baseline_fuel_t=b_fuel,
+        baseline_method="+".join(sorted({b[0] for b in baselines})) if baselines else "",
+        baseline_distance_nm=b_dist, baseline_eta_s=b_eta, baseline_feasible=b_ok,
+        baseline_rpm=float(baselines[0][1]) if baselines else float("nan"),
+        compute_time_s=compute_s, waypoints=tuple(wps),
+        ports=tuple(p.name for p in ports), stage_s=problems[0].stage_s, generations=gens,
+        evaluations=evals,
+        vessel_max_wave_m=float(problems[0].limits.max_hs_m or float("nan")),
+        vessel_max_wind_m_s=float(problems[0].limits.max_wind_m_s or float("nan")),
+        baseline_track=b_track, leg_rtas_s=tuple(leg_rtas),
+    )

@@ -1,0 +1,1 @@
+"""Route encoding (heading + RPM genes), generation stage by stage, evaluation and constraints."""
