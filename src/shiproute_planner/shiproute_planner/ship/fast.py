@@ -18,7 +18,7 @@ from itertools import pairwise
 import numpy as np
 
 from . import fast_kernel as fk
-from .errors import ShipModelError
+from .errors import InputRangeError, ShipModelError
 from .hull import ShipConstants
 from .performance import LegPerformance
 from .physics import PhysicsModel
@@ -26,7 +26,7 @@ from .seakeeping import natural_roll_period_s, relative_motion_rao2
 from .seastate import SeaState
 from .spec import ShipSpec
 from .spectra import D_OMEGA, ittc_unit, jonswap_unit
-from .validate import check_inputs
+from .validate import MAX_CURRENT_M_S, MAX_HS_M, MAX_WIND_M_S, PERIOD_RANGE_S
 from .waves import added_resistance_unit
 
 _PERIOD_GRID_S = np.linspace(0.5, 30.0, 119)
@@ -96,6 +96,11 @@ class FastModel:
         for k, val in values.items():
             par[k] = float(val)
         self._par = par
+        self._limits = np.array([
+            (1e-6, 1.5 * e.rpm_max), (-720.0, 720.0), (0.0, MAX_WIND_M_S), (0.0, MAX_HS_M),
+            (-720.0, 720.0), PERIOD_RANGE_S, (0.0, MAX_HS_M), (-720.0, 720.0), PERIOD_RANGE_S,
+            (0.0, MAX_CURRENT_M_S),
+        ])
         self._tables = (
             np.ascontiguousarray(r_calm), np.ascontiguousarray(wake),
             np.ascontiguousarray(u_ws), np.ascontiguousarray(u_sw),
@@ -107,9 +112,6 @@ class FastModel:
 
     def evaluate(self, rpm: np.ndarray, heading_deg: np.ndarray, sea: SeaState) -> LegPerformance:
         """Evaluate legs (same contract and inputs as ``PhysicsModel.evaluate``)."""
-        rpm = np.asarray(rpm, dtype=float)
-        heading_deg = np.asarray(heading_deg, dtype=float)
-        check_inputs(self.ship, rpm, heading_deg, sea)
         fields = (
             rpm, heading_deg, sea.wind_u_m_s, sea.wind_v_m_s, sea.wind_wave_hs_m,
             sea.wind_wave_from_deg, sea.wind_wave_period_s, sea.swell_hs_m, sea.swell_from_deg,
@@ -121,15 +123,16 @@ class FastModel:
         n = flat[0].size
         out_f = np.empty((11, n))
         out_b = np.empty((5, n), dtype=np.bool_)
+        chunks = [(0, n)]
+        if n >= _THREAD_MIN_LEGS and _N_THREADS >= 2:
+            bounds = np.linspace(0, n, _N_THREADS + 1).astype(int)
+            chunks = [(int(a), int(b)) for a, b in pairwise(bounds)]
+        self._check(flat, chunks)
         args = (*flat, self._par, *self._tables, out_f, out_b)
-        if n < _THREAD_MIN_LEGS or _N_THREADS < 2:
+        if len(chunks) == 1:
             fk.evaluate_kernel(*args, 0, n)
         else:  # the kernel releases the GIL: split the legs over the cores
-            bounds = np.linspace(0, n, _N_THREADS + 1).astype(int)
-            futures = [
-                _pool().submit(fk.evaluate_kernel, *args, int(a), int(b))
-                for a, b in pairwise(bounds)
-            ]
+            futures = [_pool().submit(fk.evaluate_kernel, *args, a, b) for a, b in chunks]
             for fut in futures:
                 fut.result()
         f = out_f.reshape((11, *shape))
@@ -140,6 +143,17 @@ class FastModel:
             p_propeller_emergence=f[10], surf_riding=b[1], parametric_roll=b[2],
             synchronous_roll=b[3], high_wave_group=b[4], hs_m=f[6], wind_speed_m_s=f[7],
         )
+
+    def _check(self, flat: list[np.ndarray], chunks: list[tuple[int, int]]) -> None:
+        """Range-check the flattened inputs in compiled code; raise like ``check_inputs``."""
+        for a, b in chunks:
+            field, leg = fk.check_kernel(*flat, self._limits, a, b)
+            if field >= 0:
+                lo, hi = self._limits[field]
+                name = fk.CHECK_FIELDS[field]
+                raise InputRangeError(
+                    name, f"value at flat index {leg} is NaN or outside the valid range {lo}..{hi}"
+                )
 
     def rpm_for_speed(
         self, stw_m_s: np.ndarray, heading_deg: np.ndarray, sea: SeaState

@@ -187,6 +187,31 @@ def _imo(par, v, hs, t_mean, cos_rel, peak, out):
         out[2] = True  # synchronous rolling
 
 
+# input checks done inside the kernel (cheap) instead of dozens of numpy passes per call:
+# field id -> (lo, hi); the wrapper maps a failing id back to a name and message
+CHECK_FIELDS = ("rpm", "heading_deg", "wind speed", "wind_wave_hs_m", "wind_wave_from_deg",
+                "wind_wave_period_s", "swell_hs_m", "swell_from_deg", "swell_period_s",
+                "current speed")
+
+
+@njit(cache=True)
+def _check(x, lo, hi):
+    return lo <= x <= hi  # False for NaN
+
+
+@njit(cache=True, nogil=True)
+def check_kernel(rpm, hdg, wu, wv, ws_hs, ws_from, ws_t, sw_hs, sw_from, sw_t, cu, cv, limits,
+                 start, stop):
+    """Return (field id, leg index) of the first out-of-range input, or (-1, -1)."""
+    for k in range(start, stop):
+        vals = (rpm[k], hdg[k], math.sqrt(wu[k] * wu[k] + wv[k] * wv[k]), ws_hs[k], ws_from[k],
+                ws_t[k], sw_hs[k], sw_from[k], sw_t[k], math.sqrt(cu[k] * cu[k] + cv[k] * cv[k]))
+        for f in range(10):
+            if not _check(vals[f], limits[f, 0], limits[f, 1]):
+                return f, k
+    return -1, -1
+
+
 @njit(cache=True, nogil=True)
 def evaluate_kernel(rpm, hdg, wu, wv, ws_hs, ws_from, ws_t, sw_hs, sw_from, sw_t, cu, cv,
                     par, r_calm, wake, u_ws, u_sw, m0_ws, m0_sw, caa, sfoc_x, sfoc_y,
