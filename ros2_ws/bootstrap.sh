@@ -63,7 +63,7 @@ fi
 mkdir -p "$BUILD"
 # One bootstrap at a time (parallel wrapper calls wait here, then find the stamps fresh).
 exec 9>"$BUILD/bootstrap.lock"
-if ! flock -n 9; then
+if command -v flock >/dev/null && ! flock -n 9; then
   say "another bootstrap is running; waiting for it"
   flock 9
 fi
@@ -86,7 +86,6 @@ missing=()
 command -v cmake >/dev/null || missing+=(cmake)
 command -v ninja >/dev/null || missing+=(ninja-build)
 command -v cc >/dev/null && command -v c++ >/dev/null || missing+=(g++)
-command -v flock >/dev/null || missing+=(util-linux)
 deb_installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q 'install ok installed'; }
 if command -v dpkg-query >/dev/null; then
   deb_installed python-grib-doc || missing+=(python-grib-doc)  # real GRIB examples for tests
