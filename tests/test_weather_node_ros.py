@@ -1,0 +1,125 @@
+"""Cross-process tests of the weather node: late joiners, watched directory, corrupt files."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import sys
+from pathlib import Path
+
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src/shiproute_weather/test"))
+
+pytestmark = pytest.mark.ros
+
+rclpy = pytest.importorskip("rclpy")
+pytest.importorskip("shiproute_msgs.msg")
+
+import xarray as xr  # noqa: E402
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus  # noqa: E402
+from rclpy.executors import SingleThreadedExecutor  # noqa: E402
+from rosproc import RosProcess, random_domain_id, ros_context, spin_until  # noqa: E402
+from shiproute_weather.convert import msgs_to_dataset  # noqa: E402
+from shiproute_weather.loaders import open_forecast  # noqa: E402
+from shiproute_weather.node import CYCLE_TOPIC, LOAD_SERVICE, SLICES_TOPIC, latched  # noqa: E402
+from weather_fixtures import small_canonical, write_nc  # noqa: E402
+
+from shiproute_msgs.msg import ForecastCycle, ForecastSlice  # noqa: E402
+from shiproute_msgs.srv import LoadForecast  # noqa: E402
+
+
+class Listener:
+    """Test-side subscriber collecting cycles, slices and weather diagnostics."""
+
+    def __init__(self, context: object, max_slices: int = 50) -> None:
+        self.node = rclpy.create_node("weather_test_listener", context=context)
+        self.cycles: list[ForecastCycle] = []
+        self.slices: list[ForecastSlice] = []
+        self.diags: list[DiagnosticStatus] = []
+        self.node.create_subscription(ForecastCycle, CYCLE_TOPIC, self.cycles.append, latched(1))
+        self.node.create_subscription(ForecastSlice, SLICES_TOPIC, self.slices.append,
+                                      latched(max_slices))
+        self.node.create_subscription(DiagnosticArray, "/diagnostics", self._diag, 10)
+        self.executor = SingleThreadedExecutor(context=context)
+        self.executor.add_node(self.node)
+
+    def _diag(self, msg: DiagnosticArray) -> None:
+        self.diags.extend(s for s in msg.status if s.name.startswith("shiproute_weather"))
+
+    def cycle_slices(self, cycle_id: str) -> list[ForecastSlice]:
+        got = {m.slice_index: m for m in self.slices if m.cycle_id == cycle_id}
+        return [got[k] for k in sorted(got)]
+
+    def wait_cycle(self, cycle_id: str, n: int, timeout_s: float = 30.0) -> list[ForecastSlice]:
+        spin_until(self.executor, lambda: any(c.cycle_id == cycle_id for c in self.cycles)
+                   and len(self.cycle_slices(cycle_id)) == n, timeout_s, f"cycle {cycle_id}")
+        return self.cycle_slices(cycle_id)
+
+    def close(self) -> None:
+        self.executor.shutdown()
+        self.node.destroy_node()
+
+
+def _node(tmp: Path, dom: int, *params: str) -> RosProcess:
+    env = {"SHIPROUTE_DATA_DIR": str(tmp / "cache")}
+    args = ["--ros-args", "-p", f"watch_dir:={tmp / 'watch'}", "-p", "settle_s:=0.3",
+            "-p", "watch_period_s:=0.2", "-p", "max_slices:=50"]
+    for p in params:
+        args += ["-p", p]
+    return RosProcess.script("shiproute_weather_node", *args, domain_id=dom, env=env,
+                             name="weather")
+
+
+def test_late_joiner_gets_whole_cycle(tmp_path: Path) -> None:
+    (tmp_path / "watch").mkdir()
+    src = write_nc(small_canonical(n_time=7), tmp_path / "first.nc")
+    expected = open_forecast([src])
+    dom = random_domain_id()
+    with _node(tmp_path, dom, f"forecast_files:=['{src}']") as proc:
+        proc.wait_for_line(r"published cycle test-2026030312", timeout_s=60)
+        with ros_context(dom) as ctx:  # joins after the cycle was published
+            lis = Listener(ctx)
+            try:
+                msgs = lis.wait_cycle("test-2026030312", 7)
+                assert lis.cycles[-1].slice_count == 7
+                assert lis.cycles[-1].source_files == [str(src)]
+                xr.testing.assert_identical(msgs_to_dataset(msgs), expected)
+            finally:
+                lis.close()
+
+
+def test_new_file_and_corrupt_file(tmp_path: Path) -> None:
+    watch = tmp_path / "watch"
+    watch.mkdir()
+    write_nc(small_canonical(n_time=4, cycle_id="one-2026030312"), watch / "one.nc")
+    dom = random_domain_id()
+    with _node(tmp_path, dom) as proc, ros_context(dom) as ctx:
+        proc.wait_for_line(r"ready", timeout_s=60)
+        lis = Listener(ctx)
+        try:
+            lis.wait_cycle("one-2026030312", 4, timeout_s=60)
+            # a new cycle dropped into the watched directory (written, then renamed)
+            two = small_canonical(n_time=6, seed=2, ref="2026-03-03T18:00:00",
+                                  cycle_id="two-2026030318")
+            write_nc(two, tmp_path / "two.tmp.nc")
+            shutil.move(tmp_path / "two.tmp.nc", watch / "two.nc")
+            lis.wait_cycle("two-2026030318", 6)
+            # a corrupt file: announced as an error, the previous cycle stays in force
+            (watch / "broken.nc").write_bytes(b"CDF\x01" + os.urandom(2000))
+            spin_until(lis.executor, lambda: any(
+                d.level == DiagnosticStatus.ERROR and "broken.nc" in d.message + "".join(
+                    kv.value for kv in d.values) for d in lis.diags), 30, "error diagnostic")
+            assert lis.cycles[-1].cycle_id == "two-2026030318"
+            # the service refuses a truncated GRIB file and names it
+            grib = watch.parent / "cut.grib2"
+            real = Path("/usr/share/doc/python-grib-doc/examples/gfs.t12z.pgrbf120.2p5deg.grib2")
+            grib.write_bytes(real.read_bytes()[:5000] if real.exists() else b"GRIB" + b"\0" * 99)
+            cli = lis.node.create_client(LoadForecast, LOAD_SERVICE)
+            assert cli.wait_for_service(timeout_sec=10)
+            fut = cli.call_async(LoadForecast.Request(paths=[str(grib)]))
+            spin_until(lis.executor, fut.done, 30, "service reply")
+            assert not fut.result().accepted and "cut.grib2" in fut.result().message
+            assert proc.running
+        finally:
+            lis.close()
