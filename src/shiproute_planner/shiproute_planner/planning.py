@@ -46,6 +46,22 @@ def to_posix_s(value: TimeLike) -> float:
     return value.timestamp()
 
 
+def load_forecast(name_or_path: str) -> Any:
+    """Canonical forecast dataset from a file path or a bundled scenario name."""
+    from shiproute_weather.scenarios import scenario_dataset, scenario_names
+
+    if Path(name_or_path).exists():
+        from shiproute_weather.loaders import open_forecast
+
+        return open_forecast([name_or_path])
+    if name_or_path in scenario_names():
+        return scenario_dataset(name_or_path)
+    raise InvalidVoyageError(
+        f"forecast {name_or_path!r} is neither a file nor a bundled scenario "
+        f"({', '.join(scenario_names())})"
+    )
+
+
 def make_environment(ship: Any, forecast: Any = None) -> tuple[Environment, Any]:
     """Environment from a ship (name, path, ShipSpec or model) and forecast (Dataset, sampler
     or None for calm water). Returns (environment, ShipSpec or None)."""

@@ -1,0 +1,136 @@
+"""Plan a voyage: seed GA (or another method) -> summary, RTZ 1.2, GeoJSON, JSON and PNG."""
+
+from __future__ import annotations
+
+import argparse
+import re
+import sys
+from datetime import timedelta
+from pathlib import Path
+
+from ..errors import PlannerError
+from ..methods import Progress, method_names
+from ..planning import load_forecast, plan_voyage, to_posix_s
+
+_DUR = re.compile(r"^\s*(\d+(?:\.\d*)?)\s*([smhd])\s*$")
+_UNIT_S = {"s": 1.0, "m": 60.0, "h": 3600.0, "d": 86400.0}
+
+
+def parse_duration_s(text: str) -> float:
+    """'13d', '36h', '90m', '3s' or plain seconds -> seconds."""
+    m = _DUR.match(text)
+    if m:
+        return float(m.group(1)) * _UNIT_S[m.group(2)]
+    try:
+        return float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(
+            f"duration {text!r}: use a number with s, m, h or d (e.g. 13d, 3s)") from None
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """Argument parser of `shiproute plan`."""
+    ap = argparse.ArgumentParser(prog="shiproute plan", description=__doc__)
+    ap.add_argument("--from", dest="origin", required=True, help="port name, UN/LOCODE or lat,lon")
+    ap.add_argument("--to", dest="destination", required=True)
+    ap.add_argument("--via", action="append", default=[],
+                    help="intermediate port (repeatable); optional '@TIME' sets its RTA")
+    ap.add_argument("--depart", required=True, help="ISO 8601 UTC, e.g. 2026-03-03T18:00Z")
+    ap.add_argument("--rta", required=True,
+                    help="required time of arrival: ISO time or duration after departure (13d)")
+    ap.add_argument("--ship", default="container_4600teu", help="bundled ship or YAML path")
+    ap.add_argument("--forecast", default=None,
+                    help="forecast file (GRIB2/NetCDF) or bundled scenario; omit for calm water")
+    ap.add_argument("--objective", choices=("fuel", "distance", "eta"), default="fuel")
+    ap.add_argument("--method", default="seed_ga", help="planning method (see --list-methods)")
+    ap.add_argument("--budget", type=parse_duration_s, default=3.0, help="wall time, e.g. 3s")
+    ap.add_argument("--seed", type=int, default=0, help="random seed")
+    ap.add_argument("--stage-hours", type=float, default=12.0)
+    ap.add_argument("--seed-pool", default=None, help="seed pool directory")
+    ap.add_argument("--out", default=".", help="output directory")
+    ap.add_argument("--name", default=None, help="output file stem (default from ports)")
+    ap.add_argument("--no-plot", action="store_true")
+    ap.add_argument("--list-methods", action="store_true")
+    return ap
+
+
+def _rta(text: str, depart_s: float):
+    if re.match(r"^\s*\d+(\.\d*)?\s*[smhd]?\s*$", text):
+        return timedelta(seconds=parse_duration_s(text))
+    return to_posix_s(text)
+
+
+def _progress(p: Progress) -> None:
+    best = f"{p.best_objective:.1f}" if p.best_objective == p.best_objective else "none feasible"
+    print(f"\rleg {p.leg} gen {p.generation:4d} evals {p.evaluations:7d} best {best} "
+          f"({p.elapsed_s:.1f} s)", end="", file=sys.stderr, flush=True)
+
+
+def main(argv: list[str]) -> int:
+    """Entry point of `shiproute plan`."""
+    ap = build_parser()
+    args = ap.parse_args(argv)
+    if args.list_methods:
+        print("\n".join(method_names()))
+        return 0
+    from ..io.rtz import validate_rtz, write_rtz
+    from ..io.summary import write_geojson, write_json
+
+    try:
+        depart_s = to_posix_s(args.depart)
+        via, via_rta = [], []
+        for v in args.via:
+            name, _, when = v.partition("@")
+            via.append(name)
+            via_rta.append(to_posix_s(when) if when else None)
+        forecast = load_forecast(args.forecast) if args.forecast else None
+        plan = plan_voyage(
+            args.origin, args.destination, depart_s, _rta(args.rta, depart_s), args.ship,
+            forecast, via=via, via_rta=via_rta, objective=args.objective, method=args.method,
+            budget_s=args.budget, seed=args.seed, stage_hours=args.stage_hours,
+            seed_pool_dir=args.seed_pool, progress=_progress)
+        print(file=sys.stderr)
+        out = Path(args.out)
+        out.mkdir(parents=True, exist_ok=True)
+        stem = args.name or re.sub(r"[^A-Za-z0-9]+", "_", "_".join(plan.ports)).strip("_")
+        rtz = write_rtz(plan, out / f"{stem}.rtz")
+        validate_rtz(rtz)
+        write_geojson(plan, out / f"{stem}.geojson")
+        write_json(plan, out / f"{stem}.json")
+        if not args.no_plot:
+            from ..io.plots import write_png
+
+            write_png(plan, out / f"{stem}.png", forecast)
+    except PlannerError as exc:
+        print(f"\nshiproute plan: error: {exc}", file=sys.stderr)
+        return 2
+    print(format_summary(plan))
+    print(f"files: {out / stem}.{{rtz,geojson,json{'' if args.no_plot else ',png'}}}")
+    return 0 if plan.feasible else 1
+
+
+def format_summary(plan) -> str:
+    """Human-readable plan summary with the baseline beside it."""
+    from datetime import UTC, datetime
+
+    def iso(t: float) -> str:
+        return datetime.fromtimestamp(t, UTC).strftime("%Y-%m-%d %H:%MZ")
+
+    late_h = (plan.eta_s - plan.rta_s) / 3600.0
+    status = "all constraints met" if plan.feasible else "INFEASIBLE: " + "; ".join(
+        plan.infeasible_reasons)
+    lines = [
+        f"route      {' -> '.join(plan.ports)}  ({plan.method}, objective {plan.objective}, "
+        f"seed {plan.seed_source})",
+        f"fuel       {plan.total_fuel_t:9.1f} t     baseline ({plan.baseline_method}, "
+        f"{plan.baseline_rpm:.1f} rpm) {plan.baseline_fuel_t:.1f} t  "
+        f"difference {-plan.fuel_saving_t:+.1f} t ({-plan.fuel_saving_pct:+.1f} %)",
+        f"distance   {plan.total_distance_nm:9.1f} NM    baseline "
+        f"{plan.baseline_distance_nm:.1f} NM",
+        f"ETA        {iso(plan.eta_s)}  RTA {iso(plan.rta_s)}  ({late_h:+.1f} h)",
+        f"status     {status}" + ("" if plan.baseline_feasible else
+                                  "  (baseline violates constraints)"),
+        f"compute    {plan.compute_time_s:.2f} s, {plan.generations} generations, "
+        f"{plan.evaluations} route evaluations",
+    ]
+    return "\n".join(lines)
