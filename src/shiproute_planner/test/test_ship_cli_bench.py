@@ -1,11 +1,17 @@
-"""`shiproute ship` subcommand and the `shiproute bench ship` script (smoke: they run)."""
+"""`shiproute ship` subcommand and the `shiproute bench ship` script (smoke: they run).
+
+Marked slow: both use the fast model, whose numba kernel compiles on first use.
+"""
 
 import json
 
+import pytest
 import xarray as xr
 from shiproute_planner.bench.ship import hm_errors
 from shiproute_planner.bench.ship import main as bench_main
 from shiproute_planner.cli.ship import main as ship_main
+
+pytestmark = pytest.mark.slow
 
 
 def test_ship_cli_list_show_profile(tmp_path, capsys):
