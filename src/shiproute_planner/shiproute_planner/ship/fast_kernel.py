@@ -160,7 +160,7 @@ def _solve(n, par, r_calm, wake, u_ws, u_sw, a_ws, a_sw, it_ws, ft_ws, it_sw, ft
                 if f0 <= 0.0:
                     return 0.0  # thrust cannot even hold the ship at rest
             xn = 0.5 * (lo + hi)
-        if abs(xn - x) < 1e-6 * (1.0 + x) or hi - lo < 1e-9:
+        if abs(xn - x) < 2e-4 or hi - lo < 1e-9:  # m/s; Newton: next error ~ step^2
             return xn
         x = xn
     return x

@@ -104,7 +104,7 @@ class PhysicsModel:
         """Fuel, limits, currents and seakeeping from speed and brake power (1-D)."""
         e = self.ship.engine
         sog, cog = over_ground(v, hdg, s.current_u_m_s, s.current_v_m_s)
-        m0 = [self._motion_m0(v, hdg, s, x) for x in self._stations.x_m]
+        m0 = self._motion_m0(v, hdg, s)
         thr = self._stations.threshold_m
         flags = self._imo(v, hdg, s)
         return {
@@ -126,12 +126,16 @@ class PhysicsModel:
             "wind_speed_m_s": s.wind_speed_m_s,
         }
 
-    def _motion_m0(self, v: np.ndarray, hdg: np.ndarray, s: SeaState, x: float) -> np.ndarray:
+    def _motion_m0(self, v: np.ndarray, hdg: np.ndarray, s: SeaState) -> list[np.ndarray]:
+        """Relative-motion variance (m^2) at the three stations, wind sea + swell."""
+        xs = self._stations.x_m
         rel_ws = relative_wave_deg(hdg, s.wind_wave_from_deg)
         rel_sw = relative_wave_deg(hdg, s.swell_from_deg)
-        m_ws = motion_m0_unit(self.ship, v, rel_ws, ittc_unit(s.wind_wave_period_s), x)
-        m_sw = motion_m0_unit(self.ship, v, rel_sw, jonswap_unit(s.swell_period_s), x)
-        return m_ws * s.wind_wave_hs_m**2 + m_sw * s.swell_hs_m**2
+        m_ws = motion_m0_unit(self.ship, v, rel_ws, ittc_unit(s.wind_wave_period_s), xs)
+        m_sw = motion_m0_unit(self.ship, v, rel_sw, jonswap_unit(s.swell_period_s), xs)
+        return [
+            a * s.wind_wave_hs_m**2 + b * s.swell_hs_m**2 for a, b in zip(m_ws, m_sw, strict=True)
+        ]
 
     def _imo(self, v: np.ndarray, hdg: np.ndarray, s: SeaState) -> list[np.ndarray]:
         a = imo_flags(self.ship, v, s.wind_wave_hs_m, s.wind_wave_period_s,

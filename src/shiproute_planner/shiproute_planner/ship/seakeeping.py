@@ -42,13 +42,10 @@ def stations(ship: ShipSpec) -> Stations:
     return Stations((x_slam, 0.5 * L, -0.5 * L), (draft_slam, freeboard, tip))
 
 
-def relative_motion_rao2(
-    ship: ShipSpec, speed_m_s: np.ndarray, rel_wave_deg: np.ndarray, x_m: float
-) -> np.ndarray:
-    """|relative motion / wave amplitude|^2 at station ``x_m``, shape (..., n_omega).
-
-    ``rel_wave_deg``: direction the waves come from relative to the bow (0 = head seas).
-    """
+def _heave_pitch(
+    ship: ShipSpec, speed_m_s: np.ndarray, rel_wave_deg: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Complex-free pieces of the box-hull response: heave, pitch (per wave amplitude), k_e."""
     L = ship.hull.lpp_m
     T = ship.mean_draft_m
     cb = ship.condition.displacement_t / 1.025 / (ship.hull.lwl_m * ship.hull.breadth_m * T)
@@ -62,26 +59,44 @@ def relative_motion_rao2(
     alpha = np.where(np.abs(alpha) < 0.2, np.copysign(0.2, alpha), alpha)
     a = 2.0 * np.sin(0.5 * k * b * alpha**2) * np.exp(-k * T * alpha**2)
     f = np.sqrt((1.0 - k * T) ** 2 + (a**2 / (k * b * np.abs(alpha) ** 3)) ** 2)
-    kappa = np.exp(-np.abs(ke) * T)
+    kappa_f = np.exp(-np.abs(ke) * T) * f
     y = 0.5 * ke * L
-    f_heave = kappa * f * np.sinc(y / np.pi)
     small = np.abs(y) < 1e-3
     ys = np.where(small, 1.0, y)
     g_ratio = np.where(small, 2.0 * y / 3.0, (np.sin(ys) - ys * np.cos(ys)) / ys**2)
-    g_pitch = kappa * f * 3.0 * g_ratio / (0.5 * L)  # = kappa f ke in long waves
     eta = 1.0 / np.sqrt((1.0 - 2.0 * k * T * alpha**2) ** 2 + (a**2 / (k * b * alpha**2)) ** 2)
-    re = eta * f_heave - np.cos(ke * x_m)
-    im = x_m * eta * g_pitch - np.sin(ke * x_m)
+    heave = eta * kappa_f * np.sinc(y / np.pi)
+    pitch = eta * kappa_f * 3.0 * g_ratio / (0.5 * L)  # = kappa f ke in long waves
+    return heave, pitch, ke
+
+
+def relative_motion_rao2(
+    ship: ShipSpec, speed_m_s: np.ndarray, rel_wave_deg: np.ndarray, x_m: float
+) -> np.ndarray:
+    """|relative motion / wave amplitude|^2 at station ``x_m``, shape (..., n_omega).
+
+    ``rel_wave_deg``: direction the waves come from relative to the bow (0 = head seas).
+    """
+    heave, pitch, ke = _heave_pitch(ship, speed_m_s, rel_wave_deg)
+    return _station_rao2(heave, pitch, ke, x_m)
+
+
+def _station_rao2(heave: np.ndarray, pitch: np.ndarray, ke: np.ndarray, x_m: float) -> np.ndarray:
+    re = heave - np.cos(ke * x_m)
+    im = x_m * pitch - np.sin(ke * x_m)
     return re**2 + im**2
 
 
 def motion_m0_unit(
     ship: ShipSpec, speed_m_s: np.ndarray, rel_wave_deg: np.ndarray, spectrum_unit: np.ndarray,
-    x_m: float,
-) -> np.ndarray:
-    """Variance of the relative motion per unit Hs^2 for spectra normalised per unit Hs^2."""
-    rao2 = relative_motion_rao2(ship, speed_m_s, rel_wave_deg, x_m)
-    return np.sum(rao2 * spectrum_unit, axis=-1) * D_OMEGA
+    xs_m: tuple[float, ...],
+) -> list[np.ndarray]:
+    """Variance of the relative motion per unit Hs^2 at each station in ``xs_m``."""
+    heave, pitch, ke = _heave_pitch(ship, speed_m_s, rel_wave_deg)
+    return [
+        np.sum(_station_rao2(heave, pitch, ke, x) * spectrum_unit, axis=-1) * D_OMEGA
+        for x in xs_m
+    ]
 
 
 def exceedance(m0_m2: np.ndarray, threshold_m: float) -> np.ndarray:
