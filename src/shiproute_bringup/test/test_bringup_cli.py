@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import sys
+import uuid
 
 import pytest
 from shiproute_bringup.dispatch import Command, discover, dispatch
@@ -33,12 +34,19 @@ def test_help_lists_commands_with_docstring_lines(capsys: pytest.CaptureFixture[
     assert "Print the environment" in out
 
 
-def test_broken_module_is_reported_not_fatal(capsys: pytest.CaptureFixture[str]) -> None:
+def test_broken_module_is_reported_not_fatal(capsys: pytest.CaptureFixture[str],
+                                             monkeypatch: pytest.MonkeyPatch) -> None:
     """A command whose module cannot be imported shows as unavailable; running it returns 1."""
     broken = Command("broken", "shiproute_no_such_module_xyz:main")
-    assert broken.help_line().startswith("(unavailable: ModuleNotFoundError")
     good = Command("env", "shiproute_bringup.env:main")
-    assert good.help_line().startswith("Print the environment")
+    monkeypatch.setattr("shiproute_bringup.dispatch.discover",
+                        lambda group: {"broken": broken, "env": good})
+    assert dispatch("shiproute", "x", ["--help"]) == 0
+    out = capsys.readouterr().out
+    assert "broken  (unavailable: ModuleNotFoundError" in out
+    assert "env     Print the environment" in out
+    assert dispatch("shiproute", "x", ["broken"]) == 1
+    assert "'broken' is unavailable" in capsys.readouterr().err
 
 
 def test_dispatch_runs_target_with_remaining_args(monkeypatch: pytest.MonkeyPatch) -> None:
@@ -73,14 +81,15 @@ def test_echo_prints_messages_from_another_process() -> None:
     pytest.importorskip("shiproute_msgs.msg")
     assert message_class("shiproute_msgs/msg/ShipState").__name__ == "ShipState"
     dom = random_domain_id()
+    topic = f"/echo_test_{uuid.uuid4().hex[:8]}"  # no other test's publisher can share it
     talker_code = (
-        "import rclpy, math\nfrom rclpy.node import Node\n"
+        "import math, sys, rclpy\nfrom rclpy.node import Node\n"
         "from shiproute_msgs.msg import ShipState\n"
-        "rclpy.init(); n = Node('talker'); p = n.create_publisher(ShipState, '/own_ship', 10)\n"
+        "rclpy.init(); n = Node('talker'); p = n.create_publisher(ShipState, sys.argv[1], 10)\n"
         "n.create_timer(0.1, lambda: p.publish(ShipState(mmsi=440123000, sog_kn=math.nan)))\n"
         "try:\n    rclpy.spin(n)\nexcept BaseException:\n    pass\n")
-    with RosProcess.python(talker_code, domain_id=dom, name="talker"), \
-         RosProcess.script("shiproute", "echo", "/own_ship", "--count", "2", "--timeout", "20",
+    with RosProcess.python(talker_code, topic, domain_id=dom, name="talker"), \
+         RosProcess.script("shiproute", "echo", topic, "--count", "2", "--timeout", "20",
                            domain_id=dom, name="echo", merge_stderr=False) as echo:
         assert echo.wait(30) == 0, echo.output
     out = echo.output
