@@ -184,7 +184,7 @@ class McapScanner:
             yield from self._scan(f, start_ns)
 
     def _scan(self, f: BinaryIO, start_ns: int) -> Iterator[tuple[int, int, memoryview]]:
-        bad_chunk = False
+        bad_chunk, partial = False, 0  # partial: messages yielded from a chunk cut short
         while True:
             pos = f.tell()
             head = f.read(9)
@@ -203,15 +203,28 @@ class McapScanner:
             if op in (OP_DATA_END, OP_FOOTER):
                 return
             if op == OP_CHUNK:
-                bad_chunk = False
-                msgs, ok = self._chunk(f, length, start_ns)
-                if not ok:
-                    bad_chunk = True
-                yield from msgs
+                raw, bad_chunk = self._chunk(f, length, start_ns), False
+                if raw is None:
+                    bad_chunk, partial = True, 0
+                elif raw:
+                    partial = 0
+                    try:  # stream the chunk's messages; framing is checked as we go
+                        for msg in self._records(memoryview(raw)):
+                            if msg[1] >= start_ns:
+                                self.stats.messages_read += 1
+                                partial += 1
+                                yield msg
+                        self.stats.chunks_read += 1
+                    except (ValueError, struct.error, UnicodeDecodeError) as exc:
+                        self.stats.chunks_skipped += 1
+                        self.stats.note(f"chunk ending at byte {f.tell()} cut short: {exc}")
+                        bad_chunk = True
                 continue
             body = memoryview(f.read(length))
             if op == OP_MESSAGE_INDEX and bad_chunk:
-                self.stats.messages_skipped += _U32.unpack_from(body, 2)[0] // 16
+                lost = _U32.unpack_from(body, 2)[0] // 16
+                self.stats.messages_skipped += max(0, lost - partial)
+                partial = max(0, partial - lost)
             elif op == OP_MESSAGE:
                 cid, _, log_ns, _ = _MSG.unpack_from(body, 0)
                 if log_ns >= start_ns:
@@ -222,13 +235,12 @@ class McapScanner:
             elif op == OP_CHANNEL:
                 self._channel(body)
 
-    def _chunk(
-        self, f: BinaryIO, length: int, start_ns: int
-    ) -> tuple[list[tuple[int, int, memoryview]], bool]:
-        """Decode one chunk record; (messages, ok). A bad chunk yields nothing."""
+    def _chunk(self, f: BinaryIO, length: int, start_ns: int) -> bytes | None:
+        """Decompressed, CRC-checked records of one chunk; b"" when the chunk ends before
+        ``start_ns`` (skipped unread), None when it is unusable (counted as skipped)."""
         end = f.tell() + length
         try:
-            _start_t, end_t, usize, crc = _CHUNK_HEAD.unpack(f.read(28))
+            _, end_t, usize, crc = _CHUNK_HEAD.unpack(f.read(28))
             (clen,) = _U32.unpack(f.read(4))
             kind = f.read(clen).decode("utf-8")
             (rlen,) = _U64.unpack(f.read(8))
@@ -237,22 +249,19 @@ class McapScanner:
             if end_t < start_ns:
                 f.seek(end)
                 self.stats.chunks_read += 1
-                return [], True
+                return b""
             raw = _decompress(kind, f.read(rlen), usize)
             if len(raw) != usize:
                 raise ValueError(f"decompressed {len(raw)} bytes, header says {usize}")
             if crc and zlib.crc32(raw) != crc:
                 raise ValueError("chunk CRC mismatch")
-            out = [m for m in self._records(memoryview(raw)) if m[1] >= start_ns]
         except Exception as exc:  # any decode failure means the whole chunk is unusable
             f.seek(end)
             self.stats.chunks_skipped += 1
             self.stats.note(f"chunk at byte {end - length - 9} skipped: {exc}")
-            return [], False
+            return None
         f.seek(end)
-        self.stats.chunks_read += 1
-        self.stats.messages_read += len(out)
-        return out, True
+        return raw
 
     def _truncated(self, pos: int, what: str) -> None:
         self.stats.note(f"damaged or truncated {what} at byte {pos} of {self.size}")

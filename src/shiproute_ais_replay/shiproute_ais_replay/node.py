@@ -16,7 +16,7 @@ import rclpy
 from diagnostic_msgs.msg import DiagnosticArray
 from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.node import Node
-from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 from rosgraph_msgs.msg import Clock
 from std_srvs.srv import SetBool
 
@@ -28,6 +28,15 @@ from .errors import AisReplayError
 from .replay import ReplayConfig, ReplayEngine, ReplayEvent
 
 CLOCK_QOS = QoSProfile(depth=1, reliability=ReliabilityPolicy.BEST_EFFORT)
+
+
+def _state_qos(depth: int) -> QoSProfile:
+    """Reliable ShipState QoS; depth <= 0 = keep all (the publisher then waits for slow
+    reliable subscribers instead of overwriting what they have not acknowledged)."""
+    if depth <= 0:
+        return QoSProfile(history=HistoryPolicy.KEEP_ALL, depth=1,
+                          reliability=ReliabilityPolicy.RELIABLE)
+    return QoSProfile(depth=depth, reliability=ReliabilityPolicy.RELIABLE)
 
 
 def _parse_remap(items: list[str]) -> dict[str, str]:
@@ -67,7 +76,7 @@ class ReplayNode(Node):
             self.engine.pause()
         self.state_pub = self.create_publisher(
             ShipState, "/shiproute/ship_state",
-            QoSProfile(depth=depth, reliability=ReliabilityPolicy.RELIABLE))
+            _state_qos(depth))
         self.clock_pub = self.create_publisher(Clock, "/clock", CLOCK_QOS)
         self.diag_pub = self.create_publisher(DiagnosticArray, "/diagnostics", 10)
         self.pass_pubs: dict[str, Any] = {}
