@@ -47,14 +47,19 @@ def radiate(times_h: np.ndarray, src_h: np.ndarray, src_hs: np.ndarray, src_tp: 
                                                                 np.ndarray, np.ndarray]:
     """Swell energy (m^2, Hs^2/16), energy-weighted sin/cos of from-direction and E/T sums.
 
+    `times_h` must be evenly spaced. The spectral window is cut at 3 standard deviations.
+
     Returns arrays (n_time, n_lat, n_lon): energy, e_sin, e_cos, e_over_t.
     """
     nt = times_h.shape[0]
     ns, ny, nx = dist_m.shape
-    energy = np.zeros((nt, ny, nx))
-    e_sin = np.zeros((nt, ny, nx))
-    e_cos = np.zeros((nt, ny, nx))
-    e_over_t = np.zeros((nt, ny, nx))
+    t0_h = times_h[0]
+    dt_h = times_h[1] - times_h[0] if nt > 1 else 1.0  # valid times are evenly spaced
+    # accumulate cell-major (time innermost) for cache locality; transposed on return
+    energy = np.zeros((ny, nx, nt))
+    e_sin = np.zeros((ny, nx, nt))
+    e_cos = np.zeros((ny, nx, nt))
+    e_over_t = np.zeros((ny, nx, nt))
     for cell in prange(ny * nx):
         iy = cell // nx
         ix = cell % nx
@@ -71,20 +76,27 @@ def radiate(times_h: np.ndarray, src_h: np.ndarray, src_hs: np.ndarray, src_tp: 
             decay = r0 / (r0 + d) * math.exp(-d / DISSIPATION_LENGTH_M)
             sb = math.sin(math.radians(brg))
             cb = math.cos(math.radians(brg))
-            for it in range(nt):
+            # only valid times whose dispersive period lies within 3 sigma of the source peak
+            tp = src_tp[s]
+            age_lo_h = 4.0 * math.pi * d / (G * tp * (1.0 + 3.0 * SPECTRAL_WIDTH)) / 3600.0
+            age_hi_h = 4.0 * math.pi * d / (G * tp * max(1.0 - 3.0 * SPECTRAL_WIDTH, 0.1)) / 3600.0
+            it_lo = max(0, math.ceil((src_h[s] + age_lo_h - t0_h) / dt_h))
+            it_hi = min(nt - 1, math.floor((src_h[s] + age_hi_h - t0_h) / dt_h))
+            for it in range(it_lo, it_hi + 1):
                 age_s = (times_h[it] - src_h[s]) * 3600.0
                 if age_s <= 0.0:
                     continue
                 period = 4.0 * math.pi * d / (G * age_s)
-                z = (period - src_tp[s]) / (SPECTRAL_WIDTH * src_tp[s])
-                if z * z > 16.0:
+                z = (period - tp) / (SPECTRAL_WIDTH * tp)
+                if z * z > 9.0:
                     continue
                 window = math.exp(-0.5 * z * z)
                 # emissions every dt_src_h map onto a period interval dT = T dt / age
                 norm = (dt_src_h * 3600.0 / age_s) / (SPECTRAL_WIDTH * math.sqrt(2 * math.pi))
                 e = e_src * window * norm * decay * directional * taper
-                energy[it, iy, ix] += e
-                e_sin[it, iy, ix] += e * sb
-                e_cos[it, iy, ix] += e * cb
-                e_over_t[it, iy, ix] += e / period
-    return energy, e_sin, e_cos, e_over_t
+                energy[iy, ix, it] += e
+                e_sin[iy, ix, it] += e * sb
+                e_cos[iy, ix, it] += e * cb
+                e_over_t[iy, ix, it] += e / period
+    return (energy.transpose(2, 0, 1), e_sin.transpose(2, 0, 1), e_cos.transpose(2, 0, 1),
+            e_over_t.transpose(2, 0, 1))

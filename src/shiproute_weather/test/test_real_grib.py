@@ -59,5 +59,5 @@ def test_truncated_grib_is_reported_with_its_name(tmp_path: Path) -> None:
 
     cut = tmp_path / "cut.grib2"
     cut.write_bytes((EXAMPLES / "gfs.t12z.pgrbf120.2p5deg.grib2").read_bytes()[:20000])
-    with pytest.raises(ForecastFileError, match="cut.grib2"):
+    with pytest.raises(ForecastFileError, match=r"cut\.grib2"):
         open_forecast([cut])
