@@ -21,12 +21,13 @@ from .ga.seeds import (
     great_circle_track,
     sea_lane_track,
     track_to_genes,
+    via_track,
 )
 from .geo.geodesy import inverse
 from .geo.landmask import LandMask
 from .route.encoding import gene_bounds
 from .route.environment import Environment
-from .route.evaluation import RouteEvaluation
+from .route.evaluation import RouteEvaluation, clear_ports
 from .route.generate import evaluate_genes
 from .route.problem import RouteProblem
 from .route.rta import constant_rpm_for_rta
@@ -60,9 +61,10 @@ class MethodContext:
     t_start: float = field(default_factory=time.perf_counter)
     ga_config: GAConfig | None = None
     max_generations: int = 100_000
-    n_offset_seeds: int = 6  # bent copies of the sea-lane/great-circle seed (0 = none)
-    offset_span_deg: float = 12.0
+    n_offset_seeds: int = 4  # sea lanes via bent points per position (0 = none)
+    offset_span_deg: float = 18.0
     stall_generations: int = 0  # 0 = no stall termination
+    baseline: Baseline | None = None  # computed on demand when None
 
 
 @dataclass(frozen=True)
@@ -73,6 +75,24 @@ class MethodResult:
     seed_source: str
     generations: int = 0
     evaluations: int = 0
+
+
+@dataclass(frozen=True)
+class Baseline:
+    """Constant-RPM route meeting the RTA on the great circle or the sea lane."""
+
+    name: str
+    lon_deg: np.ndarray
+    lat_deg: np.ndarray
+    rpm: float
+    evaluation: RouteEvaluation
+
+
+def compute_baseline(problem: RouteProblem, env: Environment, land: LandMask) -> Baseline:
+    """Great circle if it stays off land, else the sea lane; slowest RPM meeting the RTA."""
+    name, lon, lat = baseline_track(problem, land)
+    rpm, ev = constant_rpm_for_rta(problem, env, land, lon, lat)
+    return Baseline(name, lon, lat, rpm, ev)
 
 
 MethodFn = Callable[[MethodContext], MethodResult]
@@ -110,7 +130,9 @@ def _load_plugins() -> None:
 def baseline_track(problem: RouteProblem, land: LandMask) -> tuple[str, np.ndarray, np.ndarray]:
     """Great circle if it stays off land, else the `searoute` sea lane (else the great circle)."""
     lon, lat = great_circle_track(problem)
-    hits = land.segment_land_samples(lon[:-1], lat[:-1], lon[1:], lat[1:])
+    _, dist = inverse(lon[:-1], lat[:-1], lon[1:], lat[1:])
+    ends = clear_ports(problem, lon[None, :], lat[None, :], dist[None, :])
+    hits = land.segment_land_samples(*ends, problem.land_spacing_deg)
     if hits.sum() == 0:
         return "great_circle", lon, lat
     lane = sea_lane_track(problem)
@@ -121,41 +143,36 @@ def baseline_track(problem: RouteProblem, land: LandMask) -> tuple[str, np.ndarr
 
 def great_circle_method(ctx: MethodContext) -> MethodResult:
     """Constant RPM meeting the RTA on the great circle (sea lane if the circle hits land)."""
-    name, lon, lat = baseline_track(ctx.problem, ctx.land)
-    _, ev = constant_rpm_for_rta(ctx.problem, ctx.env, ctx.land, lon, lat)
-    return MethodResult(ev, name, 0, 1)
+    b = ctx.baseline or compute_baseline(ctx.problem, ctx.env, ctx.land)
+    return MethodResult(b.evaluation, b.name, 0, 1)
 
 
 def seed_ga_method(ctx: MethodContext) -> MethodResult:
     """Seed GA: seeds (pool, previous plan, sea lane, great circle) + GA within the budget."""
     p, env = ctx.problem, ctx.env
     seeds = list(ctx.seeds)
-    base = None
-    for name, lon, lat in _default_tracks(p, ctx.land, with_lane=not seeds):
-        rpm, ev = constant_rpm_for_rta(p, env, None, lon, lat, n_try=12, rounds=2)
+    base = ctx.baseline
+    if base is None and not seeds:
+        base = compute_baseline(p, env, ctx.land)
+    tracks = _seed_tracks(ctx, base) if base is not None else []
+    for name, lon, lat, rpm in tracks:
         seeds.append(TrackSeed(name, lon, lat, np.full(lon.size - 1, rpm)))
-        base = (name, lon, lat, rpm, float(ev.distance_m[0]))
-    if base is not None and ctx.n_offset_seeds:
-        _, _, _, rpm, dist = base
-        mid_lon, mid_lat = great_circle_track(p, 3)
-        spread = np.linspace(-ctx.offset_span_deg, ctx.offset_span_deg, ctx.n_offset_seeds + 1)
-        for d in spread[spread != 0.0]:
-            mlat = float(np.clip(mid_lat[1] + d, -p.limits.lat_bound_deg, p.limits.lat_bound_deg))
-            lane = sea_lane_track(p, via=(float(mid_lon[1]), mlat))
-            if lane is None:
-                continue
-            olon, olat = lane
-            length = float(np.sum(inverse(olon[:-1], olat[:-1], olon[1:], olat[1:])[1]))
-            r = float(np.clip(rpm * length / dist, p.limits.rpm_min, p.limits.rpm_max))
-            seeds.append(TrackSeed("searoute_via", olon, olat, np.full(olon.size - 1, r)))
+
     x_seed = track_to_genes(p, env, seeds, ctx.land)
     sources = [s.source for s in seeds]
     lo, hi = gene_bounds(p)
     cfg = ctx.ga_config or GAConfig()
     ga = SeedGA(lo, hi, p.n_stages, cfg, ctx.rng, x_seed)
     best_src = "none"
+    n = p.n_stages
     while True:
         x = ga.ask()
+        if ga.pop is not None and len(x) > 8:
+            # local move: the current best with all RPMs scaled (trades ETA slack for fuel)
+            k = max(4, len(x) // 8)
+            x[-k:] = ga.best[0]
+            x[-k:, n:] *= 1.0 + ctx.rng.normal(0.0, 0.004, size=(k, 1))
+            x[-k:] = np.clip(x[-k:], lo, hi)
         ev = evaluate_genes(p, env, ctx.land, x)
         ga.tell(x, ev.violation, ev.objective)
         if ga.generation == 0:
@@ -175,14 +192,39 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
     return MethodResult(final, best_src, ga.generation, ga.evaluations)
 
 
-def _default_tracks(p: RouteProblem, land: LandMask, with_lane: bool = True):
-    """Great-circle and sea-lane polylines as seed tracks."""
-    lon, lat = great_circle_track(p)
-    yield "great_circle", lon, lat
-    if with_lane:
-        lane = sea_lane_track(p)
-        if lane is not None:
-            yield "searoute", lane[0], lane[1]
+def _seed_tracks(ctx: MethodContext, base: Baseline) -> list[tuple]:
+    """Baseline, great circle, sea lane and sea lanes via bent midpoints, each with the
+    baseline RPM scaled by track length (speed ~ RPM) so it arrives about on time."""
+    p = ctx.problem
+    length_b = float(base.evaluation.distance_m[0])
+
+    def scaled(lon: np.ndarray, lat: np.ndarray) -> float:
+        """Baseline RPM scaled by track length (speed ~ RPM) so the seed is about on time."""
+        length = float(np.sum(inverse(lon[:-1], lat[:-1], lon[1:], lat[1:])[1]))
+        return float(np.clip(base.rpm * length / max(length_b, 1.0), p.limits.rpm_min,
+                             p.limits.rpm_max))
+
+    tracks = [(base.name, base.lon_deg, base.lat_deg)]
+    if not ctx.seeds:
+        if base.name != "great_circle":
+            tracks.append(("great_circle", *great_circle_track(p)))
+        if base.name != "sea_lane":
+            lane = sea_lane_track(p)
+            if lane is not None:
+                tracks.append(("searoute", *lane))
+        if ctx.n_offset_seeds:
+            # the baseline's port approaches + open-ocean great circles via points moved
+            # north/south of the great circle at 1/3, 1/2 and 2/3 of the way
+            g_lon, g_lat = great_circle_track(p, 7)
+            spread = np.linspace(-ctx.offset_span_deg, ctx.offset_span_deg,
+                                 ctx.n_offset_seeds + 1)
+            for j in (2, 3, 4):
+                for d in spread[spread != 0.0]:
+                    mlat = float(np.clip(g_lat[j] + d, -p.limits.lat_bound_deg,
+                                         p.limits.lat_bound_deg))
+                    v = via_track(base.lon_deg, base.lat_deg, float(g_lon[j]), mlat)
+                    tracks.append(("via_point", *v))
+    return [(name, lon, lat, scaled(lon, lat)) for name, lon, lat in tracks]
 
 
 register_method("seed_ga", seed_ga_method)

@@ -25,12 +25,11 @@ from .ga.seeds import TrackSeed, shift_track
 from .geo.geodesy import inverse
 from .geo.landmask import LandMask, default_land_mask
 from .geo.ports import Port, resolve_port
-from .methods import MethodContext, Progress, baseline_track, get_method
+from .methods import MethodContext, Progress, compute_baseline, get_method
 from .plan_types import RoutePlan, Waypoint, reasons_of, waypoints_from_evaluation
 from .route.environment import Environment
 from .route.evaluation import RouteEvaluation
 from .route.problem import RouteLimits, RouteProblem
-from .route.rta import constant_rpm_for_rta
 
 TimeLike = datetime | float | int | str
 
@@ -200,10 +199,12 @@ def plan_voyage(
         seeds = _seeds(problem, pool, a, b, month, previous_plan if k == 0 else None, position)
         used = time.perf_counter() - t0
         share = dists[k] / dists[k:].sum()
-        reserve = 0.1 * budget_s if with_baseline else 0.0
-        leg_budget = max(0.0, (budget_s - used - reserve) * share)
+        leg_budget = max(0.0, (budget_s - used) * share)
+        need = with_baseline or (method == "seed_ga" and not seeds)
+        base = compute_baseline(problem, env, land) if need else None
         ctx = MethodContext(problem, env, land, rng, leg_budget, seeds, progress, is_cancelled,
-                            k, time.perf_counter(), ga_config, stall_generations=stall_generations)
+                            k, time.perf_counter(), ga_config, stall_generations=stall_generations,
+                            baseline=base)
         res = fn(ctx)
         if res.evaluation is None:
             raise PlanCancelledError("planning was cancelled before a route was found")
@@ -212,10 +213,8 @@ def plan_voyage(
         problems.append(problem)
         gens += res.generations
         evals += res.evaluations
-        if with_baseline:
-            name, blon, blat = baseline_track(problem, land)
-            rpm_b, bev = constant_rpm_for_rta(problem, env, land, blon, blat)
-            baselines.append((name, rpm_b, bev))
+        if with_baseline and base is not None:
+            baselines.append((base.name, base.rpm, base.evaluation))
         if pool is not None:
             _offer(pool, problem, a, b, month, res.evaluation, res.seed_source)
         leg_depart = float(res.evaluation.eta_s[0])

@@ -9,6 +9,7 @@ pool and a previous plan (shifted to the ship's current position and time).
 
 from __future__ import annotations
 
+import functools
 import itertools
 from dataclasses import dataclass
 
@@ -58,7 +59,7 @@ def _densify(seeds: list[TrackSeed], spacing_m: float
 
 
 def track_to_genes(problem: RouteProblem, env: Environment, seeds: list[TrackSeed],
-                   land: LandMask | None = None, fan_deg: float = 60.0, fan_n: int = 25,
+                   land: LandMask | None = None, fan_deg: float = 60.0, fan_n: int = 17,
                    spacing_m: float = 10_000.0) -> np.ndarray:
     """Genes (len(seeds), 2n + 1) that follow each seed's polyline in the forecast.
 
@@ -73,7 +74,7 @@ def track_to_genes(problem: RouteProblem, env: Environment, seeds: list[TrackSee
     rows = np.arange(s_count)
     offsets = np.linspace(-fan_deg, fan_deg, fan_n)
     offsets = offsets[np.argsort(np.abs(offsets), kind="stable")]
-    scales = np.array([1.0, 0.85, 0.7])  # shorter legs help to line up with straits
+    scales = np.array([1.0, 0.8])  # shorter legs help to line up with straits
     offsets, scale = np.repeat(offsets, scales.size), np.tile(scales, offsets.size)
     c = offsets.size
     n = problem.n_stages
@@ -142,6 +143,18 @@ def great_circle_track(problem: RouteProblem, n_points: int = 0) -> tuple[np.nda
                                problem.arr_lat_deg, n_points)
 
 
+@functools.lru_cache(maxsize=64)
+def _searoute_coords(lon0: float, lat0: float, lon1: float, lat1: float) -> np.ndarray | None:
+    """searoute's shortest sea-lane polyline (cached: its Dijkstra takes ~0.1 s)."""
+    import searoute
+
+    try:
+        feat = searoute.searoute([lon0, lat0], [lon1, lat1])
+    except Exception:
+        return None
+    return np.asarray(feat["geometry"]["coordinates"], dtype=float)
+
+
 def sea_lane_track(problem: RouteProblem, max_points: int = 0,
                    via: tuple[float, float] | None = None
                    ) -> tuple[np.ndarray, np.ndarray] | None:
@@ -149,8 +162,6 @@ def sea_lane_track(problem: RouteProblem, max_points: int = 0,
 
     Its end points are replaced by the problem's ports (searoute snaps to its network); long
     polylines are resampled to `max_points` (default two per stage)."""
-    import searoute
-
     from ..geo.geodesy import wrap_lon
 
     stops = [[float(wrap_lon(problem.dep_lon_deg)), problem.dep_lat_deg],
@@ -158,11 +169,11 @@ def sea_lane_track(problem: RouteProblem, max_points: int = 0,
     if via is not None:
         stops.insert(1, [float(wrap_lon(via[0])), float(via[1])])
     parts = []
-    try:
-        for a, b in itertools.pairwise(stops):
-            parts.append(np.asarray(searoute.searoute(a, b)["geometry"]["coordinates"], float))
-    except Exception:
-        return None
+    for a, b in itertools.pairwise(stops):
+        part = _searoute_coords(round(a[0], 4), round(a[1], 4), round(b[0], 4), round(b[1], 4))
+        if part is None:
+            return None
+        parts.append(part)
     coords = np.concatenate(parts, axis=0)
     if coords.shape[0] < 2:
         return None
@@ -189,6 +200,24 @@ def resample_track(lon: np.ndarray, lat: np.ndarray, n_points: int
     plon, plat = direct(lon[j], lat[j], az[j], d - cum[j])
     plon[0], plat[0], plon[-1], plat[-1] = lon[0], lat[0], lon[-1], lat[-1]
     return np.unwrap(plon, period=360.0), plat
+
+
+def via_track(lon: np.ndarray, lat: np.ndarray, via_lon: float, via_lat: float,
+              keep: float = 0.12) -> tuple[np.ndarray, np.ndarray]:
+    """A polyline's first and last `keep` fraction (port approaches, straits) joined to a
+    point (`via_lon`, `via_lat`) by great circles."""
+    lon = np.unwrap(np.asarray(lon, dtype=float), period=360.0)
+    _, seg = inverse(lon[:-1], lat[:-1], lon[1:], lat[1:])
+    s = np.concatenate([[0.0], np.cumsum(seg)]) / max(seg.sum(), 1.0)
+    a = int(np.searchsorted(s, keep))
+    b = int(np.searchsorted(s, 1.0 - keep))
+    a, b = max(a, 0), min(max(b, a + 1), lon.size - 1)
+    v_lon = float(unwrap_near(via_lon, lon[a]))
+    l1, t1 = great_circle_points(lon[a], lat[a], v_lon, via_lat, 8)
+    l2, t2 = great_circle_points(v_lon, via_lat, lon[b], lat[b], 8)
+    out_lon = np.concatenate([lon[: a + 1], l1[1:], l2[1:], lon[b + 1:]])
+    out_lat = np.concatenate([lat[: a + 1], t1[1:], t2[1:], lat[b + 1:]])
+    return np.unwrap(out_lon, period=360.0), out_lat
 
 
 def shift_track(lon: np.ndarray, lat: np.ndarray, time_s: np.ndarray, rpm: np.ndarray,

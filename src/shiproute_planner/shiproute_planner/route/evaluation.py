@@ -65,7 +65,7 @@ def objective_of(problem: RouteProblem, fuel_t, distance_m, eta_s) -> np.ndarray
     return np.asarray(fuel_t, dtype=float)
 
 
-def _clear_ports(problem: RouteProblem, lon: np.ndarray, lat: np.ndarray,
+def clear_ports(problem: RouteProblem, lon: np.ndarray, lat: np.ndarray,
                  distance_m: np.ndarray) -> tuple[np.ndarray, ...]:
     """Leg end points with the first/last `port_clearance_m` next to a port cut off."""
     lon0, lat0 = lon[:, :-1].copy(), lat[:, :-1].copy()
@@ -92,7 +92,7 @@ def finish(
     """Land check, constraint flags, violations, totals and objective of filled legs."""
     active = legs["duration_s"] > 0
     if land is not None:
-        lon0, lat0, lon1, lat1 = _clear_ports(problem, lon, lat, legs["distance_m"])
+        lon0, lat0, lon1, lat1 = clear_ports(problem, lon, lat, legs["distance_m"])
         samples = land.segment_land_samples(lon0, lat0, lon1, lat1, problem.land_spacing_deg)
         legs["land_samples"] = np.where(active, samples, 0)
     else:

@@ -12,8 +12,11 @@ MIN_SOG_M_S = 0.05
 
 def perf_arrays(perf, shape: tuple[int, ...]) -> dict[str, np.ndarray]:
     """LegPerformance fields as float arrays of `shape`."""
-    return {k: np.broadcast_to(np.asarray(getattr(perf, k), dtype=float), shape).copy()
-            for k in PERF_FIELDS}
+    out = {}
+    for k in PERF_FIELDS:
+        a = np.asarray(getattr(perf, k), dtype=float)
+        out[k] = a if a.shape == shape else np.broadcast_to(a, shape)
+    return out
 
 
 def sail_to(
@@ -24,7 +27,7 @@ def sail_to(
     lon1: np.ndarray,
     lat1: np.ndarray,
     rpm: np.ndarray,
-    iterations: int = 2,
+    iterations: int = 1,
 ) -> tuple[dict[str, np.ndarray], np.ndarray, np.ndarray, np.ndarray]:
     """Perform a leg from point 0 to point 1 at `rpm` in the weather met at point 0 and `t0`.
 

@@ -18,14 +18,14 @@ from .sail import sail_tracks
 
 def constant_rpm_for_rta(
     problem: RouteProblem, env: Environment, land: LandMask | None,
-    lon_deg: np.ndarray, lat_deg: np.ndarray, n_try: int = 24, rounds: int = 3,
+    lon_deg: np.ndarray, lat_deg: np.ndarray, n_try: int = 16, rounds: int = 2,
 ) -> tuple[float, RouteEvaluation]:
     """Slowest constant RPM whose ETA <= RTA on the track (rpm_max if none does)."""
     lo, hi = problem.limits.rpm_min, problem.limits.rpm_max
     lon = np.broadcast_to(np.asarray(lon_deg, dtype=float), (n_try, np.size(lon_deg)))
     lat = np.broadcast_to(np.asarray(lat_deg, dtype=float), (n_try, np.size(lat_deg)))
     best = hi
-    for _ in range(rounds):
+    for r in range(rounds):
         rpms = np.linspace(lo, hi, n_try)
         ev = sail_tracks(problem, env, None, lon, lat, rpms[:, None])
         ok = ev.eta_s <= problem.rta_s
@@ -36,6 +36,14 @@ def constant_rpm_for_rta(
         best = float(rpms[k])
         if k == 0:
             break
+        if r == rounds - 1:
+            # ETA is monotone in RPM: interpolate inside the last bracket, keep it on time
+            e0, e1 = ev.eta_s[k - 1], ev.eta_s[k]
+            f = (e0 - problem.rta_s) / max(e0 - e1, 1e-9)
+            best = float(rpms[k - 1] + np.clip(f, 0.0, 1.0) * (rpms[k] - rpms[k - 1]))
         lo, hi = float(rpms[k - 1]), best
     final = sail_tracks(problem, env, land, lon[:1], lat[:1], np.array([[best]]))
+    if final.eta_s[0] > problem.rta_s and best < problem.limits.rpm_max:
+        best = float(hi if hi > best else min(best + 0.05, problem.limits.rpm_max))
+        final = sail_tracks(problem, env, land, lon[:1], lat[:1], np.array([[best]]))
     return best, final

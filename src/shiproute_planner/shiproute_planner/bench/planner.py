@@ -1,0 +1,132 @@
+"""Planner benchmark: Busan -> Long Beach, 13-day RTA, 25 x 12 h stages, 4,600 TEU, storm_march.
+
+Reports cold plan time (empty seed pool), warm re-plan time (previous plan shifted 6 h along,
+forecast switched to storm_march_cycle2), fuel of the plan, of the constant-RPM baseline and
+of a 20x-budget reference run, route evaluations per second, land crossings on a dense exact
+check and ETA - RTA. Forecast sampler, ship tables and land mask are built before timing.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import tempfile
+import time
+from datetime import timedelta
+
+import numpy as np
+
+from ..geo.geodesy import direct, inverse
+from ..geo.landmask import default_land_mask
+from ..geo.verify import land_crossings
+from ..planning import make_environment, plan_voyage, to_posix_s
+from ..route.encoding import gene_bounds
+from ..route.generate import evaluate_genes
+from ..route.problem import RouteProblem
+
+DEPART = "2026-03-03T18:00Z"
+
+
+def _position_after(plan, hours: float) -> tuple[float, float, float]:
+    """(lat, lon, time) on the plan `hours` after departure (geodesic interpolation)."""
+    lon, lat, t = plan.track()
+    now = plan.departure_s + hours * 3600.0
+    k = int(np.clip(np.searchsorted(t, now, side="right") - 1, 0, t.size - 2))
+    az, d = inverse(lon[k], lat[k], lon[k + 1], lat[k + 1])
+    f = (now - t[k]) / max(t[k + 1] - t[k], 1.0)
+    plon, plat = direct(lon[k], lat[k], az, d * f)
+    return float(plat), float(plon), now
+
+
+def evals_per_s(env, land, plan_problem: RouteProblem, pop: int = 200, reps: int = 3) -> float:
+    """Route evaluations per second of the vectorised evaluator (population `pop`)."""
+    lo, hi = gene_bounds(plan_problem)
+    rng = np.random.default_rng(1)
+    x = lo + (hi - lo) * rng.random((pop, plan_problem.n_var))
+    n = plan_problem.n_stages
+    x[:, 1:n] *= 0.1
+    evaluate_genes(plan_problem, env, land, x)
+    t0 = time.perf_counter()
+    for _ in range(reps):
+        evaluate_genes(plan_problem, env, land, x)
+    return pop * reps / (time.perf_counter() - t0)
+
+
+def run(budget_s: float, warm_budget_s: float, ref_factor: float, seed: int) -> dict:
+    """Run the benchmark and return its JSON-able result."""
+    from shiproute_weather.sampling import ForecastSampler
+    from shiproute_weather.scenarios import scenario_dataset
+
+    t0 = time.perf_counter()
+    land = default_land_mask()
+    s1 = ForecastSampler(scenario_dataset("storm_march"))
+    s2 = ForecastSampler(scenario_dataset("storm_march_cycle2"))
+    env, _ = make_environment("container_4600teu", s1)
+    setup_s = time.perf_counter() - t0
+    common = dict(ship="container_4600teu", land=land, seed=seed)
+    with tempfile.TemporaryDirectory() as pool_dir:
+        t = time.perf_counter()
+        cold = plan_voyage("Busan", "Long Beach", DEPART, timedelta(days=13), forecast=s1,
+                           budget_s=budget_s, seed_pool_dir=pool_dir, **common)
+        cold_s = time.perf_counter() - t
+    pos = _position_after(cold, 6.0)
+    t = time.perf_counter()
+    warm = plan_voyage("Busan", "Long Beach", DEPART, timedelta(days=13), forecast=s2,
+                       budget_s=warm_budget_s, previous_plan=cold, position=pos,
+                       stall_generations=10, with_baseline=False, **common)
+    warm_s = time.perf_counter() - t
+    ref = plan_voyage("Busan", "Long Beach", DEPART, timedelta(days=13), forecast=s1,
+                      budget_s=budget_s * ref_factor, **{**common, "seed": seed + 1})
+    feasible = [p.total_fuel_t for p in (cold, ref) if p.feasible]
+    reference = min(feasible) if feasible else ref.total_fuel_t
+    lon, lat, _ = cold.track()
+    depart_s = to_posix_s(DEPART)
+    problem = RouteProblem(lon[0], lat[0], lon[-1], lat[-1], depart_s,
+                           depart_s + 13 * 86400.0, _limits_of(cold, env))
+    return {
+        "setup_s": round(setup_s, 3),
+        "cold_plan_s": round(cold_s, 3),
+        "warm_plan_s": round(warm_s, 3),
+        "tfoc_t": round(cold.total_fuel_t, 2),
+        "feasible": cold.feasible,
+        "infeasible_reasons": list(cold.infeasible_reasons),
+        "baseline_gc_tfoc_t": round(cold.baseline_fuel_t, 2),
+        "baseline_method": cold.baseline_method,
+        "baseline_feasible": cold.baseline_feasible,
+        "warm_tfoc_t": round(warm.total_fuel_t, 2),
+        "warm_feasible": warm.feasible,
+        "reference_tfoc_t": round(reference, 2),
+        "reference_feasible": ref.feasible,
+        "gap_to_reference_pct": round(100.0 * (cold.total_fuel_t - reference) / reference, 3),
+        "route_evals_per_s": round(evals_per_s(env, land, problem), 1),
+        "ga_evals_per_s": round(cold.evaluations / max(cold.compute_time_s, 1e-9), 1),
+        "land_crossings": len(land_crossings(lon, lat)),
+        "eta_minus_rta_h": round((cold.eta_s - cold.rta_s) / 3600.0, 3),
+        "generations": cold.generations,
+        "evaluations": cold.evaluations,
+        "seed_source": cold.seed_source,
+    }
+
+
+def _limits_of(plan, env):
+    from ..planning import _limits
+
+    return _limits(getattr(env.model, "ship", None), None)
+
+
+def main(argv: list[str]) -> int:
+    """`shiproute bench planner [--json] [--budget S] [--warm-budget S] [--ref-factor F]`."""
+    ap = argparse.ArgumentParser(prog="shiproute bench planner", description=__doc__)
+    ap.add_argument("--json", action="store_true", help="print one JSON object")
+    ap.add_argument("--budget", type=float, default=3.0)
+    ap.add_argument("--warm-budget", type=float, default=0.5)
+    ap.add_argument("--ref-factor", type=float, default=20.0)
+    ap.add_argument("--seed", type=int, default=0)
+    args = ap.parse_args(argv)
+    result = run(args.budget, args.warm_budget, args.ref_factor, args.seed)
+    if args.json:
+        print(json.dumps(result))
+    else:
+        for k, v in result.items():
+            print(f"{k:24s} {v}")
+    return 0
