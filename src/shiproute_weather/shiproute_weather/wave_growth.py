@@ -15,23 +15,17 @@ capped by the fetch-limited and fully developed values.
 
 from __future__ import annotations
 
-from functools import lru_cache
-
 import numpy as np
+
+from .spectral import period_over_tp
 
 G = 9.81
 CHI_FULLY_DEVELOPED = (0.241 / 1.6e-3) ** 2
 
 
-@lru_cache(maxsize=8)
 def jonswap_tm01_over_tp(gamma: float) -> float:
-    """Tm01 / Tp of a JONSWAP spectrum (sigma 0.07/0.09), by numerical integration of m0/m1."""
-    f = np.linspace(0.2, 6.0, 20000)  # frequency in units of the peak frequency
-    sigma = np.where(f <= 1.0, 0.07, 0.09)
-    shape = f ** -5 * np.exp(-1.25 * f ** -4) * gamma ** np.exp(-((f - 1) ** 2) / (2 * sigma ** 2))
-    m0 = np.trapezoid(shape, f)
-    m1 = np.trapezoid(shape * f, f)
-    return float(m0 / m1)
+    """Tm01 / Tp of a JONSWAP spectrum with peak enhancement gamma."""
+    return period_over_tp("tm01", gamma)
 
 
 def duration_to_chi(t_s: np.ndarray, u_m_s: np.ndarray) -> np.ndarray:
