@@ -69,6 +69,10 @@ class FastModel:
         )
         ref_n = e.rpm_mcr / 60.0
         v_ref = self.physics.evaluate(e.rpm_mcr, 0.0, SeaState.calm()).stw_m_s
+        # SFOC on a uniform load grid (exact at the curve's points, linear between)
+        sfoc_grid = np.array([0.0, 2.0 / 2000])
+        loads = np.linspace(0.0, 2.0, 2001)
+        sfoc_uniform = np.interp(loads, e.sfoc_load_fraction, e.sfoc_g_per_kwh)
         for name, tab in (("calm resistance", r_calm), ("wake", wake), ("wave", u_ws),
                           ("swell", u_sw), ("motion", m0_ws), ("swell motion", m0_sw)):
             if not np.all(np.isfinite(tab)):
@@ -92,6 +96,7 @@ class FastModel:
             fk.P_TOL: ship.seakeeping.roll_resonance_tolerance,
             fk.P_THR_SLAM: st.threshold_m[0], fk.P_THR_WET: st.threshold_m[1],
             fk.P_THR_PROP: st.threshold_m[2], fk.P_CALM_K: float(v_ref) / ref_n, fk.P_VTOP: v_top,
+            fk.P_SURF_KN: 1.8 * np.sqrt(ship.hull.lpp_m),
         }
         for k, val in values.items():
             par[k] = float(val)
@@ -106,8 +111,7 @@ class FastModel:
             np.ascontiguousarray(u_ws), np.ascontiguousarray(u_sw),
             np.ascontiguousarray(m0_ws), np.ascontiguousarray(m0_sw),
             caa_cos,
-            np.asarray(e.sfoc_load_fraction, dtype=float),
-            np.asarray(e.sfoc_g_per_kwh, dtype=float),
+            sfoc_grid, sfoc_uniform,
         )
 
     def evaluate(self, rpm: np.ndarray, heading_deg: np.ndarray, sea: SeaState) -> LegPerformance:
@@ -165,7 +169,7 @@ class FastModel:
 _CACHE: dict[str, FastModel] = {}
 _LOCK = threading.Lock()
 _N_THREADS = min(os.cpu_count() or 1, 4)
-_THREAD_MIN_LEGS = 20000
+_THREAD_MIN_LEGS = 4096
 _POOL: ThreadPoolExecutor | None = None
 
 

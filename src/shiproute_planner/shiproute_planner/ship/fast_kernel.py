@@ -17,8 +17,8 @@ from numba import njit
 (P_RHO, P_D, P_T, P_ETA_R, P_ETA_S, P_JMAX, P_WMAX, P_KT0, P_KT1, P_KT2, P_KT3, P_KQ0, P_KQ1,
  P_KQ2, P_KQ3, P_AF, P_MCR, P_RPM_MCR, P_RPM_MIN, P_RPM_MAX, P_OVERLOAD, P_TORQUE, P_DV, P_NV,
  P_WDV, P_WNV, P_T0, P_DT, P_NT, P_SDV, P_SNV, P_NC, P_LPP, P_MIN_HS, P_TROLL, P_TOL,
- P_THR_SLAM, P_THR_WET, P_THR_PROP, P_CALM_K, P_VTOP) = range(41)
-N_PAR = 41
+ P_THR_SLAM, P_THR_WET, P_THR_PROP, P_CALM_K, P_VTOP, P_SURF_KN) = range(42)
+N_PAR = 42
 G = 9.80665
 KN = 0.514444
 RHO_AIR = 1.225
@@ -47,15 +47,10 @@ def _lin_cos(tab, c):
 
 
 @njit(cache=True)
-def _interp(xs, ys, x):
-    n = xs.size
-    if x <= xs[0]:
-        return ys[0]
-    if x >= xs[n - 1]:
-        return ys[n - 1]
-    i = np.searchsorted(xs, x) - 1
-    f = (x - xs[i]) / (xs[i + 1] - xs[i])
-    return ys[i] * (1.0 - f) + ys[i + 1] * f
+def _lin_uniform(tab, x0, dx, x):
+    """Linear interpolation on a uniform grid starting at x0 with spacing dx (clamped)."""
+    i, f = _idx(x0, dx, tab.size, x)
+    return tab[i] * (1.0 - f) + tab[i + 1] * f
 
 
 @njit(cache=True)
@@ -91,8 +86,8 @@ def _add_m0(tab, hs2, iv, fv, it, ft, ir, fr, m0):
 
 
 @njit(cache=True)
-def _residual(v, n, par, r_calm, wake, u_ws, u_sw, a_ws, a_sw, it_ws, ft_ws, it_sw, ft_sw,
-              w_fwd, w_side, caa):
+def _residual(v, inv_nd, k_thr, par, r_calm, wake, u_ws, u_sw, a_ws, a_sw, it_ws, ft_ws, it_sw,
+              ft_sw, w_fwd, w_side, caa):
     """Thrust (1 - t) - total resistance (N) and its slope d/dV at ship speed v."""
     dv = par[P_DV]
     ic, fc = _idx(0.0, dv, int(par[P_NV]), v)
@@ -126,26 +121,27 @@ def _residual(v, n, par, r_calm, wake, u_ws, u_sw, a_ws, a_sw, it_ws, ft_ws, it_
         dcos_dv = w_side * w_side / (rel2 * rel)
         r += q * c * rel2
         dr += q * (dc_dcos * dcos_dv * rel2 - 2.0 * c * ax)
-    d = par[P_D]
-    k = par[P_RHO] * n * n * d**4 * (1.0 - par[P_T])
-    j = v * (1.0 - w) / (n * d)
-    dj = ((1.0 - w) - v * dw) / (n * d)
+    j = v * (1.0 - w) * inv_nd
+    dj = ((1.0 - w) - v * dw) * inv_nd
     kt = par[P_KT0] + j * (par[P_KT1] + j * (par[P_KT2] + j * par[P_KT3]))
     dkt = par[P_KT1] + j * (2.0 * par[P_KT2] + 3.0 * j * par[P_KT3])
-    return kt * k - r, dkt * dj * k - dr
+    return kt * k_thr - r, dkt * dj * k_thr - dr
 
 
 @njit(cache=True, nogil=True)
 def _solve(n, par, r_calm, wake, u_ws, u_sw, a_ws, a_sw, it_ws, ft_ws, it_sw, ft_sw, w_fwd,
            w_side, caa):
     """Speed through water (m/s) at shaft speed n (rps): Newton kept inside a sign bracket."""
+    d = par[P_D]
+    inv_nd = 1.0 / (n * d)
+    k_thr = par[P_RHO] * n * n * d * d * d * d * (1.0 - par[P_T])
     lo = 0.0
-    hi = par[P_JMAX] * n * par[P_D] / (1.0 - par[P_WMAX])
+    hi = par[P_JMAX] * n * d / (1.0 - par[P_WMAX])
     x = min(par[P_CALM_K] * n, 0.999 * hi)
     checked_zero = False
     for _ in range(60):
-        f, df = _residual(x, n, par, r_calm, wake, u_ws, u_sw, a_ws, a_sw, it_ws, ft_ws, it_sw,
-                          ft_sw, w_fwd, w_side, caa)
+        f, df = _residual(x, inv_nd, k_thr, par, r_calm, wake, u_ws, u_sw, a_ws, a_sw, it_ws,
+                          ft_ws, it_sw, ft_sw, w_fwd, w_side, caa)
         if f > 0.0:
             lo = x
         else:
@@ -155,12 +151,12 @@ def _solve(n, par, r_calm, wake, u_ws, u_sw, a_ws, a_sw, it_ws, ft_ws, it_sw, ft
         if not lo < xn < hi:
             if xn <= lo and lo == 0.0 and not checked_zero:
                 checked_zero = True
-                f0, _ = _residual(0.0, n, par, r_calm, wake, u_ws, u_sw, a_ws, a_sw, it_ws,
-                                  ft_ws, it_sw, ft_sw, w_fwd, w_side, caa)
+                f0, _ = _residual(0.0, inv_nd, k_thr, par, r_calm, wake, u_ws, u_sw, a_ws, a_sw,
+                                  it_ws, ft_ws, it_sw, ft_sw, w_fwd, w_side, caa)
                 if f0 <= 0.0:
                     return 0.0  # thrust cannot even hold the ship at rest
             xn = 0.5 * (lo + hi)
-        if abs(xn - x) < 2e-4 or hi - lo < 1e-9:  # m/s; Newton: next error ~ step^2
+        if abs(xn - x) < 5e-3 or hi - lo < 1e-9:  # m/s; Newton: next error ~ step^2 << 1e-4
             return xn
         x = xn
     return x
@@ -173,7 +169,7 @@ def _imo(par, v, hs, t_mean, cos_rel, peak, out):
         return
     lpp = par[P_LPP]
     tp = t_mean * peak
-    if cos_rel < -COS_45 and v / KN * (-cos_rel) > 1.8 * math.sqrt(lpp):
+    if cos_rel < -COS_45 and v / KN * (-cos_rel) > par[P_SURF_KN]:
         out[0] = True  # surf-riding / broaching-to
     if G * tp * tp / (2.0 * math.pi) > 0.8 * lpp and hs > 0.04 * lpp:
         out[3] = True  # successive high-wave attack
@@ -241,7 +237,8 @@ def evaluate_kernel(rpm, hdg, wu, wv, ws_hs, ws_from, ws_t, sw_hs, sw_from, sw_t
         w = wake[ic] * (1.0 - fc) + wake[ic + 1] * fc
         j = v * (1.0 - w) / (n * d)
         kq = par[P_KQ0] + j * (par[P_KQ1] + j * (par[P_KQ2] + j * par[P_KQ3]))
-        pb = 2.0 * math.pi * n * kq * par[P_RHO] * n * n * d**5 / par[P_ETA_R] / par[P_ETA_S]
+        pb = 2.0 * math.pi * n * kq * par[P_RHO] * n * n * d * d * d * d * d / par[P_ETA_R]
+        pb /= par[P_ETA_S]
         pb *= 1e-3
         load = pb / par[P_MCR]
         torque_ratio = load * par[P_RPM_MCR] / max(rpm[k], 1e-9)
@@ -271,7 +268,7 @@ def evaluate_kernel(rpm, hdg, wu, wv, ws_hs, ws_from, ws_t, sw_hs, sw_from, sw_t
         cog = math.degrees(math.atan2(east, north))
         out_f[2, k] = cog + 360.0 if cog < 0.0 else cog
         out_f[3, k] = pb
-        out_f[4, k] = pb * _interp(sfoc_x, sfoc_y, load) * 1e-6
+        out_f[4, k] = pb * _lin_uniform(sfoc_y, sfoc_x[0], sfoc_x[1] - sfoc_x[0], load) * 1e-6
         out_f[5, k] = load
         out_f[6, k] = math.sqrt(hs_ws2 + hs_sw2)
         out_f[7, k] = math.sqrt(wu[k] * wu[k] + wv[k] * wv[k])
