@@ -1,8 +1,10 @@
 """3DDP (Shao 2012 style): forward DP on a great-circle grid with a time-fuel Pareto set per node.
 
-The grid has stages equally spaced along the great circle and, at each inner stage, lateral
-points on the perpendicular. From a point the ship may go to five points of the next stage
-(lateral index change -2..+2, the "five headings"), at any of a set of RPM levels held for the
+The grid has stages equally spaced along a reference line (the great circle, or the shortest
+sea path where the circle crosses land; stages are added where the line bends round land)
+and, at each inner stage, lateral points on the perpendicular. From a point the ship may go to
+five points of the next stage (lateral index change -2..+2, the "five headings"; the ports
+link to every point of the first and last stage), at any of a set of RPM levels held for the
 stage. Every node keeps the labels (arrival time, fuel) that are not dominated, with at most
 one label per arrival-time bin (the least fuel for "the same arrival time"). At the arrival
 port the labels form the ETA-vs-fuel Pareto front; the least-fuel label arriving by the RTA
@@ -15,7 +17,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..geo.geodesy import great_circle_points
 from .errors import NoRouteFoundError
 from .geodesy import continuous_lon, direct, inverse
 from .grid_search import UNSAFE_LEG_PENALTY_T
@@ -23,6 +24,7 @@ from .labels import prune_labels
 from .legs import LegSailor
 
 MAX_LATERAL_STEP = 2  # five headings: -2, -1, 0, +1, +2 lateral points
+MAX_STAGE_SPLITS = 6
 
 
 @dataclass(frozen=True)
@@ -30,6 +32,7 @@ class Ddp3Config:
     """Grid and label resolution of the 3DDP search."""
 
     stage_m: float = 200 * 1852.0
+    port_stage_m: float = 60 * 1852.0  # first/last inner stage this far from the ports
     n_lateral: int = 21
     lateral_m: float = 50 * 1852.0
     time_bin_s: float = 3600.0
@@ -51,49 +54,81 @@ class Ddp3Result:
     leg_evaluations: int
 
 
+def _stage_points(ref_lon: np.ndarray, ref_lat: np.ndarray, cfg: Ddp3Config, crosses_land
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Stage centres along the reference line: (lon, lat, course_deg, distance to nearer port).
+
+    The first and last inner stages sit `cfg.port_stage_m` from the ports so the ports can
+    reach them through narrow approaches; the rest are equally spaced about `cfg.stage_m`."""
+    az, seg = inverse(ref_lon[:-1], ref_lat[:-1], ref_lon[1:], ref_lat[1:])
+    cum = np.r_[0.0, np.cumsum(seg)]
+    total = float(cum[-1])
+    end_gap = min(cfg.port_stage_m, total / 4.0)
+    n_mid = max(int(np.ceil((total - 2 * end_gap) / cfg.stage_m)), 1)
+    d = np.r_[0.0, np.linspace(end_gap, total - end_gap, n_mid + 1), total]
+
+    def at(dist: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        j = np.clip(np.searchsorted(cum, dist, side="right") - 1, 0, seg.size - 1)
+        return direct(ref_lon[j], ref_lat[j], az[j], dist - cum[j])
+
+    lon, lat = at(d)
+    # where the line bends around land, a straight stage would cut the corner: add stages
+    for _ in range(MAX_STAGE_SPLITS):
+        bad = np.flatnonzero(crosses_land(lon[:-1], lat[:-1], lon[1:], lat[1:]))
+        if bad.size == 0:
+            break
+        d = np.sort(np.r_[d, 0.5 * (d[bad] + d[bad + 1])])
+        lon, lat = at(d)
+    # course: direction of the reference line over the neighbouring stages
+    fwd, _ = inverse(lon[:-1], lat[:-1], lon[1:], lat[1:])
+    course = np.r_[fwd[0], fwd]
+    to_port = np.minimum(d, total - d)
+    return lon, lat, course, to_port
+
+
 def ddp3_grid(
-    sailor: LegSailor, start_lon: float, start_lat: float, end_lon: float, end_lat: float,
-    cfg: Ddp3Config,
+    sailor: LegSailor, ref_lon: np.ndarray, ref_lat: np.ndarray, cfg: Ddp3Config,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Node positions (stages x lateral) and a sea mask; the ports sit at the centre index."""
-    end_lon = float(continuous_lon(end_lon, start_lon))
-    _, total = inverse(start_lon, start_lat, end_lon, end_lat)
-    n_stage = max(int(np.ceil(total / cfg.stage_m)), 2)
-    gc_lon, gc_lat = great_circle_points(start_lon, start_lat, end_lon, end_lat, n_stage + 1)
-    fwd, _ = inverse(gc_lon[:-1], gc_lat[:-1], gc_lon[1:], gc_lat[1:])
-    course = np.r_[fwd, fwd[-1]]
+    """Node positions (stages x lateral) and a sea mask; the ports sit at the centre index.
+
+    Lateral spacing is `cfg.lateral_m`, narrowed near the ports (a quarter of the distance to
+    the nearer port) so the first and last stages stay reachable."""
+    start_lon = float(ref_lon[0])
+    c_lon, c_lat, course, to_port = _stage_points(ref_lon, ref_lat, cfg, sailor.crosses_land)
+    n = c_lon.size
     m = cfg.n_lateral
     centre = m // 2
-    offsets = (np.arange(m) - centre) * cfg.lateral_m
-    lon = np.empty((n_stage + 1, m))
-    lat = np.empty((n_stage + 1, m))
-    for s in range(n_stage + 1):
+    lon = np.empty((n, m))
+    lat = np.empty((n, m))
+    for s in range(n):
+        spacing = min(cfg.lateral_m, 0.25 * to_port[s])
+        offsets = (np.arange(m) - centre) * spacing
         az = np.where(offsets >= 0, course[s] + 90.0, course[s] - 90.0)
-        p_lon, p_lat = direct(np.full(m, gc_lon[s]), np.full(m, gc_lat[s]), az, np.abs(offsets))
+        p_lon, p_lat = direct(np.full(m, c_lon[s]), np.full(m, c_lat[s]), az, np.abs(offsets))
         lon[s] = continuous_lon(p_lon, start_lon)
         lat[s] = p_lat
     sea = ~np.asarray(sailor.on_land(lon.ravel(), lat.ravel()), bool).reshape(lon.shape)
     sea[0], sea[-1] = False, False
     sea[0, centre] = sea[-1, centre] = True
-    lon[0, centre], lat[0, centre] = start_lon, start_lat
-    lon[-1, centre], lat[-1, centre] = end_lon, end_lat
+    lon[0, centre], lat[0, centre] = ref_lon[0], ref_lat[0]
+    lon[-1, centre], lat[-1, centre] = ref_lon[-1], ref_lat[-1]
     return lon, lat, sea
 
 
 def ddp3_route(
     sailor: LegSailor,
-    start_lon: float,
-    start_lat: float,
-    end_lon: float,
-    end_lat: float,
+    ref_lon: np.ndarray,
+    ref_lat: np.ndarray,
     depart_s: float,
     rta_s: float,
     rpm_levels: np.ndarray,
     config: Ddp3Config | None = None,
 ) -> Ddp3Result:
-    """Forward 3DDP; returns the least-fuel route meeting `rta_s` and the arrival Pareto front."""
+    """Forward 3DDP around the reference line `ref_lon/ref_lat` (port to port: the great circle,
+    or the sea lane where the circle crosses land); returns the least-fuel route meeting
+    `rta_s` and the arrival Pareto front."""
     cfg = config or Ddp3Config()
-    lon, lat, sea = ddp3_grid(sailor, start_lon, start_lat, end_lon, end_lat, cfg)
+    lon, lat, sea = ddp3_grid(sailor, np.asarray(ref_lon, float), np.asarray(ref_lat, float), cfg)
     n_stage, m = lon.shape[0] - 1, lon.shape[1]
     centre = m // 2
     levels = np.asarray(rpm_levels, float)
@@ -107,8 +142,11 @@ def ddp3_route(
     evals = 0
     steps = np.arange(-MAX_LATERAL_STEP, MAX_LATERAL_STEP + 1)
     for s in range(n_stage):
-        lab = np.repeat(np.arange(node.size), steps.size)
-        tgt = node[lab] + np.tile(steps, node.size)
+        # ports link to every point of the first/last stage (their approaches are often
+        # narrow); in open water a stage moves at most MAX_LATERAL_STEP points sideways
+        st = np.arange(-(m - 1), m) if s in (0, n_stage - 1) else steps
+        lab = np.repeat(np.arange(node.size), st.size)
+        tgt = node[lab] + np.tile(st, node.size)
         valid = (tgt >= 0) & (tgt < m)
         lab, tgt = lab[valid], tgt[valid]
         valid = sea[s + 1, tgt]

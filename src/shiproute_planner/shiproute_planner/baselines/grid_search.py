@@ -1,12 +1,15 @@
 """Dijkstra and A* on the lat/lon grid at constant RPM: path-only weather routing.
 
 Time-dependent label setting: a node's label is the least fuel found to reach it, with the
-arrival time it implies; when a node is settled, all its moves are sailed in one vectorised
-call from that time. A* adds the calm-water fuel for the remaining great-circle distance at
-the same RPM as its heuristic (the usual distance-based guide of grid routers; with following
-seas it may overestimate, which is why the reference study's A* finds slightly worse paths
-than Dijkstra). Legs breaking a seakeeping or engine limit carry a large fuel penalty instead
-of being removed, so a path always exists if the grid connects the ports.
+arrival time it implies; settled nodes sail all their moves from that time. Nodes are settled
+in buckets (delta-stepping): every open node whose key is within `delta_t` of the smallest is
+settled at once and all their moves are sailed in one vectorised call. With `delta_t` below
+the cheapest move's fuel no node of a bucket can improve another, so Dijkstra stays exact.
+A* adds the calm-water fuel for the remaining great-circle distance at the same RPM as its
+heuristic (the usual distance-based guide of grid routers; with following seas it can
+overestimate, which is why A* may return a slightly worse path than Dijkstra, as in the
+reference study). Legs breaking a seakeeping or engine limit carry a large fuel penalty
+instead of being removed, so a path exists whenever the grid connects the ports.
 """
 
 from __future__ import annotations
@@ -22,6 +25,8 @@ from .latlon_grid import LatLonGrid
 from .legs import LegSailor
 
 UNSAFE_LEG_PENALTY_T = 1000.0
+BUCKET_SHARE_OF_CHEAPEST_MOVE = 0.5
+ASTAR_BUCKET_SHARE = 0.2
 
 
 @dataclass(frozen=True)
@@ -45,12 +50,25 @@ def distance_to_end_m(grid: LatLonGrid) -> np.ndarray:
     return d
 
 
+def calm_fuel_per_m(sailor: LegSailor, rpm: float) -> float:
+    """Calm-water fuel per metre sailed at `rpm` [t/m]."""
+    r = np.array([rpm])
+    return float(sailor.calm_fuel_t_per_h(r)[0]) / 3600.0 / float(sailor.calm_speed_m_s(r)[0])
+
+
+def bucket_width_t(grid: LatLonGrid, sailor: LegSailor, rpm: float) -> float:
+    """Half the calm-water fuel of the shortest grid move (the delta-stepping bucket)."""
+    return BUCKET_SHARE_OF_CHEAPEST_MOVE * grid.lat_step_deg * 111_000.0 * calm_fuel_per_m(
+        sailor, rpm) * min(1.0, grid.lon_step_deg / grid.lat_step_deg)
+
+
 def search_grid(
     grid: LatLonGrid,
     sailor: LegSailor,
     depart_s: float,
     rpm: float,
     astar: bool,
+    delta_t: float | None = None,
 ) -> GridPath:
     """Least-fuel path from `grid.start` to `grid.end` at constant `rpm` (Dijkstra or A*)."""
     n = grid.n_nodes
@@ -58,43 +76,51 @@ def search_grid(
     time = np.full(n, np.inf)
     parent = np.full(n, -1, dtype=np.int64)
     closed = np.zeros(n, dtype=bool)
-    if astar:
-        per_m = float(sailor.calm_fuel_t_per_h(np.array([rpm]))[0]) / 3600.0
-        per_m /= float(sailor.calm_speed_m_s(np.array([rpm]))[0])
-        h = distance_to_end_m(grid) * per_m
-    else:
-        h = np.zeros(n)
+    h = distance_to_end_m(grid) * calm_fuel_per_m(sailor, rpm) if astar else np.zeros(n)
+    if delta_t is None:  # buckets keep Dijkstra exact; A* keys are not, so small buckets
+        delta_t = bucket_width_t(grid, sailor, rpm) * (ASTAR_BUCKET_SHARE if astar else 1.0)
+    delta = delta_t
     fuel[grid.start], time[grid.start] = 0.0, depart_s
     heap: list[tuple[float, int]] = [(h[grid.start], grid.start)]
     settled = evals = 0
-    while heap:
-        _, node = heapq.heappop(heap)
-        if closed[node]:
-            continue
-        closed[node] = True
-        settled += 1
-        if node == grid.end:
+    while heap and not closed[grid.end]:
+        bucket: list[int] = []
+        limit = None
+        while heap and (limit is None or heap[0][0] < limit):
+            key, node = heapq.heappop(heap)
+            if closed[node] or key > fuel[node] + h[node] + 1e-12:
+                continue  # settled already or a stale entry
+            closed[node] = True
+            bucket.append(node)
+            if limit is None:
+                limit = key + delta
+                if delta <= 0.0:
+                    break
+        if not bucket:
             break
-        nb = grid.neighbours[node]
-        nb = nb[(nb >= 0)]
-        nb = nb[~closed[nb]]
-        if nb.size == 0:
+        settled += len(bucket)
+        src = np.asarray(bucket, dtype=np.int64)
+        nb = grid.neighbours[src]
+        rows, cols = np.nonzero(nb >= 0)
+        s, d = src[rows], nb[rows, cols]
+        live = ~closed[d]
+        s, d = s[live], d[live]
+        if s.size == 0:
             continue
-        m = nb.size
-        legs = sailor.between(
-            np.full(m, grid.lon_deg[node]),
-            np.full(m, grid.lat_deg[node]),
-            grid.lon_deg[nb],
-            grid.lat_deg[nb],
-            np.full(m, time[node]),
-            np.full(m, rpm),
-        )
-        evals += m
-        cost = fuel[node] + legs.fuel_t + np.where(legs.ok, 0.0, UNSAFE_LEG_PENALTY_T)
-        better = cost < fuel[nb]
-        for j, c, dt in zip(nb[better], cost[better], legs.duration_s[better], strict=True):
-            fuel[j], time[j], parent[j] = c, time[node] + dt, node
-            heapq.heappush(heap, (c + h[j], int(j)))
+        legs = sailor.between(grid.lon_deg[s], grid.lat_deg[s], grid.lon_deg[d], grid.lat_deg[d],
+                              time[s], np.full(s.size, rpm))
+        evals += s.size
+        cost = fuel[s] + legs.fuel_t + np.where(legs.ok, 0.0, UNSAFE_LEG_PENALTY_T)
+        order = np.lexsort((cost, d))
+        first = np.r_[True, d[order][1:] != d[order][:-1]]
+        best = order[first]
+        better = best[cost[best] < fuel[d[best]]]
+        tgt = d[better]
+        fuel[tgt] = cost[better]
+        time[tgt] = time[s[better]] + legs.duration_s[better]
+        parent[tgt] = s[better]
+        for j in tgt:
+            heapq.heappush(heap, (fuel[j] + h[j], int(j)))
     if not closed[grid.end]:
         raise NoRouteFoundError(
             "the grid search did not reach the arrival port: land or the grid margin cuts it off"
@@ -103,6 +129,26 @@ def search_grid(
     while path[-1] != grid.start:
         path.append(int(parent[path[-1]]))
     idx = np.array(path[::-1])
-    return GridPath(
-        grid.lon_deg[idx], grid.lat_deg[idx], time[idx], fuel[idx], rpm, settled, evals
-    )
+    return GridPath(grid.lon_deg[idx], grid.lat_deg[idx], time[idx], fuel[idx], rpm, settled,
+                    evals)
+
+
+def shortest_sea_path(grid: LatLonGrid) -> tuple[np.ndarray, np.ndarray]:
+    """Geometrically shortest port-to-port path on the grid (no weather), lon/lat of its nodes.
+
+    Used as a land-free reference line where the great circle crosses land."""
+    from scipy.sparse import csr_matrix
+    from scipy.sparse.csgraph import dijkstra
+
+    src, col = np.nonzero(grid.neighbours >= 0)
+    dst = grid.neighbours[src, col]
+    _, w = inverse(grid.lon_deg[src], grid.lat_deg[src], grid.lon_deg[dst], grid.lat_deg[dst])
+    graph = csr_matrix((np.maximum(w, 1e-3), (src, dst)), shape=(grid.n_nodes, grid.n_nodes))
+    dist, pred = dijkstra(graph, indices=grid.start, return_predecessors=True)
+    if not np.isfinite(dist[grid.end]):
+        raise NoRouteFoundError("no sea path between the ports on the search grid")
+    path = [grid.end]
+    while path[-1] != grid.start:
+        path.append(int(pred[path[-1]]))
+    idx = np.array(path[::-1])
+    return grid.lon_deg[idx], grid.lat_deg[idx]

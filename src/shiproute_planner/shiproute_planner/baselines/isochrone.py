@@ -4,9 +4,9 @@ From every point of the current isochrone the ship sails a fan of headings aroun
 to the arrival port for one time step at the fixed RPM (weather, speed loss and fuel from the
 planner's ship model). A leg that touches land is shrunk to the longest fraction of the step
 that stays at sea (Roh's interference check). The next isochrone keeps, in each cross-track
-sector of the great circle, the point closest to the arrival port, which removes isochrone
-loops. Points that can reach the port within a step finish there; among finished routes the
-least-fuel one is returned.
+sector of the great circle, the point closest to the arrival port (among those with the fewest
+legs over a seakeeping limit), which removes isochrone loops. Points that can reach the port
+within a step finish there; among finished routes the least-fuel one is returned.
 """
 
 from __future__ import annotations
@@ -95,7 +95,8 @@ def isochrone_route(
         _, d_end = inverse(c_lon, c_lat, np.full(c_lon.size, end_lon),
                            np.full(c_lon.size, end_lat_deg))
         sector = np.floor(xt / cfg.sector_m).astype(np.int64)
-        order = np.lexsort((c_f, d_end, sector))
+        unsafe = np.floor(c_f / UNSAFE_LEG_PENALTY_T)  # legs over a limit so far
+        order = np.lexsort((c_f, d_end, unsafe, sector))
         first = np.r_[True, sector[order][1:] != sector[order][:-1]]
         keep = order[first]
         lon, lat = continuous_lon(c_lon[keep], start_lon_deg), c_lat[keep]

@@ -15,25 +15,27 @@ from ..ga.loop import GAConfig, SeedGA
 from ..ga.seeds import TrackSeed, great_circle_track, sea_lane_track, track_to_genes
 from ..route.encoding import gene_bounds
 from ..route.generate import evaluate_genes
+from ..route.rta import constant_rpm_for_rta
 from .inputs import BaselineInputs
 from .pymoo_methods import run_pymoo
 from .result import BaselineResult
-from .rpm_fit import constant_rpm_for_rta
 
 
-def default_seeds(inp: BaselineInputs) -> np.ndarray:
-    """Seed genes as the planner builds them without a pool: great circle and sea lane, each
-    at the constant RPM that meets the RTA on its own track."""
-    if inp.seeds is not None and len(inp.seeds):
-        return np.atleast_2d(inp.seeds)
+def seed_genes(inp: BaselineInputs) -> np.ndarray:
+    """Seed genes as the planner's seed GA builds them: the given seed tracks plus the great
+    circle (and the sea lane when no other seed is given), each at the constant RPM meeting
+    the RTA on its own track, converted by `track_to_genes`."""
+    if inp.seed_genes is not None and len(inp.seed_genes):
+        return np.atleast_2d(inp.seed_genes)
     p = inp.problem
+    seeds = list(inp.seed_tracks)
     tracks = [("great_circle", *great_circle_track(p))]
-    lane = sea_lane_track(p)
-    if lane is not None:
-        tracks.append(("sea_lane", *lane))
-    seeds = []
+    if not seeds:
+        lane = sea_lane_track(p)
+        if lane is not None:
+            tracks.append(("searoute", *lane))
     for name, lon, lat in tracks:
-        rpm, _, _ = constant_rpm_for_rta(p, inp.env, inp.land, lon, lat)
+        rpm, _ = constant_rpm_for_rta(p, inp.env, None, lon, lat, n_try=16, rounds=2)
         seeds.append(TrackSeed(name, lon, lat, np.full(lon.size - 1, rpm)))
     return track_to_genes(p, inp.env, seeds)
 
@@ -56,7 +58,7 @@ def run_seed_ga(inp: BaselineInputs, n_evaluations: int, rng: np.random.Generato
     t0 = time.perf_counter()
     p = inp.problem
     lo, hi = gene_bounds(p)
-    seeds = default_seeds(inp) if seeded else None
+    seeds = seed_genes(inp) if seeded else None
     ga = SeedGA(lo, hi, p.n_stages, config or GAConfig(), rng, seeds)
     while ga.evaluations < n_evaluations:
         x = ga.ask()
@@ -69,18 +71,21 @@ def run_seed_ga(inp: BaselineInputs, n_evaluations: int, rng: np.random.Generato
                           route_evaluations=ga.evaluations, genes=genes)
 
 
-def run_pymoo_method(inp: BaselineInputs, algorithm: str, n_evaluations: int,
+def run_pymoo_method(inp: BaselineInputs, algorithm: str, n_evaluations: int | None,
                      rng: np.random.Generator, seeded: bool, two_objective: bool = False,
-                     pop_size: int = 50) -> BaselineResult:
-    """NSGA-II / SPEA2 / PSO on the gene encoding; `two_objective` = (ETA, fuel) NSGA-II."""
+                     pop_size: int = 50, time_s: float | None = None) -> BaselineResult:
+    """NSGA-II / SPEA2 / PSO on the gene encoding; `two_objective` = (ETA, fuel) NSGA-II.
+
+    The budget is `n_evaluations` routes, or `time_s` of wall time if that is None."""
     t0 = time.perf_counter()
     p = inp.problem
     lo, hi = gene_bounds(p)
-    seeds = default_seeds(inp) if seeded else None
+    seeds = seed_genes(inp) if seeded else None
     r = run_pymoo(algorithm, _gene_evaluator(inp), lo, hi, n_evaluations, rng, seeds,
-                  pop_size=pop_size, two_objective=two_objective, rta_s=p.rta_s)
+                  pop_size=pop_size, two_objective=two_objective, rta_s=p.rta_s,
+                  time_s=time_s)
     final = evaluate_genes(p, inp.env, inp.land, r.genes[None])
-    name = algorithm + ("_2obj" if two_objective else "") + ("_seeded" if seeded else "")
+    name = (algorithm + "_2obj") if two_objective else algorithm + ("_seeded" if seeded else "")
     return BaselineResult(
         name, final, time.perf_counter() - t0, True, route_evaluations=r.evaluations,
         genes=r.genes,

@@ -22,6 +22,7 @@ from pymoo.algorithms.soo.nonconvex.pso import PSO
 from pymoo.core.problem import Problem
 from pymoo.operators.sampling.rnd import FloatRandomSampling
 from pymoo.optimize import minimize
+from pymoo.termination import get_termination
 
 from .errors import BaselineConfigError
 
@@ -81,18 +82,26 @@ def run_pymoo(
     evaluate: GeneEvaluator,
     lower: np.ndarray,
     upper: np.ndarray,
-    n_evaluations: int,
+    n_evaluations: int | None,
     rng: np.random.Generator,
     seeds: np.ndarray | None = None,
     pop_size: int = 50,
     two_objective: bool = False,
     rta_s: float | None = None,
+    time_s: float | None = None,
 ) -> PymooResult:
-    """Run one pymoo algorithm for `n_evaluations` route evaluations and return its best route."""
+    """Run one pymoo algorithm for `n_evaluations` route evaluations (or `time_s` of wall time
+    when `n_evaluations` is None) and return its best route."""
     if two_objective and name != "nsga2":
         raise BaselineConfigError("the two-objective variant is defined for NSGA-II only")
-    if n_evaluations < pop_size:
+    if n_evaluations is None:
+        if time_s is None:
+            raise BaselineConfigError("give n_evaluations or time_s")
+        termination: object = get_termination("time", max(float(time_s), 1e-3))
+    elif n_evaluations < pop_size:
         raise BaselineConfigError(f"n_evaluations={n_evaluations} is below pop_size={pop_size}")
+    else:
+        termination = ("n_eval", int(n_evaluations))
     lower, upper = np.asarray(lower, float), np.asarray(upper, float)
     problem = _GeneProblem(evaluate, lower, upper, two_objective)
     if seeds is not None and len(seeds):
@@ -103,7 +112,7 @@ def run_pymoo(
         sampling = FloatRandomSampling()
     algo = _algorithm(name, pop_size, sampling)
     with np.errstate(invalid="ignore", divide="ignore"):  # SPEA2 normalises a 1-point front
-        res = minimize(problem, algo, ("n_eval", int(n_evaluations)),
+        res = minimize(problem, algo, termination,
                        seed=int(rng.integers(2**31 - 1)), verbose=False)
     evaluations = int(res.algorithm.evaluator.n_eval)
     pop = res.pop if res.pop is not None else res.opt

@@ -2,7 +2,8 @@
 
 Path-only methods (isochrone, Dijkstra, A*) search at the constant RPM that makes the great
 circle meet the RTA, then hold the lowest constant RPM that meets the RTA on the path found,
-and search once more at that RPM if it moved. Two-stage methods re-time the Dijkstra/A* path
+and search again at that RPM if it moved or the route broke a limit (at most three rounds,
+keeping the best). Two-stage methods re-time the Dijkstra/A* path
 with the DP speed schedule. 3DDP and time-constrained A* choose per-leg RPM themselves.
 """
 
@@ -13,19 +14,24 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..methods import baseline_track
+from ..route.rta import constant_rpm_for_rta
 from ..route.sail import sail_tracks
 from .ddp3 import Ddp3Config, ddp3_route
-from .great_circle import great_circle_track
-from .grid_search import search_grid
+from .errors import NoRouteFoundError
+from .great_circle import RTA_FIT_EVALUATIONS
+from .grid_search import search_grid, shortest_sea_path
 from .inputs import BaselineInputs
 from .isochrone import IsochroneConfig, isochrone_route
 from .latlon_grid import build_grid
+from .paths import limit_turns
 from .result import BaselineResult
-from .rpm_fit import constant_rpm_for_rta
 from .speed_schedule import optimise_schedule
 from .tc_astar import tc_astar_route
 
 RPM_REFIT_TOLERANCE = 0.5
+PATH_ONLY_ROUNDS = 3
+TC_ASTAR_RTA_MARGINS = (0.0, 0.03, 0.06, 0.1, 0.15)  # share of the time window
 
 
 @dataclass(frozen=True)
@@ -40,14 +46,14 @@ class GraphOptions:
     schedule_levels: int = 17
     schedule_bin_s: float = 1800.0
     schedule_max_leg_nm: float = 120.0
-    ddp3_levels: int = 9
+    ddp3_levels: int = 13
     tc_astar_levels: int = 6
     tc_astar_grid_step_deg: float = 1.0
 
 
 def _gc_rpm(inp: BaselineInputs) -> float:
-    lon, lat, _ = great_circle_track(inp)
-    rpm, _, _ = constant_rpm_for_rta(inp.problem, inp.env, inp.land, lon, lat)
+    _, lon, lat = baseline_track(inp.problem, inp.land)
+    rpm, _ = constant_rpm_for_rta(inp.problem, inp.env, None, lon, lat)
     return rpm
 
 
@@ -56,18 +62,36 @@ def _path_only(inp: BaselineInputs, method: str, search) -> BaselineResult:
     t0 = time.perf_counter()
     rpm = _gc_rpm(inp)
     legs = route_evals = 0
-    lon = lat = None
-    for _ in range(2):
+    best = None
+    for _ in range(PATH_ONLY_ROUNDS):
         lon, lat, n_legs = search(rpm)
+        lon, lat = _smooth(inp, lon, lat)
         legs += n_legs
-        new_rpm, ev, n_ev = constant_rpm_for_rta(inp.problem, inp.env, inp.land, lon, lat)
-        route_evals += n_ev
+        new_rpm, ev = constant_rpm_for_rta(inp.problem, inp.env, inp.land, lon, lat)
+        route_evals += RTA_FIT_EVALUATIONS
+        if best is None or _worse(best[1], ev):
+            best = (new_rpm, ev)
         moved = abs(new_rpm - rpm) > RPM_REFIT_TOLERANCE
         rpm = new_rpm
-        if not moved:
+        if not moved and ev.feasible[0]:
             break
+    rpm, ev = best
     return BaselineResult(method, ev, time.perf_counter() - t0, False, route_evals, legs,
                           notes=(f"constant rpm {rpm:.2f}",))
+
+
+def _smooth(inp: BaselineInputs, lon: np.ndarray, lat: np.ndarray):
+    """Path with turns over the heading-change limit pulled straight where the sea allows."""
+    s_lon, s_lat, _ = limit_turns(lon, lat, inp.problem.limits.max_heading_change_deg,
+                                  inp.sailor().crosses_land)
+    return s_lon, s_lat
+
+
+def _smooth_with_rpm(inp: BaselineInputs, lon: np.ndarray, lat: np.ndarray, rpm: np.ndarray):
+    """`_smooth` for a path with one RPM per leg: a merged leg keeps its first part's RPM."""
+    s_lon, s_lat, kept = limit_turns(lon, lat, inp.problem.limits.max_heading_change_deg,
+                                     inp.sailor().crosses_land)
+    return s_lon, s_lat, np.asarray(rpm)[kept[:-1]]
 
 
 def run_isochrone(inp: BaselineInputs, opts: GraphOptions | None = None) -> BaselineResult:
@@ -152,11 +176,23 @@ def run_ddp3(inp: BaselineInputs, opts: GraphOptions | None = None) -> BaselineR
     o = opts or GraphOptions()
     t0 = time.perf_counter()
     p = inp.problem
-    r = ddp3_route(inp.sailor(), p.dep_lon_deg, p.dep_lat_deg, p.arr_lon_deg, p.arr_lat_deg,
-                   p.depart_s, p.rta_s, inp.rpm_levels(o.ddp3_levels), o.ddp3)
-    final = sail_tracks(p, inp.env, inp.land, r.lon_deg[None], r.lat_deg[None], r.rpm[None])
+    ref_lon, ref_lat = reference_line(inp, o)
+    r = ddp3_route(inp.sailor(), ref_lon, ref_lat, p.depart_s, p.rta_s,
+                   inp.rpm_levels(o.ddp3_levels), o.ddp3)
+    lon, lat, rpm = _smooth_with_rpm(inp, r.lon_deg, r.lat_deg, r.rpm)
+    final = sail_tracks(p, inp.env, inp.land, lon[None], lat[None], rpm[None])
     return BaselineResult("ddp3", final, time.perf_counter() - t0, True, 1, r.leg_evaluations,
                           pareto_eta_s=r.pareto_eta_s, pareto_fuel_t=r.pareto_fuel_t)
+
+
+def reference_line(inp: BaselineInputs, o: GraphOptions) -> tuple[np.ndarray, np.ndarray]:
+    """Great circle if it stays at sea, else the shortest sea path on the search grid."""
+    from ..ga.seeds import great_circle_track
+
+    lon, lat = great_circle_track(inp.problem)
+    if not inp.sailor().crosses_land(lon[:-1], lat[:-1], lon[1:], lat[1:]).any():
+        return lon, lat
+    return shortest_sea_path(_grid(inp, o, o.grid_step_deg))
 
 
 def run_tc_astar(inp: BaselineInputs, opts: GraphOptions | None = None) -> BaselineResult:
@@ -164,10 +200,27 @@ def run_tc_astar(inp: BaselineInputs, opts: GraphOptions | None = None) -> Basel
     t0 = time.perf_counter()
     p = inp.problem
     grid = _grid(inp, o, o.tc_astar_grid_step_deg)
-    r = tc_astar_route(grid, inp.sailor(), p.depart_s, p.rta_s, inp.rpm_levels(o.tc_astar_levels))
-    final = sail_tracks(p, inp.env, inp.land, r.lon_deg[None], r.lat_deg[None], r.rpm[None])
-    return BaselineResult("tc_astar", final, time.perf_counter() - t0, True, 1, r.leg_evaluations,
-                          notes=(f"{r.expansions} ext-node expansions",))
+    sailor = inp.sailor()
+    levels = inp.rpm_levels(o.tc_astar_levels)
+    window = p.rta_s - p.depart_s
+    legs = 0
+    # The fuel-first search can spend the time window on cheap early legs and then find no
+    # way to arrive; like a navigator it then plans against an earlier target time.
+    for margin in TC_ASTAR_RTA_MARGINS:
+        try:
+            r = tc_astar_route(grid, sailor, p.depart_s, p.rta_s - margin * window, levels)
+        except NoRouteFoundError:
+            legs += sailor.evaluations
+            sailor.evaluations = 0
+            continue
+        lon, lat, rpm = _smooth_with_rpm(inp, r.lon_deg, r.lat_deg, r.rpm)
+        final = sail_tracks(p, inp.env, inp.land, lon[None], lat[None], rpm[None])
+        if final.eta_s[0] <= p.rta_s or margin == TC_ASTAR_RTA_MARGINS[-1]:
+            return BaselineResult(
+                "tc_astar", final, time.perf_counter() - t0, True, 1, legs + r.leg_evaluations,
+                notes=(f"{r.expansions} ext-node expansions", f"RTA margin {margin:.0%}"))
+        legs += r.leg_evaluations
+    raise NoRouteFoundError("time-constrained A* found no route even with a 15 % RTA margin")
 
 
 def leg_rpm_varies(rpm: np.ndarray, tol: float = 1e-6) -> bool:

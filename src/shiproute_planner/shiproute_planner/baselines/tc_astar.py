@@ -8,6 +8,8 @@ great circle in the allowed time) times the calm fuel per metre there. Ext-nodes
 in order of estimated total fuel, but only while their estimated total time is within the RTA;
 an ext-node already in the open list is updated only when the new path is both faster and
 cheaper (the paper's rule). The search ends when an ext-node of the arrival port is taken.
+As in `grid_search`, ext-nodes within a small fuel bucket are expanded together in one
+vectorised call.
 """
 
 from __future__ import annotations
@@ -18,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import NoRouteFoundError
-from .grid_search import UNSAFE_LEG_PENALTY_T, distance_to_end_m
+from .grid_search import UNSAFE_LEG_PENALTY_T, bucket_width_t, distance_to_end_m
 from .latlon_grid import LatLonGrid
 from .legs import LegSailor
 
@@ -70,40 +72,50 @@ def tc_astar_route(
         e = grid.start * r + w
         gt[e], gf[e] = depart_s, 0.0
         heapq.heappush(heap, (hf[grid.start], e))
+    delta = bucket_width_t(grid, sailor, float(levels[0]))
     expansions = evals = 0
     goal = -1
-    while heap and expansions < max_expansions:
-        key, e = heapq.heappop(heap)
-        if closed[e] or key > gf[e] + hf[e // r] + 1e-9:
-            continue  # stale heap entry
-        node, w = divmod(e, r)
-        if gt[e] + d_end[node] / v_level[w] > rta_s:
-            continue  # cannot make the RTA at this level; kept only if a later update improves it
-        closed[e] = True
-        expansions += 1
-        if node == grid.end:
-            goal = e
+    while heap and expansions < max_expansions and goal < 0:
+        bucket: list[int] = []
+        limit = None
+        while heap and (limit is None or heap[0][0] < limit):
+            key, e = heapq.heappop(heap)
+            if closed[e] or key > gf[e] + hf[e // r] + 1e-9:
+                continue  # stale heap entry
+            node, w = divmod(e, r)
+            if gt[e] + d_end[node] / v_level[w] > rta_s:
+                continue  # cannot make the RTA at this level; revived only by a better update
+            if limit is None:
+                limit = key + delta
+            closed[e] = True
+            bucket.append(e)
+            if node == grid.end:
+                goal = e
+                break
+        if goal >= 0 or not bucket:
             break
-        nb = grid.neighbours[node]
-        nb = nb[nb >= 0]
-        if nb.size == 0:
-            continue
-        nbr = np.repeat(nb, r)
-        lvl = np.tile(np.arange(r), nb.size)
-        m = nbr.size
-        legs = sailor.between(np.full(m, grid.lon_deg[node]), np.full(m, grid.lat_deg[node]),
-                              grid.lon_deg[nbr], grid.lat_deg[nbr], np.full(m, gt[e]), levels[lvl])
-        evals += m
-        t_new = gt[e] + legs.duration_s
-        f_new = gf[e] + legs.fuel_t + np.where(legs.ok, 0.0, UNSAFE_LEG_PENALTY_T)
-        ext = nbr * r + lvl
-        fresh = ~closed[ext] & (
-            np.isinf(gt[ext]) | ((t_new < gt[ext]) & (f_new < gf[ext]))
-        )
-        for x, tn, fn in zip(ext[fresh], t_new[fresh], f_new[fresh], strict=True):
-            if tn < gt[x] or np.isinf(gt[x]):
-                gt[x], gf[x], parent[x] = tn, fn, e
-                heapq.heappush(heap, (fn + hf[x // r], int(x)))
+        expansions += len(bucket)
+        src = np.asarray(bucket, dtype=np.int64)
+        nb = grid.neighbours[src // r]
+        rows, cols = np.nonzero(nb >= 0)
+        s_ext = np.repeat(src[rows], r)
+        tgt_node = np.repeat(nb[rows, cols], r)
+        lvl = np.tile(np.arange(r), rows.size)
+        s_node = s_ext // r
+        legs = sailor.between(grid.lon_deg[s_node], grid.lat_deg[s_node], grid.lon_deg[tgt_node],
+                              grid.lat_deg[tgt_node], gt[s_ext], levels[lvl])
+        evals += s_ext.size
+        t_new = gt[s_ext] + legs.duration_s
+        f_new = gf[s_ext] + legs.fuel_t + np.where(legs.ok, 0.0, UNSAFE_LEG_PENALTY_T)
+        ext = tgt_node * r + lvl
+        order = np.lexsort((f_new, ext))
+        first = order[np.r_[True, ext[order][1:] != ext[order][:-1]]]
+        x = ext[first]
+        fresh = ~closed[x] & (np.isinf(gt[x]) | ((t_new[first] < gt[x]) & (f_new[first] < gf[x])))
+        x, pick = x[fresh], first[fresh]
+        gt[x], gf[x], parent[x] = t_new[pick], f_new[pick], s_ext[pick]
+        for xi in x:
+            heapq.heappush(heap, (gf[xi] + hf[xi // r], int(xi)))
     if goal < 0:
         raise NoRouteFoundError(
             f"time-constrained A* found no path arriving by the RTA after {expansions} expansions"
