@@ -107,3 +107,20 @@ def test_seakeeping_probabilities_grow_with_hs_and_imo_checks(model):
     assert high[0]
     *_, high = imo_flags(ship, 0 * one, one * 2.5, one * 12.0, one * 0.0, "jonswap")
     assert not high[0]
+
+
+def test_from_forecast_partial_partition_uses_total_remainder():
+    sample = {
+        "sea_surface_wave_significant_height": np.array([5.0, 5.0, 3.0]),
+        "sea_surface_wave_from_direction": np.array([10.0, 10.0, 10.0]),
+        "sea_surface_wave_mean_period": np.array([9.0, 9.0, 9.0]),
+        "sea_surface_swell_wave_significant_height": np.array([3.0, np.nan, 1.0]),
+        "sea_surface_swell_wave_from_direction": np.array([250.0, np.nan, 250.0]),
+        "sea_surface_swell_wave_mean_period": np.array([13.0, np.nan, 12.0]),
+        "sea_surface_wind_wave_significant_height": np.array([np.nan, np.nan, 2.5]),
+    }
+    s = SeaState.from_forecast(sample)
+    assert s.wind_wave_hs_m[0] == pytest.approx(4.0)  # sqrt(5^2 - 3^2)
+    assert s.swell_hs_m[0] == 3.0 and s.swell_period_s[0] == 13.0
+    assert s.hs_m[1] == pytest.approx(5.0)  # nothing partitioned: split of the total
+    assert s.wind_wave_hs_m[2] == 2.5 and s.swell_hs_m[2] == 1.0

@@ -54,47 +54,51 @@ class SeaState:
     def from_forecast(cls, sample: Mapping[str, np.ndarray]) -> SeaState:
         """Build from ``ForecastSampler.sample`` output (CF names; NaN -> calm).
 
-        Without a wind-sea/swell partition the total sea is split: the wind sea is the
-        part a fully developed sea of the local wind explains (Hs <= 0.21 U^2/g, coming
-        from the wind direction), the remainder (energy-wise) is swell from the mean
-        wave direction; both keep the total mean period.
+        Where the wind-sea/swell partition is missing (variable absent or NaN) the total
+        sea fills it: if one part is known, the other is the energy remainder of the total
+        (total direction and period); if neither is, the wind sea is the part a fully
+        developed sea of the local wind explains (Hs <= 0.21 U^2/g, from the wind
+        direction) and the remainder is swell from the mean wave direction.
         """
+        shape = np.broadcast_shapes(*(np.shape(a) for a in sample.values()))
 
-        def get(name: str) -> np.ndarray | None:
+        def get(name: str, default: float = np.nan) -> np.ndarray:
             a = sample.get(name)
-            return None if a is None else np.asarray(a, dtype=float)
+            a = np.full(shape, default) if a is None else np.asarray(a, dtype=float)
+            return np.broadcast_to(a, shape)
 
         u = _nz(get("eastward_wind"))
         v = _nz(get("northward_wind"))
-        shape = np.broadcast_shapes(*(np.shape(a) for a in sample.values()))
-        u, v = np.broadcast_to(u, shape), np.broadcast_to(v, shape)
-        ww_hs = get("sea_surface_wind_wave_significant_height")
-        sw_hs = get("sea_surface_swell_wave_significant_height")
         tot_hs = _nz(get("sea_surface_wave_significant_height"))
         tot_dir = _nz(get("sea_surface_wave_from_direction"))
         tot_t = _nz(get("sea_surface_wave_mean_period"), 8.0)
-        if ww_hs is None and sw_hs is None:
-            wind_speed = np.hypot(u, v)
-            wind_from = np.degrees(np.arctan2(-u, -v)) % 360.0
-            ws = np.minimum(tot_hs, _PM_HS_COEF * wind_speed**2 / G_M_S2)
-            sw = np.sqrt(np.maximum(tot_hs**2 - ws**2, 0.0))
-            ws_dir = np.where(wind_speed > 0.5, wind_from, tot_dir)
-            return cls.from_arrays(
-                wind_u_m_s=u, wind_v_m_s=v, wind_wave_hs_m=ws, wind_wave_from_deg=ws_dir,
-                wind_wave_period_s=tot_t, swell_hs_m=sw, swell_from_deg=tot_dir,
-                swell_period_s=tot_t,
-                current_u_m_s=_nz(get("eastward_sea_water_velocity")),
-                current_v_m_s=_nz(get("northward_sea_water_velocity")),
-            )
+        ws = get("sea_surface_wind_wave_significant_height")
+        sw = get("sea_surface_swell_wave_significant_height")
+        ws_dir = get("sea_surface_wind_wave_from_direction")
+        sw_dir = get("sea_surface_swell_wave_from_direction")
+        ws_t = get("sea_surface_wind_wave_mean_period")
+        sw_t = get("sea_surface_swell_wave_mean_period")
+        has_ws, has_sw = np.isfinite(ws), np.isfinite(sw)
+        wind_speed = np.hypot(u, v)
+        wind_from = np.degrees(np.arctan2(-u, -v)) % 360.0
+        pm_ws = np.minimum(tot_hs, _PM_HS_COEF * wind_speed**2 / G_M_S2)
+
+        def rest(part: np.ndarray) -> np.ndarray:
+            return np.sqrt(np.maximum(tot_hs**2 - np.where(np.isfinite(part), part, 0.0) ** 2, 0))
+
+        ws_hs = np.where(has_ws, ws, np.where(has_sw, rest(sw), pm_ws))
+        sw_hs = np.where(has_sw, sw, rest(ws_hs))
+        ws_from = np.where(
+            has_ws & np.isfinite(ws_dir), ws_dir,
+            np.where(has_sw | (wind_speed <= 0.5), tot_dir, wind_from),
+        )
         return cls.from_arrays(
-            wind_u_m_s=u,
-            wind_v_m_s=v,
-            wind_wave_hs_m=_nz(ww_hs),
-            wind_wave_from_deg=_nz(get("sea_surface_wind_wave_from_direction")),
-            wind_wave_period_s=_nz(get("sea_surface_wind_wave_mean_period"), 8.0),
-            swell_hs_m=_nz(sw_hs),
-            swell_from_deg=_nz(get("sea_surface_swell_wave_from_direction")),
-            swell_period_s=_nz(get("sea_surface_swell_wave_mean_period"), 8.0),
+            wind_u_m_s=u, wind_v_m_s=v,
+            wind_wave_hs_m=ws_hs, wind_wave_from_deg=ws_from,
+            wind_wave_period_s=np.where(has_ws & np.isfinite(ws_t), ws_t, tot_t),
+            swell_hs_m=sw_hs,
+            swell_from_deg=np.where(has_sw & np.isfinite(sw_dir), sw_dir, tot_dir),
+            swell_period_s=np.where(has_sw & np.isfinite(sw_t), sw_t, tot_t),
             current_u_m_s=_nz(get("eastward_sea_water_velocity")),
             current_v_m_s=_nz(get("northward_sea_water_velocity")),
         )
