@@ -49,18 +49,25 @@ def reflection_alpha(h: WaveHull) -> np.ndarray:
 
 
 def transfer_per_zeta2(h: WaveHull, speed_m_s: np.ndarray, rho_kg_m3: float) -> np.ndarray:
-    """Regular-wave R_AW / zeta_A^2 (N/m^2), shape (..., n_omega), in head waves."""
+    """Regular-wave R_AW / zeta_A^2 (N/m^2), shape (..., n_omega), in head waves.
+
+    R_AWML = 4 rho g B^2/L r_aw(omega_bar), r_aw = omega_bar^b1 exp(b1/d1 (1 - omega_bar^d1))
+    a1 Fr^1.5 exp(-3.5 Fr), a1 = 60.3 Cb^1.34, b1 = 11 / -8.5 and d1 = 14 / -566 (L/B)^-2.66
+    below / above omega_bar = 1; R_AWRL = 1/2 rho g B alpha_T f1 with
+    f1 = 0.692 (V / sqrt(T g))^0.769 + 1.81 Cb^6.95.
+    """
     v = np.maximum(np.asarray(speed_m_s, dtype=float), 0.0)[..., None]
     fr = np.maximum(v / np.sqrt(G_M_S2 * h.lpp_m), 1e-4)
-    w_bar = (np.sqrt(h.lpp_m / G_M_S2) * h.kyy ** (1 / 3) / 1.17) * fr**-0.143 * OMEGA_RAD_S
+    # omega_bar = sqrt(L/g) k_yy^(1/3) / (1.17 Fr^-0.143) omega
+    w_bar = (np.sqrt(h.lpp_m / G_M_S2) * h.kyy ** (1 / 3) / 1.17) * fr**0.143 * OMEGA_RAD_S
     low = w_bar < 1.0
     b1 = np.where(low, 11.0, -8.5)
-    d1 = np.where(low, 14.0, -14.0)
+    d1 = np.where(low, 14.0, -566.0 * (h.lpp_m / h.breadth_m) ** -2.66)
     a1 = 60.3 * h.cb**1.34
     r_bar = w_bar**b1 * np.exp(b1 / d1 * (1.0 - w_bar**d1)) * a1 * fr**1.5 * np.exp(-3.5 * fr)
     r_motion = 4.0 * rho_kg_m3 * G_M_S2 * h.breadth_m**2 / h.lpp_m * r_bar
-    speed_factor = 0.692 * (v / np.sqrt(h.mean_draft_m * G_M_S2)) ** 0.769 + 1.81 * fr**1.18
-    r_refl = 0.5 * rho_kg_m3 * G_M_S2 * h.breadth_m * reflection_alpha(h) * speed_factor
+    f1 = 0.692 * (v / np.sqrt(h.mean_draft_m * G_M_S2)) ** 0.769 + 1.81 * h.cb**6.95
+    r_refl = 0.5 * rho_kg_m3 * G_M_S2 * h.breadth_m * reflection_alpha(h) * f1
     return r_motion + r_refl
 
 
