@@ -38,7 +38,8 @@ def _params(args: argparse.Namespace, data: demo_data.DemoData, out: Path) -> di
         "common_parameters": {"use_sim_time": True},
         "nodes": [
             {"name": "shiproute_weather", "executable": "shiproute_weather_node",
-             "parameters": {"watch_dir": str(watch), "poll_period_s": 0.5}},
+             "parameters": {"watch_dir": str(watch), "watch_period_s": 0.5,
+                            "settle_s": 0.5}},
             {"name": "shiproute_replay", "executable": "shiproute_replay_node",
              "parameters": {"bag": str(data.voyage_bag), "rate": float(args.rate),
                             "publish_clock": True, "start_paused": False}},

@@ -42,7 +42,7 @@ def _voyage_bag(path: Path, log) -> Path:
     if (path / "metadata.yaml").exists():
         return path
     from shiproute_ais_replay.cli import main as bag_main
-    from shiproute_planner.io import write_plan_files
+    from shiproute_planner.io.files import write_plan_files
     from shiproute_planner.planning import plan_voyage
     from shiproute_weather.scenarios import scenario_dataset
 

@@ -132,7 +132,22 @@ class PlannerNode(Node):
         self.create_timer(1.0, self._tick, callback_group=MutuallyExclusiveCallbackGroup())
         self._worker = threading.Thread(target=self._work, name="planner", daemon=True)
         self._worker.start()
+        self._log_seed_pool()
         self.get_logger().info("planner ready; waiting for a complete forecast cycle")
+
+    def _log_seed_pool(self) -> None:
+        """Say what the persisted seed pool holds, so a restart visibly continues from it."""
+        directory = str(self._p("seed_pool_dir"))
+        if not directory:
+            return
+        from .ga.pool import POOL_FILE, SeedPool
+
+        try:
+            n = len(SeedPool(directory)._read())
+        except Exception as err:  # a damaged pool is reported; planning goes on without it
+            self.get_logger().error(f"seed pool in {directory} unreadable: {err}")
+            return
+        self.get_logger().info(f"seed pool: {n} seed(s) in {Path(directory) / POOL_FILE}")
 
     # ----------------------------------------------------------------- parameters
     def _p(self, name: str):
@@ -182,10 +197,10 @@ class PlannerNode(Node):
     def _take(self, slices: list[ForecastSlice] | None, cycle_id: str) -> None:
         if slices is None:
             return
-        from shiproute_weather.convert import slices_to_dataset
+        from shiproute_weather.convert import msgs_to_dataset
 
         try:
-            ds = slices_to_dataset(slices)
+            ds = msgs_to_dataset(slices)
         except Exception as err:  # a bad cycle must not kill the node
             self._last_error = f"forecast cycle {cycle_id!r} unusable: {err}"
             self.get_logger().error(self._last_error)
@@ -336,7 +351,7 @@ class PlannerNode(Node):
         if not out:
             return
         try:
-            from .io import write_plan_files
+            from .io.files import write_plan_files
 
             write_plan_files(plan, Path(out), forecast=forecast, png=bool(self._p("write_png")))
         except Exception as err:  # file output must not stop planning
