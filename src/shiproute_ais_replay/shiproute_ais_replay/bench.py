@@ -119,14 +119,17 @@ class _Peer:
         self.ctx.try_shutdown()
 
 
-def _start_node(bag: Path, rate: float, domain_id: int) -> subprocess.Popen:
+def _start_node(bag: Path, rate: float, domain_id: int, field_copy: bool) -> subprocess.Popen:
     env = {**os.environ, "ROS_DOMAIN_ID": str(domain_id),
            "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST"}
     exe = Path(sys.executable).with_name("shiproute_replay_node")
     args = [str(exe), "--ros-args", "-p", f"bag:={bag}", "-p", f"rate:={rate:.1f}",
-            "-p", "start_paused:=true", "-p", "exit_at_end:=true", "-p", f"qos_depth:={QOS_DEPTH}"]
-    return subprocess.Popen(args, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                            start_new_session=True)
+            "-p", "start_paused:=true", "-p", "exit_at_end:=true", "-p", f"qos_depth:={QOS_DEPTH}",
+            "-p", f"publish_serialized:={'false' if field_copy else 'true'}"]
+    log = Path(tempfile.gettempdir()) / f"shiproute_bench_replay_{os.getpid()}.log"
+    with log.open("w") as out:  # a file, not a pipe nobody reads (a full pipe would block)
+        return subprocess.Popen(args, env=env, stdout=out, stderr=subprocess.STDOUT,
+                                start_new_session=True)
 
 
 def _unpause(peer: _Peer) -> None:
@@ -155,13 +158,14 @@ def _stop(proc: subprocess.Popen) -> None:
             proc.wait()
 
 
-def _run(bag: Path, rate: float, wall_limit_s: float, expected: int) -> dict[str, Any]:
+def _run(bag: Path, rate: float, wall_limit_s: float, expected: int,
+         field_copy: bool = False) -> dict[str, Any]:
     """Replay ``bag`` at ``rate`` to a raw subscriber; arrival stats and node peak RSS."""
     import psutil
 
     dom = random.randint(0, 101)
     peer = _Peer(dom, keep_payload=rate > 0)
-    proc = _start_node(bag, rate, dom)
+    proc = _start_node(bag, rate, dom, field_copy)
     ps = psutil.Process(proc.pid)
     peak_rss = 0
     try:
@@ -209,25 +213,29 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--lag-seconds", type=float, default=20.0,
                     help="wall seconds of the 1000x lag run")
     ap.add_argument("--rebuild", action="store_true", help="regenerate the cached bag")
+    ap.add_argument("--field-copy", action="store_true",
+                    help="node deserialises and field-copies instead of publishing CDR bytes")
     args = ap.parse_args(argv if argv is not None else sys.argv[1:])
     os.environ.setdefault("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
     from .bagreader import BagReader
 
     bag, gen_s = bench_bag(args.days, args.rebuild)
     total = BagReader(bag).expected_count() or 0
-    fast = _run(bag, 0.0, 900.0, total)
+    fast = _run(bag, 0.0, 900.0, total, args.field_copy)
     arr = fast["arrivals"]
     span = arr[-1][0] - arr[0][0] if len(arr) > 1 else float("nan")
-    lag = _run(bag, 1000.0, args.lag_seconds, total)
+    lag = _run(bag, 1000.0, args.lag_seconds, total, args.field_copy)
     result = {
         "bag": str(bag),
         "bag_mb": sum(f.stat().st_size for f in bag.glob("*.mcap")) / 1e6,
         "messages": total,
+        "publish_mode": "field_copy" if args.field_copy else "serialized",
         "generate_s": gen_s,
         "received": len(arr),
         "msgs_per_s": (len(arr) - 1) / span if span == span and span > 0 else 0.0,
         "delivered_fraction": len(arr) / total if total else 0.0,
         "node_publish_errors": fast["diag"].get("publish_errors", ""),
+        "node_publish_retries": fast["diag"].get("publish_retries", ""),
         "max_lag_ms": _max_lag_ms(lag["arrivals"], 1000.0) if len(lag["arrivals"]) > 1 else None,
         "lag_run_messages": len(lag["arrivals"]),
         "node_max_lag_ms": float(lag["diag"].get("max_lag_ms", "nan")),

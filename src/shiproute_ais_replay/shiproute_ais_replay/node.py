@@ -14,6 +14,8 @@ from typing import Any
 
 import rclpy
 from diagnostic_msgs.msg import DiagnosticArray
+from rclpy._rclpy_pybind11 import RCLError
+from rclpy.duration import Duration
 from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
@@ -28,6 +30,8 @@ from .errors import AisReplayError
 from .replay import ReplayConfig, ReplayEngine, ReplayEvent
 
 CLOCK_QOS = QoSProfile(depth=1, reliability=ReliabilityPolicy.BEST_EFFORT)
+PUBLISH_ATTEMPTS = 5
+ACK_WAIT_S = 10.0
 
 
 def _state_qos(depth: int) -> QoSProfile:
@@ -82,6 +86,7 @@ class ReplayNode(Node):
         self.pass_pubs: dict[str, Any] = {}
         self.unpublishable: dict[str, int] = {}
         self.errors = 0
+        self.publish_retries = 0
         self._last_clock_wall = 0.0
         self.create_service(SetBool, "~/pause", self._on_pause)
         self.create_service(Seek, "~/seek", self._on_seek)
@@ -124,9 +129,9 @@ class ReplayNode(Node):
             if pub is None:
                 return
             if self.serialized:
-                pub.publish(bytes(ev.data))
+                self._publish(pub, bytes(ev.data))
             else:
-                pub.publish(to_rclpy(self.engine.deserialize(ev), pub.msg_type))
+                self._publish(pub, to_rclpy(self.engine.deserialize(ev), pub.msg_type))
         except Exception as exc:  # a bad message must not stop the replay
             if not self.context.ok():  # shutting down: end the replay quietly
                 self.engine.stop()
@@ -134,6 +139,18 @@ class ReplayNode(Node):
             self.errors += 1
             if self.errors <= 5:
                 self.get_logger().warning(f"cannot publish {ev.typename} on {ev.topic}: {exc}")
+
+    def _publish(self, pub: Any, msg: Any) -> None:
+        """Publish, retrying a few times when a keep-all reliable history is full (the
+        middleware times out while a slow subscriber catches up)."""
+        for attempt in range(PUBLISH_ATTEMPTS):
+            try:
+                pub.publish(msg)
+                return
+            except RCLError:
+                if attempt == PUBLISH_ATTEMPTS - 1 or not self.context.ok():
+                    raise
+                self.publish_retries += 1
 
     def _pass_pub(self, ev: ReplayEvent) -> Any:
         if ev.topic in self.pass_pubs:
@@ -168,6 +185,7 @@ class ReplayNode(Node):
         st = self.engine.status()
         st["unpublishable_types"] = dict(self.unpublishable)
         st["publish_errors"] = self.errors
+        st["publish_retries"] = self.publish_retries
         bad = st["messages_skipped"] or st["unknown_types"] or st["truncated"] or self.errors
         level = 1 if bad else 0
         text = (f"{100 * st['progress']:.1f}% at {st['rate']}x"
@@ -197,6 +215,8 @@ def main(argv: list[str] | None = None) -> int:
     finally:
         node.engine.stop()
         node.worker.join(timeout=2.0)
+        if rclpy.ok():  # hand queued messages to reliable subscribers before leaving
+            node.state_pub.wait_for_all_acked(Duration(seconds=ACK_WAIT_S))
         node.destroy_node()
         rclpy.try_shutdown()
     return 0
