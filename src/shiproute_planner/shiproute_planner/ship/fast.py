@@ -47,7 +47,8 @@ class FastModel:
         v_top = c.j_max * (1.5 * e.rpm_max / 60.0) * p.diameter_m / (1.0 - c.max_wake_fraction)
         v_calm = np.linspace(0.0, v_top, _N_CALM)
         r_calm, wake = c.calm_resistance_n(v_calm)
-        v_wave = np.linspace(0.0, v_top, _N_WAVE_V)
+        sqrt_v_wave = np.linspace(0.0, np.sqrt(v_top), _N_WAVE_V)  # uniform in sqrt(V)
+        v_wave = sqrt_v_wave**2
         ws_spec = ittc_unit(_PERIOD_GRID_S)
         sw_spec = jonswap_unit(_PERIOD_GRID_S)
         wh, rho = c.wave_hull, c.rho_kg_m3
@@ -87,7 +88,7 @@ class FastModel:
             fk.P_AF: ship.windage.frontal_area_m2, fk.P_MCR: e.mcr_kw, fk.P_RPM_MCR: e.rpm_mcr,
             fk.P_RPM_MIN: e.rpm_min, fk.P_RPM_MAX: e.rpm_max,
             fk.P_OVERLOAD: e.overload_power_fraction, fk.P_TORQUE: e.torque_limit_fraction,
-            fk.P_DV: v_calm[1], fk.P_NV: _N_CALM, fk.P_WDV: v_wave[1], fk.P_WNV: _N_WAVE_V,
+            fk.P_DV: v_calm[1], fk.P_NV: _N_CALM, fk.P_WDV: sqrt_v_wave[1], fk.P_WNV: _N_WAVE_V,
             fk.P_T0: _PERIOD_GRID_S[0], fk.P_DT: _PERIOD_GRID_S[1] - _PERIOD_GRID_S[0],
             fk.P_NT: _PERIOD_GRID_S.size, fk.P_SDV: v_motion[1], fk.P_SNV: _N_MOTION_V,
             fk.P_NC: _COS_GRID.size, fk.P_LPP: ship.hull.lpp_m,

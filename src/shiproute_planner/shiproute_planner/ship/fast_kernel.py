@@ -96,8 +96,10 @@ def _residual(v, inv_nd, k_thr, par, r_calm, wake, u_ws, u_sw, a_ws, a_sw, it_ws
     w = wake[ic] * (1.0 - fc) + wake[ic + 1] * fc
     dw = (wake[ic + 1] - wake[ic]) / dv
     if a_ws > 0.0 or a_sw > 0.0:
-        wdv = par[P_WDV]
-        iv, fv = _idx(0.0, wdv, int(par[P_WNV]), v)
+        # wave tables are uniform in sqrt(V): resolves the V^0.769 / Fr^1.5 onset near V = 0
+        sv = math.sqrt(v)
+        wdv = par[P_WDV] * 2.0 * max(sv, 1e-3)  # d(sqrt V) -> dV for the slope
+        iv, fv = _idx(0.0, par[P_WDV], int(par[P_WNV]), sv)
         if a_ws > 0.0:
             x, dx = _bilin(u_ws, iv, fv, it_ws, ft_ws, wdv)
             r += a_ws * x
