@@ -25,7 +25,7 @@ from .ga.seeds import (
 )
 from .geo.geodesy import inverse
 from .geo.landmask import LandMask
-from .route.encoding import gene_bounds
+from .route.encoding import clip_genes, gene_bounds
 from .route.environment import Environment
 from .route.evaluation import RouteEvaluation, clear_ports
 from .route.generate import evaluate_genes
@@ -62,9 +62,10 @@ class MethodContext:
     ga_config: GAConfig | None = None
     max_generations: int = 100_000
     n_offset_seeds: int = 4  # sea lanes via bent points per position (0 = none)
-    offset_span_deg: float = 18.0
+    offset_span_deg: float = 12.0
     stall_generations: int = 0  # 0 = no stall termination
     baseline: Baseline | None = None  # computed on demand when None
+    gene_seeds: list[tuple[str, np.ndarray]] = field(default_factory=list)  # ready genes
 
 
 @dataclass(frozen=True)
@@ -75,6 +76,7 @@ class MethodResult:
     seed_source: str
     generations: int = 0
     evaluations: int = 0
+    genes: np.ndarray | None = None  # heading/RPM genes of the route, when the method has them
 
 
 @dataclass(frozen=True)
@@ -158,8 +160,12 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
     for name, lon, lat, rpm in tracks:
         seeds.append(TrackSeed(name, lon, lat, np.full(lon.size - 1, rpm)))
 
-    x_seed = track_to_genes(p, env, seeds, ctx.land)
+    x_seed = track_to_genes(p, env, seeds, ctx.land) if seeds else np.empty((0, p.n_var))
     sources = [s.source for s in seeds]
+    for name, genes in ctx.gene_seeds:
+        if genes.size == p.n_var:
+            x_seed = np.concatenate([x_seed, clip_genes(p, genes[None, :])])
+            sources.append(name)
     lo, hi = gene_bounds(p)
     cfg = ctx.ga_config or GAConfig()
     ga = SeedGA(lo, hi, p.n_stages, cfg, ctx.rng, x_seed)
@@ -189,7 +195,7 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
             break
     best_x, _, _ = ga.best
     final = evaluate_genes(p, env, ctx.land, best_x[None, :])
-    return MethodResult(final, best_src, ga.generation, ga.evaluations)
+    return MethodResult(final, best_src, ga.generation, ga.evaluations, best_x.copy())
 
 
 def _seed_tracks(ctx: MethodContext, base: Baseline) -> list[tuple]:

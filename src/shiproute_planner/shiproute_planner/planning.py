@@ -156,6 +156,7 @@ def plan_voyage(
     land: LandMask | None = None,
     ga_config: GAConfig | None = None,
     stall_generations: int = 0,
+    max_generations: int = 100_000,
     with_baseline: bool = True,
 ) -> RoutePlan:
     """Plan a voyage and return a frozen RoutePlan.
@@ -163,7 +164,8 @@ def plan_voyage(
     `position` = (lat_deg, lon_deg, time POSIX s) of the ship for a re-plan under way: the
     voyage then starts there and `previous_plan` (shifted to it) seeds the GA. `cancel` is a
     callable returning True or an object with `is_set()` (threading.Event); a cancelled run
-    returns the best plan so far. `budget_s` is the wall time of the whole call.
+    returns the best plan so far. `budget_s` is the wall time of the whole call; with
+    `max_generations` (and an ample budget) a run is reproducible for a given `seed`.
     """
     t0 = time.perf_counter()
     land = land or default_land_mask()
@@ -196,7 +198,8 @@ def plan_voyage(
         problem = RouteProblem(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg, leg_depart,
                                leg_rtas[k], lim, stage_s=stage_hours * 3600.0,
                                objective=objective, dep_name=a.name, arr_name=b.name)
-        seeds = _seeds(problem, pool, a, b, month, previous_plan if k == 0 else None, position)
+        seeds, gene_seeds = _seeds(problem, pool, a, b, month,
+                                   previous_plan if k == 0 else None, position)
         used = time.perf_counter() - t0
         share = dists[k] / dists[k:].sum()
         leg_budget = max(0.0, (budget_s - used) * share)
@@ -204,7 +207,8 @@ def plan_voyage(
         base = compute_baseline(problem, env, land) if need else None
         ctx = MethodContext(problem, env, land, rng, leg_budget, seeds, progress, is_cancelled,
                             k, time.perf_counter(), ga_config, stall_generations=stall_generations,
-                            baseline=base)
+                            baseline=base, max_generations=max_generations,
+                            gene_seeds=gene_seeds)
         res = fn(ctx)
         if res.evaluation is None:
             raise PlanCancelledError("planning was cancelled before a route was found")
@@ -216,7 +220,7 @@ def plan_voyage(
         if with_baseline and base is not None:
             baselines.append((base.name, base.rpm, base.evaluation))
         if pool is not None:
-            _offer(pool, problem, a, b, month, res.evaluation, res.seed_source)
+            _offer(pool, problem, a, b, month, res.evaluation, res.seed_source, res.genes)
         leg_depart = float(res.evaluation.eta_s[0])
     return _assemble(ports, problems, results, baselines, sources, env, spec, method,
                      objective, depart_s, rta_s, leg_rtas, gens, evals,
@@ -232,8 +236,8 @@ def _cancel_fn(cancel: Any) -> Callable[[], bool]:
 
 
 def _seeds(problem: RouteProblem, pool: SeedPool | None, a: Port, b: Port, month: int,
-           previous: RoutePlan | None, position) -> list[TrackSeed]:
-    out = []
+           previous: RoutePlan | None, position) -> tuple[list[TrackSeed], list]:
+    out, genes = [], []
     if previous is not None:
         lon, lat, t = previous.track()
         if position is not None:
@@ -248,16 +252,18 @@ def _seeds(problem: RouteProblem, pool: SeedPool | None, a: Port, b: Port, month
         if stored is not None:
             out.append(TrackSeed("pool", np.array(stored.lon_deg), np.array(stored.lat_deg),
                                  np.array(stored.rpm)))
-    return out
+            if stored.genes:
+                genes.append(("pool", np.array(stored.genes)))
+    return out, genes
 
 
 def _offer(pool: SeedPool, problem: RouteProblem, a: Port, b: Port, month: int,
-           ev: RouteEvaluation, source: str) -> None:
+           ev: RouteEvaluation, source: str, genes: np.ndarray | None) -> None:
     pool.offer(Seed(pool_key(_port_id(a), _port_id(b), month),
                     tuple(map(float, ev.lon_deg[0])), tuple(map(float, ev.lat_deg[0])),
                     tuple(map(float, ev.legs["rpm"][0])), problem.objective,
                     float(ev.objective[0]), float(ev.violation[0]), float(ev.fuel_t[0]),
-                    source))
+                    source, genes=() if genes is None else tuple(map(float, genes))))
 
 
 def _assemble(ports, problems, results, baselines, sources, env, spec, method, objective,

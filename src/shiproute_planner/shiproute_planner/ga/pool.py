@@ -34,6 +34,7 @@ class Seed:
     fuel_t: float
     source: str = ""
     stored_at: float = 0.0
+    genes: tuple[float, ...] = ()  # heading/RPM genes (used as-is when the stage count fits)
 
 
 def pool_key(dep: str, arr: str, month: int) -> str:
@@ -65,7 +66,8 @@ class SeedPool:
             return None
         try:
             return Seed(**{**raw, "lon_deg": tuple(raw["lon_deg"]),
-                           "lat_deg": tuple(raw["lat_deg"]), "rpm": tuple(raw["rpm"])})
+                           "lat_deg": tuple(raw["lat_deg"]), "rpm": tuple(raw["rpm"]),
+                           "genes": tuple(raw.get("genes", ()))})
         except (TypeError, KeyError) as exc:
             raise SeedPoolError(f"seed {key!r} in {self.path} is malformed: {exc}") from exc
 

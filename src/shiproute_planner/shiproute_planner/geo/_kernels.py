@@ -24,49 +24,59 @@ def scan_segments(
 ) -> int:
     """Count raster-land samples per segment; list samples in coastal cells.
 
-    Samples are spaced at most `spacing_deg` apart (in degrees of latitude, longitude scaled
-    by cos(latitude)) on the straight line in (lon, lat), both ends included; over a 12-hour
-    stage this stays within ~0.04 deg of the geodesic, inside the one-cell dilation of the
-    coastal band. Coastal samples of segments already on land are skipped. Returns the
-    number of coastal samples written, or -1 if the coastal buffers were too small.
+    Samples lie on the great circle between the end points (normalised linear interpolation
+    of unit vectors), at most `spacing_deg` of arc apart, both ends included; inside coastal
+    cells the step is refined five-fold so narrow land is not stepped over. Coastal samples
+    of segments already on land are skipped. Returns the number of coastal samples written,
+    or -1 if the coastal buffers were too small.
     """
     n_lat, n_lon = raster.shape
+    d2r = math.pi / 180.0
+    inv = 1.0 / cell_deg
     n_coast = 0
     cap = coast_lon.size
-    inv = 1.0 / cell_deg
     for s in range(lon0.size):
-        dlon = lon1[s] - lon0[s]
-        dlon = (dlon + 180.0) % 360.0 - 180.0
-        dlat = lat1[s] - lat0[s]
-        coslat = math.cos(math.radians(0.5 * (lat0[s] + lat1[s])))
-        length = math.sqrt((dlon * coslat) ** 2 + dlat * dlat)
-        n = math.ceil(length / spacing_deg)
-        if n < 1:
-            n = 1
+        la0, lo0, la1, lo1 = lat0[s] * d2r, lon0[s] * d2r, lat1[s] * d2r, lon1[s] * d2r
+        ax, ay, az = math.cos(la0) * math.cos(lo0), math.cos(la0) * math.sin(lo0), math.sin(la0)
+        bx, by, bz = math.cos(la1) * math.cos(lo1), math.cos(la1) * math.sin(lo1), math.sin(la1)
+        dot = min(1.0, max(-1.0, ax * bx + ay * by + az * bz))
+        arc_deg = math.acos(dot) / d2r
+        n = max(1, math.ceil(arc_deg / spacing_deg))
         count = 0
-        base_lon = (lon0[s] + 180.0) % 360.0
-        for k in range(n + 1):
-            f = k / n
-            lo = base_lon + f * dlon
-            if lo < 0.0:
-                lo += 360.0
-            elif lo >= 360.0:
-                lo -= 360.0
-            lat = lat0[s] + f * dlat
-            i = int((lat + 90.0) * inv)
-            j = int(lo * inv)
-            i = min(max(i, 0), n_lat - 1)
-            j = min(max(j, 0), n_lon - 1)
+        k = 0
+        sub = 0  # > 0 while refining inside a coastal stretch
+        steps = 5 * n
+        while k <= steps:
+            f = k / steps
+            x = ax + f * (bx - ax)
+            y = ay + f * (by - ay)
+            z = az + f * (bz - az)
+            r = math.sqrt(x * x + y * y + z * z)
+            lat = math.asin(z / r) / d2r
+            lon = math.atan2(y, x) / d2r
+            i = min(max(int((lat + 90.0) * inv), 0), n_lat - 1)
+            j = min(max(int((lon + 180.0) * inv), 0), n_lon - 1)
             v = raster[i, j]
             if v == 1:
                 count += 1
-            elif v == 2 and count == 0:
-                if n_coast >= cap:
-                    return -1
-                coast_lon[n_coast] = lo - 180.0
-                coast_lat[n_coast] = lat
-                coast_seg[n_coast] = s
-                n_coast += 1
+            elif v == 2:
+                if sub == 0 and k > 0:
+                    # entering a coastal cell: go back and walk the last stretch finely
+                    sub = 5
+                    k = max(k - 4, 0)
+                    continue
+                if count == 0:
+                    if n_coast >= cap:
+                        return -1
+                    coast_lon[n_coast] = lon
+                    coast_lat[n_coast] = lat
+                    coast_seg[n_coast] = s
+                    n_coast += 1
+            if v == 2 or sub > 0:
+                k += 1
+                sub = max(sub - 1, 1) if v == 2 else sub - 1
+            else:
+                k += 5
         land_count[s] = count
     return n_coast
 

@@ -31,6 +31,7 @@ ALIASES: dict[str, str] = {
     "nyc": "new york",
     "gdańsk": "gdansk",
     "hong kong sar": "hong kong",
+    "lisbon": "lisboa",
 }
 
 _LATLON = re.compile(r"^\s*([-+]?\d+(?:\.\d*)?)\s*[, ]\s*([-+]?\d+(?:\.\d*)?)\s*$")

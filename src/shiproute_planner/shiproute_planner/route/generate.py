@@ -60,7 +60,7 @@ def evaluate_genes(
     legs["distance_m"] = distance
     legs["duration_s"] = duration
     legs["fuel_t"] = legs["fuel_t_per_h"] * duration / 3600.0
-    turn = np.zeros((pop, m))
-    turn[:, n] = (heading_n - headings[:, n - 1] + 180.0) % 360.0 - 180.0
-    legs["turn_deg"] = turn
+    # the thesis bounds the heading-change genes only; the turn onto the final connection is
+    # determined by the route, not a design variable (eq. 11), so it is not constrained
+    legs["turn_deg"] = np.zeros((pop, m))
     return finish(problem, land, lon, lat, t, legs)

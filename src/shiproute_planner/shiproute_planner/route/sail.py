@@ -51,18 +51,10 @@ def sail_tracks(
             legs[f][:, k] = perf[f]
         heading[:, k], distance[:, k], duration[:, k] = h, d, dur
         t[:, k + 1] = t[:, k] + dur
-    turn = np.zeros((pop, m))
-    if m > 1:
-        # turn between consecutive legs that actually move
-        prev = heading[:, 0].copy()
-        for k in range(1, m):
-            moving = distance[:, k] > 0
-            turn[:, k] = np.where(moving, (heading[:, k] - prev + 180.0) % 360.0 - 180.0, 0.0)
-            prev = np.where(moving, heading[:, k], prev)
     legs["heading_deg"] = heading
     legs["rpm"] = rpm
     legs["distance_m"] = distance
     legs["duration_s"] = duration
     legs["fuel_t"] = legs["fuel_t_per_h"] * duration / 3600.0
-    legs["turn_deg"] = turn
+    legs["turn_deg"] = np.zeros((pop, m))  # given tracks: turns are not design variables
     return finish(problem, land, lon, lat, t, legs)

@@ -1,0 +1,34 @@
+"""Shared fixtures of the planner tests: land mask, ship environments, scenario samplers."""
+
+from __future__ import annotations
+
+import functools
+
+import pytest
+
+
+@functools.lru_cache(maxsize=4)
+def _sampler(name: str):
+    from shiproute_weather.sampling import ForecastSampler
+    from shiproute_weather.scenarios import scenario_dataset
+
+    return ForecastSampler(scenario_dataset(name))
+
+
+@pytest.fixture(scope="session")
+def storm_sampler():
+    return _sampler("storm_march")
+
+
+@pytest.fixture(scope="session")
+def land_mask():
+    from shiproute_planner.geo.landmask import default_land_mask
+
+    return default_land_mask()
+
+
+@pytest.fixture(scope="session")
+def calm_env():
+    from shiproute_planner.planning import make_environment
+
+    return make_environment("container_4600teu", None)
