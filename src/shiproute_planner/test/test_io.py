@@ -7,7 +7,6 @@ import xml.etree.ElementTree as ET
 from datetime import timedelta
 
 import pytest
-
 from shiproute_planner.errors import OutputError
 from shiproute_planner.io.rtz import NS, validate_rtz, write_rtz
 from shiproute_planner.io.summary import plan_geojson, write_json

@@ -7,7 +7,6 @@ from datetime import timedelta
 
 import numpy as np
 import pytest
-
 from shiproute_planner.errors import PortNotFoundError, PositionOnLandError
 from shiproute_planner.ga.pool import SeedPool
 from shiproute_planner.geo.verify import land_crossings
@@ -62,7 +61,7 @@ def test_seed_pool_persists_and_is_used(land_mask, tmp_path):
 
 def test_pacific_crosses_the_antimeridian_continuously(land_mask):
     plan = _plan("Busan", "Long Beach", 13, land=land_mask)
-    lon, lat, t = plan.track()
+    lon, _, t = plan.track()
     assert lon[0] < 180.0 < lon[-1]  # continuous frame: 129 E ... 241.8 E
     assert np.all(np.abs(np.diff(lon)) < 15.0)
     assert all(-180.0 <= w.lon_deg <= 180.0 for w in plan.waypoints)
