@@ -10,7 +10,6 @@ import xarray as xr
 
 from . import canonical as cv
 from .errors import GridError
-from .sampling import ForecastSampler
 from .slices import snap_grid
 
 
@@ -33,6 +32,8 @@ def _same_axes(a: xr.Dataset, b: xr.Dataset) -> bool:
 def resample(ds: xr.Dataset, latitudes_deg: np.ndarray, longitudes_deg: np.ndarray,
              times: np.ndarray) -> xr.Dataset:
     """Interpolate a canonical dataset onto other axes (trilinear; directions as vectors)."""
+    from .sampling import ForecastSampler  # numba is loaded only when resampling is needed
+
     sampler = ForecastSampler(ds)
     t_s = times.astype("datetime64[ns]").astype(np.int64).astype(np.float64) / 1e9
     tt, la, lo = np.meshgrid(t_s, latitudes_deg, longitudes_deg, indexing="ij")

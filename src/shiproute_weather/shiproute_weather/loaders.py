@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from pathlib import Path
 
+import numpy as np
 import xarray as xr
 
 from .combine import combine
@@ -31,13 +32,59 @@ def detect_format(path: Path) -> str:
                                        "GRIB or NetCDF")
 
 
+NETCDF_CHUNK_CACHE_BYTES = 1 << 20
+
+
+def _decode_in_place(da: xr.DataArray) -> xr.DataArray:
+    """CF mask/scale decoding without the extra full-size copies xarray's lazy decoding makes."""
+    enc = da.attrs
+    a = da.values
+    scale = enc.pop("scale_factor", None)
+    offset = enc.pop("add_offset", None)
+    fills = [enc.pop(k) for k in ("_FillValue", "missing_value") if k in enc]
+    mask = None
+    for f in fills:
+        for v in np.atleast_1d(f):
+            if not (isinstance(v, float) and np.isnan(v)):
+                m = a == v
+                mask = m if mask is None else mask | m
+    if scale is not None or offset is not None or mask is not None:
+        if a.dtype.kind != "f" or scale is not None or offset is not None:
+            a = a.astype(np.float32 if a.dtype.itemsize <= 2 else np.float64)
+        if scale is not None:
+            a *= scale
+        if offset is not None:
+            a += offset
+        if mask is not None:
+            a[mask] = np.nan
+    return da.copy(data=a)
+
+
 def open_netcdf_raw(path: Path) -> xr.Dataset:
-    """Open a NetCDF file fully into memory (netcdf4 engine, h5netcdf as fallback)."""
+    """Open a NetCDF file fully into memory (netcdf4 engine, h5netcdf as fallback).
+
+    Data variables are read undecoded and decoded in place (one array per variable in
+    memory); coordinates and times are decoded by xarray as usual.
+    """
+    import netCDF4
+
+    # netCDF-C keeps up to 64 MB of decompressed chunks per variable by default, which
+    # doubles peak memory when every variable is read once; 1 MB is enough for one pass.
+    netCDF4.set_chunk_cache(NETCDF_CHUNK_CACHE_BYTES, 61, 0.75)
     last: Exception | None = None
     for engine in ("netcdf4", "h5netcdf"):
         try:
-            with xr.open_dataset(path, engine=engine, decode_timedelta=True) as ds:
-                return ds.load()
+            with xr.open_dataset(path, engine=engine, decode_timedelta=True,
+                                 mask_and_scale=False) as ds:
+                out = ds.copy()
+                for name in list(out.data_vars):
+                    if out[name].ndim >= 2:
+                        out[name] = _decode_in_place(out[name])
+                    else:
+                        out[name] = out[name].load()
+                for name in out.coords:
+                    out[name].load()
+                return out
         except Exception as exc:
             last = exc
     raise ForecastFileError(str(path), f"cannot be read as NetCDF ({last})")

@@ -11,6 +11,7 @@ import queue
 import sys
 import threading
 import time
+from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -29,6 +30,8 @@ from .convert import cycle_to_msg, slice_to_msg
 from .cycle_builder import MAX_SLICE_BYTES, MAX_SLICES, CycleConfig, build_cycle, corridor_box
 from .errors import WeatherError
 from .scenarios import scenario_path
+from .slices import SliceData
+from .stream import stream_cycle, stream_slices, streamable
 from .watch import DirectoryWatcher
 
 CYCLE_TOPIC = "/shiproute/forecast/cycle"
@@ -156,37 +159,53 @@ class WeatherNode(Node):
         try:
             if not req.paths:
                 raise WeatherError("no paths given")
-            info, slices, notes = build_cycle(req.paths, self.cfg_base)
+            if streamable(req.paths, self.cfg_base):
+                # bounded memory: validate the whole file first, then read it again to publish
+                info, notes = stream_cycle(req.paths[0], self.cfg_base), []
+                slices: Iterable[SliceData] = stream_slices(req.paths[0], self.cfg_base, info)
+            else:
+                info, slices, notes = build_cycle(req.paths, self.cfg_base)
             cycle = cycle_to_msg(info, self.get_clock().now().to_msg())
-            stamp = self.get_clock().now().to_msg()
-            msgs = [slice_to_msg(s, stamp) for s in slices]
         except Exception as exc:  # a bad file must never stop the node
-            text = f"{req.origin}: {exc}"
-            self.get_logger().error(f"forecast load failed, previous cycle stays in force: {text}")
-            with self.lock:
-                self.state["last_error"] = text
-                self.level = DiagnosticStatus.ERROR
-                kept = self.state["cycle_id"] or "none"
-                self.message = f"load failed ({exc}); serving cycle {kept}"
-            self._publish_diagnostics()
-            return False, "", str(exc)
+            return self._failed(req, exc)
         self.cycle_pub.publish(cycle)
-        for m in msgs:
-            self.slice_pub.publish(m)
+        stamp = self.get_clock().now().to_msg()
+        kept: list[ForecastSlice] = []
+        nbytes = 0
+        try:
+            for s in slices:
+                m = slice_to_msg(s, stamp)
+                nbytes = s.nbytes
+                self.slice_pub.publish(m)
+                if self.publish_period_s > 0:
+                    kept.append(m)
+        except Exception as exc:  # file changed between the two passes
+            return self._failed(req, exc)
         dt = time.monotonic() - t0
         with self.lock:
-            self.current = (cycle, msgs) if self.publish_period_s > 0 else None
+            self.current = (cycle, kept) if self.publish_period_s > 0 else None
             n = int(self.state["cycles_published"]) + 1
-            self.state.update(cycle_id=info.cycle_id, slices=str(len(msgs)),
-                              bytes_per_slice=str(slices[0].nbytes if slices else 0),
-                              source_files=", ".join(req.paths), load_s=f"{dt:.3f}",
-                              last_error="", notes="; ".join(notes), cycles_published=str(n))
+            self.state.update(cycle_id=info.cycle_id, slices=str(info.slice_count),
+                              bytes_per_slice=str(nbytes), source_files=", ".join(req.paths),
+                              load_s=f"{dt:.3f}", last_error="", notes="; ".join(notes),
+                              cycles_published=str(n))
             self.level = DiagnosticStatus.WARN if notes else DiagnosticStatus.OK
-            self.message = f"serving cycle {info.cycle_id} ({len(msgs)} slices)"
-        self.get_logger().info(f"published cycle {info.cycle_id}: {len(msgs)} slices in "
-                               f"{dt:.2f} s from {req.paths}")
+            self.message = f"serving cycle {info.cycle_id} ({info.slice_count} slices)"
+        self.get_logger().info(f"published cycle {info.cycle_id}: {info.slice_count} slices "
+                               f"in {dt:.2f} s from {req.paths}")
         self._publish_diagnostics()
         return True, info.cycle_id, "; ".join(notes)
+
+    def _failed(self, req: LoadRequest, exc: Exception) -> tuple[bool, str, str]:
+        text = f"{req.origin}: {exc}"
+        self.get_logger().error(f"forecast load failed, previous cycle stays in force: {text}")
+        with self.lock:
+            self.state["last_error"] = text
+            self.level = DiagnosticStatus.ERROR
+            kept = self.state["cycle_id"] or "none"
+            self.message = f"load failed ({exc}); serving cycle {kept}"
+        self._publish_diagnostics()
+        return False, "", str(exc)
 
     def _republish(self) -> None:
         with self.lock:

@@ -18,7 +18,6 @@ import xarray as xr
 
 from . import canonical as cv
 from .errors import ScenarioError
-from .scenario_fields import build_fields
 from .synth_seas import JUNE_SWELL, MARCH_SWELL, BackgroundSwell
 from .synth_wind import JUNE, MARCH, Season, TrackPoint
 
@@ -27,7 +26,7 @@ LON_RANGE_DEG = (115.0, 245.0)
 SPACING_DEG = 0.5
 STEP_H = 3.0
 LENGTH_H = 384.0
-FORMAT_VERSION = "1"
+FORMAT_VERSION = "2"
 
 # Storm track, hours after 2026-03-03T12Z: (h, lat, lon, dp hPa, Rmax km, Holland B).
 # Deepening to ~968 hPa: a strong but ordinary winter North Pacific storm.
@@ -99,6 +98,8 @@ def _spec(name: str) -> ScenarioSpec:
 
 def build_scenario(name: str) -> xr.Dataset:
     """Generate a scenario in memory as a canonical dataset (deterministic for a name)."""
+    from .scenario_fields import build_fields  # numba-heavy: only when generating
+
     spec = _spec(name)
     lat = np.arange(LAT_RANGE_DEG[0], LAT_RANGE_DEG[1] + 1e-9, SPACING_DEG)
     lon = np.arange(LON_RANGE_DEG[0], LON_RANGE_DEG[1] + 1e-9, SPACING_DEG)

@@ -1,0 +1,125 @@
+"""Benchmark: load + validate + publish one 16-day 3-hourly 0.5 deg North Pacific cycle."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import random
+import resource
+import subprocess
+import sys
+import time
+from collections.abc import Iterable
+
+_SUBSCRIBER = r"""
+import sys, time, rclpy
+from rclpy.qos import QoSProfile, HistoryPolicy, ReliabilityPolicy, DurabilityPolicy
+from shiproute_msgs.msg import ForecastSlice, ForecastCycle
+rclpy.init()
+node = rclpy.create_node("bench_weather_subscriber")
+depth = int(sys.argv[1])
+qos = lambda d: QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=d,
+                           reliability=ReliabilityPolicy.RELIABLE,
+                           durability=DurabilityPolicy.TRANSIENT_LOCAL)
+got = {}
+cycle = []
+node.create_subscription(ForecastSlice, sys.argv[2] + "/slices",
+                         lambda m: got.__setitem__(m.slice_index, m.slice_count), qos(depth))
+node.create_subscription(ForecastCycle, sys.argv[2] + "/cycle", cycle.append, qos(1))
+print("ready", flush=True)
+while rclpy.ok():
+    rclpy.spin_once(node, timeout_sec=0.05)
+    if cycle and len(got) == cycle[-1].slice_count:
+        print(f"received {len(got)} {time.time():.6f}", flush=True)
+        break
+node.destroy_node()
+rclpy.shutdown()
+"""
+
+
+def _parse(argv: list[str]) -> argparse.Namespace:
+    ap = argparse.ArgumentParser(prog="shiproute bench weather", description=__doc__)
+    ap.add_argument("--json", action="store_true", help="print one JSON object")
+    ap.add_argument("--scenario", default="storm_march", help="bundled scenario to publish")
+    ap.add_argument("--file", default="", help="forecast file instead of a scenario")
+    ap.add_argument("--timeout-s", type=float, default=120.0)
+    return ap.parse_args(argv)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of `shiproute bench weather`."""
+    args = _parse(sys.argv[1:] if argv is None else argv)
+    from .scenarios import scenario_path
+
+    path = args.file or str(scenario_path(args.scenario))  # generation is not timed
+    domain = random.Random().randint(0, 101)
+    env = {**os.environ, "ROS_DOMAIN_ID": str(domain),
+           "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST"}
+    os.environ.update({k: env[k] for k in ("ROS_DOMAIN_ID", "ROS_AUTOMATIC_DISCOVERY_RANGE")})
+    topic = "/shiproute/forecast"
+    sub = subprocess.Popen([sys.executable, "-u", "-c", _SUBSCRIBER, "200", topic], env=env,
+                           stdout=subprocess.PIPE, text=True, start_new_session=True)
+    try:
+        assert sub.stdout is not None
+        if "ready" not in sub.stdout.readline():
+            raise RuntimeError("benchmark subscriber did not start")
+        result = _run(path, topic, sub, args.timeout_s)
+    finally:
+        if sub.poll() is None:
+            sub.terminate()
+            sub.wait(timeout=10)
+    if args.json:
+        print(json.dumps(result))
+    else:
+        for k, v in result.items():
+            print(f"{k}: {v}")
+    return 0
+
+
+def _run(path: str, topic: str, sub: subprocess.Popen[str], timeout_s: float) -> dict:
+    import rclpy
+
+    from shiproute_msgs.msg import ForecastCycle, ForecastSlice
+
+    from .convert import cycle_to_msg, slice_to_msg
+    from .cycle_builder import CycleConfig, build_cycle
+    from .node import latched
+    from .slices import SliceData
+    from .stream import stream_cycle, stream_slices, streamable
+
+    rclpy.init()
+    node = rclpy.create_node("bench_weather_publisher")
+    cyc_pub = node.create_publisher(ForecastCycle, topic + "/cycle", latched(1))
+    sl_pub = node.create_publisher(ForecastSlice, topic + "/slices", latched(200))
+    deadline = time.monotonic() + 30.0
+    while sl_pub.get_subscription_count() == 0 and time.monotonic() < deadline:
+        time.sleep(0.05)
+    cfg = CycleConfig()
+    t0 = time.perf_counter()
+    if streamable([path], cfg):  # what the node does for one NetCDF file
+        info = stream_cycle(path, cfg)
+        slices: Iterable[SliceData] = stream_slices(path, cfg, info)
+    else:
+        info, slices, _ = build_cycle([path], cfg)
+    t1 = time.perf_counter()
+    sent_bytes = 0
+    n = 0
+    cyc_pub.publish(cycle_to_msg(info))
+    for s in slices:
+        sl_pub.publish(slice_to_msg(s))
+        sent_bytes = s.nbytes
+        n += 1
+    t2 = time.perf_counter()
+    wall_sent = time.time()
+    assert sub.stdout is not None
+    line = sub.stdout.readline()
+    delivered_s = float(line.split()[2]) - wall_sent + (t2 - t1) if line.startswith(
+        "received") else float("nan")
+    rss_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+    node.destroy_node()
+    rclpy.try_shutdown()
+    return {"file": os.path.basename(path), "load_s": round(t1 - t0, 3),
+            "publish_s": round(t2 - t1, 3), "delivered_s": round(delivered_s, 3),
+            "total_s": round(t2 - t0, 3), "slices": n, "bytes_per_slice": sent_bytes,
+            "fields": len(info.fields), "peak_rss_mb": round(rss_mb, 1)}
