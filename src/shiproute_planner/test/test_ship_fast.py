@@ -5,7 +5,14 @@ Marked slow: the first use compiles the numba kernel (cached on disk afterwards)
 
 import numpy as np
 import pytest
-from shiproute_planner.ship import FastModel, InputRangeError, SeaState, fast_model, load_ship
+from shiproute_planner.ship import (
+    FastModel,
+    InputRangeError,
+    PerformanceModel,
+    SeaState,
+    fast_model,
+    load_ship,
+)
 
 pytestmark = pytest.mark.slow
 
@@ -41,11 +48,18 @@ def test_fast_matches_physics_within_half_percent(name):
         assert np.mean(getattr(a, k) != getattr(b, k)) < 0.01, k
 
 
-def test_cached_per_file_content_and_condition():
+def test_cached_per_ship_and_condition_and_inverse():
     a = fast_model(load_ship("container_4600teu"))
     assert fast_model(load_ship("container_4600teu")) is a
     assert fast_model(load_ship("container_4600teu", "ballast")) is not a
-    assert isinstance(a, FastModel)
+    assert isinstance(a, FastModel) and isinstance(a, PerformanceModel)
+    rpm, hdg, sea = _random_legs(np.random.default_rng(9), 200)
+    rpm = np.clip(rpm, 40, 100)
+    r = a.evaluate(rpm, hdg, sea)
+    ok = r.stw_m_s > 2.0
+    sub = SeaState(**{k: v[ok] for k, v in vars(sea).items()})
+    back = a.rpm_for_speed(r.stw_m_s[ok], hdg[ok], sub)
+    assert np.max(np.abs(back / rpm[ok] - 1)) < 0.005
 
 
 def test_shapes_threads_and_errors():

@@ -167,7 +167,7 @@ class FastModel:
         return self.physics.rpm_for_speed(stw_m_s, heading_deg, sea)
 
 
-_CACHE: dict[str, FastModel] = {}
+_CACHE: dict[ShipSpec, FastModel] = {}
 _LOCK = threading.Lock()
 _N_THREADS = min(os.cpu_count() or 1, 4)
 _THREAD_MIN_LEGS = 4096
@@ -183,10 +183,10 @@ def _pool() -> ThreadPoolExecutor:
 
 
 def fast_model(ship: ShipSpec) -> FastModel:
-    """The fast model of ``ship``, built once per ship-file content and loading condition."""
+    """The fast model of ``ship``, built once per distinct ship (all fields, incl. condition)."""
     with _LOCK:
-        model = _CACHE.get(ship.content_hash)
+        model = _CACHE.get(ship)
         if model is None:
             model = FastModel(ship)
-            _CACHE[ship.content_hash] = model
+            _CACHE[ship] = model
         return model
