@@ -77,6 +77,8 @@ class RoutePlan:
     vessel_max_wind_m_s: float
     baseline_track: tuple[tuple[float, float], ...] = ()  # (lat, lon) of the baseline nodes
     leg_rtas_s: tuple[float, ...] = ()
+    # waypoint index ranges (first, last) planned by the method; the rest are port approaches
+    optimised_spans: tuple[tuple[int, int], ...] = ()
     extra: dict = field(default_factory=dict, compare=False)
 
     @property
@@ -95,6 +97,12 @@ class RoutePlan:
         lat = np.array([w.lat_deg for w in self.waypoints])
         t = np.array([w.time_s for w in self.waypoints])
         return lon, lat, t
+
+    def optimised_tracks(self) -> list[tuple[np.ndarray, np.ndarray]]:
+        """(lon, lat) of each method-planned span, without the port approaches."""
+        lon, lat, _ = self.track()
+        spans = self.optimised_spans or ((0, len(self.waypoints) - 1),)
+        return [(lon[a:b + 1], lat[a:b + 1]) for a, b in spans]
 
     def leg_rpm(self) -> np.ndarray:
         """RPM per leg (one fewer than waypoints)."""

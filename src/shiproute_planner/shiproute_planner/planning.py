@@ -8,6 +8,7 @@ same evaluator, stores the result in the seed pool and joins everything into one
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import time
 import uuid
@@ -18,6 +19,7 @@ from typing import Any
 
 import numpy as np
 
+from .approach import lane_approaches, sail_approach
 from .errors import InvalidVoyageError, PlanCancelledError
 from .ga.loop import GAConfig
 from .ga.pool import Seed, SeedPool, pool_key
@@ -158,6 +160,8 @@ def plan_voyage(
     stall_generations: int = 0,
     max_generations: int = 100_000,
     with_baseline: bool = True,
+    approach_nm: float = 25.0,
+    approach_rpm: float | None = None,
 ) -> RoutePlan:
     """Plan a voyage and return a frozen RoutePlan.
 
@@ -166,6 +170,8 @@ def plan_voyage(
     callable returning True or an object with `is_set()` (threading.Event); a cancelled run
     returns the best plan so far. `budget_s` is the wall time of the whole call; with
     `max_generations` (and an ample budget) a run is reproducible for a given `seed`.
+    The first and last `approach_nm` at each port follow the sea lane at `approach_rpm`
+    (default mid-range); the method optimises between the approaches' sea ends.
     """
     t0 = time.perf_counter()
     land = land or default_land_mask()
@@ -191,12 +197,25 @@ def plan_voyage(
     fn = get_method(method)
     dists = np.array([float(inverse(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)[1])
                       for a, b in itertools.pairwise(ports)])
-    results, baselines, problems, sources = [], [], [], []
+    results, baselines, problems, sources, approaches = [], [], [], [], []
     gens = evals = 0
     leg_depart = depart_s
+    rpm_ap = approach_rpm or 0.5 * (lim.rpm_min + lim.rpm_max)
     for k, (a, b) in enumerate(itertools.pairwise(ports)):
-        problem = RouteProblem(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg, leg_depart,
-                               leg_rtas[k], lim, stage_s=stage_hours * 3600.0,
+        ap_dep, ap_arr = lane_approaches(a, b, approach_nm * 1852.0,
+                                         with_dep=not (k == 0 and position is not None))
+        pre = sail_approach(env, ap_dep, rpm_ap, leg_depart, lim) if ap_dep else None
+        t_leg = float(pre.eta_s[0]) if pre is not None else leg_depart
+        rta_leg = leg_rtas[k]
+        if ap_arr is not None:
+            est = sail_approach(env, ap_arr, rpm_ap, rta_leg - 3600.0, lim)
+            rta_leg -= float(est.eta_s[0] - est.time_s[0, 0])
+        d_lon, d_lat = (ap_dep.lon_deg[-1], ap_dep.lat_deg[-1]) if ap_dep else (a.lon_deg,
+                                                                               a.lat_deg)
+        a_lon, a_lat = (ap_arr.lon_deg[0], ap_arr.lat_deg[0]) if ap_arr else (b.lon_deg,
+                                                                             b.lat_deg)
+        problem = RouteProblem(float(d_lon), float(d_lat), float(a_lon), float(a_lat), t_leg,
+                               rta_leg, lim, stage_s=stage_hours * 3600.0,
                                objective=objective, dep_name=a.name, arr_name=b.name)
         seeds, gene_seeds = _seeds(problem, pool, a, b, month,
                                    previous_plan if k == 0 else None, position)
@@ -222,8 +241,12 @@ def plan_voyage(
         if pool is not None:
             _offer(pool, problem, a, b, month, res.evaluation, res.seed_source, res.genes)
         leg_depart = float(res.evaluation.eta_s[0])
-    return _assemble(ports, problems, results, baselines, sources, env, spec, method,
-                     objective, depart_s, rta_s, leg_rtas, gens, evals,
+        post = sail_approach(env, ap_arr, rpm_ap, leg_depart, lim) if ap_arr else None
+        if post is not None:
+            leg_depart = float(post.eta_s[0])
+        approaches.append((pre, post))
+    return _assemble(ports, problems, results, baselines, sources, approaches, env, spec,
+                     method, objective, depart_s, rta_s, leg_rtas, gens, evals,
                      time.perf_counter() - t0)
 
 
@@ -266,28 +289,51 @@ def _offer(pool: SeedPool, problem: RouteProblem, a: Port, b: Port, month: int,
                     source, genes=() if genes is None else tuple(map(float, genes))))
 
 
-def _assemble(ports, problems, results, baselines, sources, env, spec, method, objective,
-              depart_s, rta_s, leg_rtas, gens, evals, compute_s) -> RoutePlan:
+def _legs_of(ev: RouteEvaluation, pre: RouteEvaluation | None,
+             post: RouteEvaluation | None) -> list[RouteEvaluation]:
+    return [e for e in (pre, ev, post) if e is not None]
+
+
+def _assemble(ports, problems, results, baselines, sources, approaches, env, spec, method,
+              objective, depart_s, rta_s, leg_rtas, gens, evals, compute_s) -> RoutePlan:
     wps: list[Waypoint] = []
     flags = 0
-    for k, (p, ev) in enumerate(zip(problems, results, strict=True)):
-        m = ev.legs["rpm"].shape[1]
-        weather = env.weather(ev.lon_deg[0, :m], ev.lat_deg[0, :m], ev.time_s[0, :m])
-        names = {0: ports[k].name, m: ports[k + 1].name}
-        w = waypoints_from_evaluation(ev, weather, names)
-        wps.extend(w if k == 0 else w[1:])
-        flags |= int(ev.flags[0])
-        if ev.eta_s[0] > p.rta_s:
+    plan_parts, base_parts, spans = [], [], []
+    for k, ev in enumerate(results):
+        pre, post = approaches[k]
+        parts = _legs_of(ev, pre, post)
+        plan_parts.extend(parts)
+        if baselines:
+            base_parts.extend(_legs_of(baselines[k][2], pre, post))
+        for j, part in enumerate(parts):
+            m = part.legs["rpm"].shape[1]
+            weather = env.weather(part.lon_deg[0, :m], part.lat_deg[0, :m], part.time_s[0, :m])
+            names = {}
+            if j == 0:
+                names[0] = ports[k].name
+            if j == len(parts) - 1:
+                names[m] = ports[k + 1].name
+            w = waypoints_from_evaluation(part, weather, names)
+            start = max(len(wps) - 1, 0)
+            if wps:  # the junction node carries the next part's leg values
+                wps[-1] = dataclasses.replace(w[0], port=wps[-1].port or w[0].port)
+                w = w[1:]
+            wps.extend(w)
+            if part is ev:
+                spans.append((start, len(wps) - 1))
+            if part is ev:  # approaches are fixed pilotage: their flags inform, not decide
+                flags |= int(part.flags[0]) & ~2
+        if float(parts[-1].eta_s[0]) > leg_rtas[k] + 1.0:
             flags |= 2
-    fuel = sum(float(ev.fuel_t[0]) for ev in results)
-    dist = sum(float(ev.distance_m[0]) for ev in results) / 1852.0
-    eta = float(results[-1].eta_s[0])
-    b_fuel = sum(float(b[2].fuel_t[0]) for b in baselines) if baselines else float("nan")
-    b_dist = sum(float(b[2].distance_m[0]) for b in baselines) / 1852.0 if baselines else 0.0
-    b_eta = float(baselines[-1][2].eta_s[0]) if baselines else float("nan")
+    fuel = sum(float(ev.fuel_t[0]) for ev in plan_parts)
+    dist = sum(float(ev.distance_m[0]) for ev in plan_parts) / 1852.0
+    eta = float(plan_parts[-1].eta_s[0])
+    b_fuel = sum(float(e.fuel_t[0]) for e in base_parts) if baselines else float("nan")
+    b_dist = sum(float(e.distance_m[0]) for e in base_parts) / 1852.0 if baselines else 0.0
+    b_eta = float(base_parts[-1].eta_s[0]) if baselines else float("nan")
     b_ok = all(bool(b[2].feasible[0]) for b in baselines) if baselines else False
-    b_track = tuple((float(la), float(lo)) for b in baselines
-                    for lo, la in zip(b[2].lon_deg[0], b[2].lat_deg[0], strict=True))
+    b_track = tuple((float(la), float(lo)) for e in base_parts
+                    for lo, la in zip(e.lon_deg[0], e.lat_deg[0], strict=True))
     return RoutePlan(
         plan_id=uuid.uuid4().hex[:12], method=method, seed_source=sources[0],
         objective=objective, ship_name=getattr(spec, "name", ""), cycle_id=env.cycle_id,
@@ -302,5 +348,5 @@ def _assemble(ports, problems, results, baselines, sources, env, spec, method, o
         evaluations=evals,
         vessel_max_wave_m=float(problems[0].limits.max_hs_m or float("nan")),
         vessel_max_wind_m_s=float(problems[0].limits.max_wind_m_s or float("nan")),
-        baseline_track=b_track, leg_rtas_s=tuple(leg_rtas),
+        baseline_track=b_track, leg_rtas_s=tuple(leg_rtas), optimised_spans=tuple(spans),
     )

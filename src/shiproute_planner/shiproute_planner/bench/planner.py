@@ -100,7 +100,8 @@ def run(budget_s: float, warm_budget_s: float, ref_factor: float, seed: int) -> 
         "gap_to_reference_pct": round(100.0 * (cold.total_fuel_t - reference) / reference, 3),
         "route_evals_per_s": round(evals_per_s(env, land, problem), 1),
         "ga_evals_per_s": round(cold.evaluations / max(cold.compute_time_s, 1e-9), 1),
-        "land_crossings": len(land_crossings(lon, lat)),
+        "land_crossings": sum(len(land_crossings(lo, la, port_clearance_m=0.0))
+                              for lo, la in cold.optimised_tracks()),
         "eta_minus_rta_h": round((cold.eta_s - cold.rta_s) / 3600.0, 3),
         "generations": cold.generations,
         "evaluations": cold.evaluations,
