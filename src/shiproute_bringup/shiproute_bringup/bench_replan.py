@@ -1,0 +1,126 @@
+"""Benchmark `shiproute bench replan`: new ForecastCycle -> new RoutePlan latency across processes.
+
+The weather and planner nodes run as separate processes; this process plays the ship and the
+integrator. After the first plan, five new forecast cycles (the March storm's second cycle,
+each written with its own cycle id) are dropped into the watched directory one at a time; the
+latency is measured from the ForecastCycle announcement arriving here to the RoutePlan on that
+cycle arriving here.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import statistics
+import tempfile
+import time
+from pathlib import Path
+
+import psutil
+
+from shiproute_bringup.rosproc import RosProcess, console_script, random_domain_id
+
+DEPART_S = 1772560800.0  # 2026-03-03T18:00:00Z
+RTA = "2026-03-16T18:00:00Z"
+
+
+def _cycle_files(work: Path, n: int) -> list[Path]:
+    from shiproute_weather.scenarios import scenario_dataset
+
+    ds = scenario_dataset("storm_march_cycle2")
+    out = []
+    for k in range(n):
+        copy = ds.copy()
+        copy.attrs["cycle_id"] = f"bench-cycle-{k + 1}"
+        path = work / f"cycle_{k + 1}.nc"
+        copy.to_netcdf(path)
+        out.append(path)
+    return out
+
+
+def run(budget_s: float, repeats: int) -> dict:
+    """Start the nodes, measure `repeats` re-plans, return the figures."""
+    import rclpy
+    from rclpy.context import Context
+    from rclpy.executors import SingleThreadedExecutor
+    from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+    from shiproute_weather.scenarios import scenario_path
+
+    from shiproute_msgs.msg import ForecastCycle, RoutePlan, ShipState
+
+    dom = random_domain_id()
+    work = Path(tempfile.mkdtemp(prefix="shiproute-bench-replan-"))
+    watch = work / "watch"
+    watch.mkdir()
+    (watch / "storm_march.nc").symlink_to(scenario_path("storm_march"))
+    files = _cycle_files(work, repeats)
+    weather = RosProcess([console_script("shiproute_weather_node"), "--ros-args",
+                          "-p", f"watch_dir:={watch}", "-p", "watch_period_s:=0.1",
+                          "-p", "settle_s:=0.1"], domain_id=dom, name="weather")
+    planner = RosProcess([console_script("shiproute_planner_node"), "--ros-args",
+                          "-p", f"rta:={RTA}", "-p", f"budget_s:={budget_s}",
+                          "-p", f"seed_pool_dir:={work / 'pool'}"], domain_id=dom,
+                         name="planner")
+    ctx = Context()
+    rclpy.init(context=ctx, domain_id=dom)
+    node = rclpy.create_node("bench_replan", context=ctx)
+    ex = SingleThreadedExecutor(context=ctx)
+    ex.add_node(node)
+    latched = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
+                         durability=DurabilityPolicy.TRANSIENT_LOCAL)
+    cycles: dict[str, float] = {}
+    plans: dict[str, float] = {}
+    node.create_subscription(ForecastCycle, "/shiproute/forecast/cycle",
+                             lambda m: cycles.setdefault(m.cycle_id, time.monotonic()), latched)
+    node.create_subscription(RoutePlan, "/shiproute/plan/route",
+                             lambda m: plans.setdefault(m.cycle_id, time.monotonic()), latched)
+    pub = node.create_publisher(ShipState, "/shiproute/ship_state", 10)
+
+    def spin_until(pred, timeout_s: float, what: str) -> None:
+        deadline = time.monotonic() + timeout_s
+        next_state = 0.0
+        while not pred():
+            if time.monotonic() > deadline:
+                raise TimeoutError(f"{what} not within {timeout_s} s")
+            if time.monotonic() >= next_state:
+                msg = ShipState()
+                msg.header.stamp.sec = int(DEPART_S)
+                msg.latitude_deg, msg.longitude_deg = 35.08, 129.112
+                pub.publish(msg)
+                next_state = time.monotonic() + 0.5
+            ex.spin_once(timeout_sec=0.02)
+
+    latencies = []
+    try:
+        spin_until(lambda: plans, 120, "first plan")
+        for k, path in enumerate(files):
+            cid = f"bench-cycle-{k + 1}"
+            (watch / path.name).symlink_to(path)
+            spin_until(lambda c=cid: c in plans, 60 + 5 * budget_s, f"plan on {cid}")
+            latencies.append(plans[cid] - cycles[cid])
+        rss = psutil.Process(planner.proc.pid).memory_info().rss / 2**20
+    finally:
+        ex.shutdown()
+        node.destroy_node()
+        ctx.try_shutdown()
+        planner.stop()
+        weather.stop()
+    return {"replan_latency_s": round(statistics.median(latencies), 3),
+            "replan_latencies_s": [round(x, 3) for x in latencies],
+            "planner_budget_s": budget_s, "planner_rss_mb": round(rss, 1)}
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of `shiproute bench replan`."""
+    p = argparse.ArgumentParser(prog="shiproute bench replan", description=__doc__.splitlines()[0])
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--budget", type=float, default=0.5, help="planner budget per plan [s]")
+    p.add_argument("--repeats", type=int, default=5)
+    args = p.parse_args(argv)
+    result = run(args.budget, args.repeats)
+    if args.json:
+        print(json.dumps(result))
+    else:
+        for key, value in result.items():
+            print(f"{key:>20}: {value}")
+    return 0
