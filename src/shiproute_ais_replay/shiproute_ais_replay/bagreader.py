@@ -19,7 +19,7 @@ from .mcapscan import ChannelInfo, McapScanner
 from .typestore import build_typestore, register_schema
 
 
-@dataclass(frozen=True)
+@dataclass(slots=True)
 class BagMessage:
     """One message as stored: topic, type name, log time [POSIX ns] and CDR bytes."""
 

@@ -36,7 +36,7 @@ class ReplayConfig:
     max_gap_wall_s: float = 5.0
 
 
-@dataclass(frozen=True)
+@dataclass(slots=True)
 class ReplayEvent:
     """One thing to publish: a bag ShipState (``data``), a converted one (``record``) or a
     passed-through message (``data``) on output ``topic``."""
@@ -152,14 +152,18 @@ class ReplayEngine:
 
     def _wait_due(self, bag_ns: int) -> bool:
         """Block until ``bag_ns`` is due; False when a seek or stop interrupts."""
+        sched = self.scheduler
+        if (self._seek_ns is None and not self._stop and not sched.paused
+                and sched.wait_s(bag_ns, time.monotonic()) <= 0.0):
+            return True  # fast path without the lock: due now (always when unthrottled)
         with self._cond:
             while True:
                 if self._stop or self._seek_ns is not None:
                     return False
-                if self.scheduler.paused:
+                if sched.paused:
                     self._cond.wait(0.5)
                     continue
-                wait = self.scheduler.wait_s(bag_ns, time.monotonic())
+                wait = sched.wait_s(bag_ns, time.monotonic())
                 if wait <= 0.0:
                     return True
                 self._cond.wait(min(wait, 0.5))
