@@ -131,6 +131,7 @@ if ! stamp_ok req "$H_REQ"; then
   run_logged "${PIP[@]}" install "${req_args[@]}"
   run_logged "$VENV/bin/python" "$WS/tools/fix_cmake_paths.py" "$VENV"
   stamp_set req "$H_REQ"
+  say "  requirements done ($((SECONDS - T0)) s so far)"
 fi
 
 # ---- 3./4. shiproute_msgs into the venv ---------------------------------------------------
@@ -159,6 +160,7 @@ if ! stamp_ok msgs "$H_MSGS" || ! msgs_importable; then
   run_logged cmake --install "$MB"
   msgs_importable || { tail -n 20 "$LOG" >&2; die "shiproute_msgs built but does not import"; }
   stamp_set msgs "$H_MSGS"
+  say "  shiproute_msgs done ($((SECONDS - T0)) s so far)"
 fi
 
 # ---- 5. Python packages, editable ------------------------------------------------------
