@@ -19,6 +19,7 @@ import numpy as np
 
 from . import fast_kernel as fk
 from .errors import InputRangeError, ShipModelError
+from .fast_inverse import rpm_kernel
 from .hull import ShipConstants
 from .performance import LegPerformance
 from .physics import PhysicsModel
@@ -26,7 +27,14 @@ from .seakeeping import natural_roll_period_s, relative_motion_rao2
 from .seastate import SeaState
 from .spec import ShipSpec
 from .spectra import D_OMEGA, ittc_unit, jonswap_unit
-from .validate import MAX_CURRENT_M_S, MAX_HS_M, MAX_WIND_M_S, PERIOD_RANGE_S
+from .validate import (
+    MAX_CURRENT_M_S,
+    MAX_HS_M,
+    MAX_WIND_M_S,
+    PERIOD_RANGE_S,
+    check_range,
+    check_sea,
+)
 from .waves import added_resistance_unit
 
 _PERIOD_GRID_S = np.linspace(0.5, 30.0, 119)
@@ -163,8 +171,25 @@ class FastModel:
     def rpm_for_speed(
         self, stw_m_s: np.ndarray, heading_deg: np.ndarray, sea: SeaState
     ) -> np.ndarray:
-        """Engine RPM for a speed through water (direct inverse; no iteration needed)."""
-        return self.physics.rpm_for_speed(stw_m_s, heading_deg, sea)
+        """Engine RPM for a speed through water (compiled direct inverse, no iteration on V)."""
+        fields = (
+            stw_m_s, heading_deg, sea.wind_u_m_s, sea.wind_v_m_s, sea.wind_wave_hs_m,
+            sea.wind_wave_from_deg, sea.wind_wave_period_s, sea.swell_hs_m, sea.swell_from_deg,
+            sea.swell_period_s,
+        )
+        arrays = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in fields))
+        check_range("stw_m_s", arrays[0], 0.05, 30.0)
+        check_range("heading_deg", arrays[1], -720.0, 720.0)
+        check_sea(sea)
+        flat = [np.ascontiguousarray(a).reshape(-1) for a in arrays]
+        out = np.empty(flat[0].size)
+        r_calm, wake, u_ws, u_sw, _, _, caa, _, _ = self._tables
+        bad = rpm_kernel(*flat, self._par, r_calm, wake, u_ws, u_sw, caa, out)
+        if bad >= 0:
+            raise InputRangeError(
+                "stw_m_s", f"at flat index {bad} the following wind pushes the ship faster"
+            )
+        return out.reshape(arrays[0].shape)
 
 
 _CACHE: dict[ShipSpec, FastModel] = {}

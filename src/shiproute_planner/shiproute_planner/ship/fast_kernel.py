@@ -86,9 +86,9 @@ def _add_m0(tab, hs2, iv, fv, it, ft, ir, fr, m0):
 
 
 @njit(cache=True)
-def _residual(v, inv_nd, k_thr, par, r_calm, wake, u_ws, u_sw, a_ws, a_sw, it_ws, ft_ws, it_sw,
-              ft_sw, w_fwd, w_side, caa):
-    """Thrust (1 - t) - total resistance (N) and its slope d/dV at ship speed v."""
+def resistance(v, par, r_calm, wake, u_ws, u_sw, a_ws, a_sw, it_ws, ft_ws, it_sw, ft_sw, w_fwd,
+               w_side, caa):
+    """Total resistance (N), its slope d/dV, wake fraction and its slope at ship speed v."""
     dv = par[P_DV]
     ic, fc = _idx(0.0, dv, int(par[P_NV]), v)
     r = r_calm[ic] * (1.0 - fc) + r_calm[ic + 1] * fc
@@ -123,6 +123,15 @@ def _residual(v, inv_nd, k_thr, par, r_calm, wake, u_ws, u_sw, a_ws, a_sw, it_ws
         dcos_dv = w_side * w_side / (rel2 * rel)
         r += q * c * rel2
         dr += q * (dc_dcos * dcos_dv * rel2 - 2.0 * c * ax)
+    return r, dr, w, dw
+
+
+@njit(cache=True)
+def _residual(v, inv_nd, k_thr, par, r_calm, wake, u_ws, u_sw, a_ws, a_sw, it_ws, ft_ws, it_sw,
+              ft_sw, w_fwd, w_side, caa):
+    """Thrust (1 - t) - total resistance (N) and its slope d/dV at ship speed v."""
+    r, dr, w, dw = resistance(v, par, r_calm, wake, u_ws, u_sw, a_ws, a_sw, it_ws, ft_ws, it_sw,
+                              ft_sw, w_fwd, w_side, caa)
     j = v * (1.0 - w) * inv_nd
     dj = ((1.0 - w) - v * dw) * inv_nd
     kt = par[P_KT0] + j * (par[P_KT1] + j * (par[P_KT2] + j * par[P_KT3]))
