@@ -89,3 +89,30 @@ def test_atlantic_plan_has_no_land_crossings(land_mask):
     lon, lat, _ = plan.track()
     assert plan.feasible
     assert land_crossings(lon, lat) == []
+
+
+def test_multi_leg_voyage_has_its_own_time_windows(land_mask):
+    plan = plan_voyage("New York", "Lisbon", JUNE, timedelta(days=16), "container_4600teu",
+                       None, via=["Halifax"], budget_s=120.0, max_generations=1,
+                       land=land_mask)
+    assert plan.ports == ("New York", "Halifax", "Lisboa")
+    assert len(plan.leg_rtas_s) == 2 and plan.leg_rtas_s[0] < plan.leg_rtas_s[1] == plan.rta_s
+    names = [w.port for w in plan.waypoints if w.port]
+    assert names[0] == "New York" and "Halifax" in names and names[-1] == "Lisboa"
+    assert len(plan.optimised_spans) == 2
+
+
+def test_replan_from_position_with_previous_plan_progress_and_cancel(land_mask):
+    first = _plan("New York", "Lisbon", 8, land=land_mask)
+    lon, lat, t = first.track()
+    k = len(t) // 3
+    calls = []
+    again = plan_voyage("New York", "Lisbon", JUNE, timedelta(days=8), "container_4600teu",
+                        None, previous_plan=first, position=(lat[k], lon[k], t[k]),
+                        budget_s=120.0, max_generations=50, land=land_mask,
+                        progress=calls.append, cancel=lambda: len(calls) >= 2)
+    assert again.departure_s == t[k]
+    assert again.waypoints[0].lat_deg == pytest.approx(lat[k])
+    assert again.generations <= 2 and calls  # cancelled after the second report
+    assert again.seed_source in ("previous_plan", "great_circle", "sea_lane", "searoute",
+                                 "via_point")
