@@ -72,3 +72,23 @@ def test_shapes_threads_and_errors():
     assert np.array_equal(r2.stw_m_s[:100], ref.stw_m_s)
     with pytest.raises(InputRangeError):
         fm.evaluate(np.array([77.0, np.inf]), 0.0, SeaState.calm())
+
+
+def test_split_evaluation_works_in_a_forked_child():
+    import multiprocessing as mp
+
+    fm = fast_model(load_ship("container_4600teu"))
+    rpm = np.full(30000, 77.0)  # large enough to use the thread pool
+    expected = float(fm.evaluate(rpm, 0.0, SeaState.calm()).stw_m_s.mean())
+    ctx = mp.get_context("fork")
+    queue = ctx.Queue()
+
+    def child() -> None:
+        queue.put(float(fm.evaluate(rpm, 0.0, SeaState.calm()).stw_m_s.mean()))
+
+    proc = ctx.Process(target=child)
+    proc.start()
+    try:
+        assert queue.get(timeout=120) == pytest.approx(expected)
+    finally:
+        proc.join(timeout=30)

@@ -207,6 +207,16 @@ def _pool() -> ThreadPoolExecutor:
         return _POOL
 
 
+def _forget_pool_in_child() -> None:
+    """A forked child has no worker threads: drop the inherited pool (and lock) object."""
+    global _POOL, _LOCK
+    _POOL = None
+    _LOCK = threading.Lock()
+
+
+os.register_at_fork(after_in_child=_forget_pool_in_child)
+
+
 def fast_model(ship: ShipSpec) -> FastModel:
     """The fast model of ``ship``, built once per distinct ship (all fields, incl. condition)."""
     with _LOCK:
