@@ -26,7 +26,7 @@ LON_RANGE_DEG = (115.0, 245.0)
 SPACING_DEG = 0.5
 STEP_H = 3.0
 LENGTH_H = 384.0
-FORMAT_VERSION = "2"
+FORMAT_VERSION = "3"
 
 # Storm track, hours after 2026-03-03T12Z: (h, lat, lon, dp hPa, Rmax km, Holland B).
 # Deepening to ~968 hPa: a strong but ordinary winter North Pacific storm.

@@ -37,7 +37,8 @@ def _blocks(path: str, cfg: CycleConfig) -> Iterator[xr.Dataset]:
 
     netCDF4.set_chunk_cache(NETCDF_CHUNK_CACHE_BYTES, 61, 0.75)
     try:
-        raw = xr.open_dataset(path, decode_timedelta=True, mask_and_scale=False)
+        raw = xr.open_dataset(path, engine="netcdf4", decode_timedelta=True,
+                              mask_and_scale=False)
     except Exception as exc:
         raise ForecastFileError(path, f"cannot be read as NetCDF ({exc})") from exc
     with raw:

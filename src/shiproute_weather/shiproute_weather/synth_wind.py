@@ -31,10 +31,12 @@ class Season:
     trade_peak_m_s: float
     trade_lat_deg: float
     wave_amplitude_m_s: float
+    subpolar_easterly_m_s: float
 
 
-MARCH = Season(10.0, 42.0, 9.0, 7.0, 15.0, 5.0)
-JUNE = Season(5.5, 46.0, 8.0, 6.0, 17.0, 2.5)
+# March: westerlies ~10 m/s near 40 N, NE trades ~7-8 m/s, active storm track; June: weaker.
+MARCH = Season(10.0, 42.0, 10.0, 8.5, 15.0, 6.5, 6.5)
+JUNE = Season(6.5, 45.0, 10.0, 7.5, 20.0, 3.5, 3.0)
 
 
 @dataclass(frozen=True)
@@ -59,11 +61,12 @@ def background_wind(season: Season, lat_deg: np.ndarray, lon_deg: np.ndarray,
     s = season
     u = (s.westerly_peak_m_s * np.exp(-(((lat_deg - s.westerly_lat_deg) / s.westerly_width_deg)
                                         ** 2))
-         - s.trade_peak_m_s * np.exp(-(((lat_deg - s.trade_lat_deg) / 7.0) ** 2)))
+         - s.trade_peak_m_s * np.exp(-(((lat_deg - s.trade_lat_deg) / 7.0) ** 2))
+         - s.subpolar_easterly_m_s * np.exp(-(((lat_deg - 60.0) / 5.0) ** 2)))
     v = -0.4 * s.trade_peak_m_s * np.exp(-(((lat_deg - s.trade_lat_deg) / 7.0) ** 2))
     x_m = np.deg2rad(lon_deg) * EARTH_RADIUS_M * np.cos(np.deg2rad(45.0))
     y_m = np.deg2rad(lat_deg) * EARTH_RADIUS_M
-    envelope = np.exp(-(((lat_deg - s.westerly_lat_deg) / 14.0) ** 2))
+    envelope = np.exp(-(((lat_deg - s.westerly_lat_deg) / 18.0) ** 2))
     t_s = hours * 3600.0
     amp = s.wave_amplitude_m_s / np.sqrt(phases.shape[0] / 2.0)
     for k, l_, ph, c in phases:
