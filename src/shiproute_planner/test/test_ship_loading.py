@@ -79,3 +79,12 @@ def test_load_from_path_and_content_hash(tmp_path):
     a, b = load_ship(p), load_ship("container_4600teu")
     assert a.content_hash == b.content_hash
     assert load_ship(p, "ballast").content_hash != a.content_hash
+
+
+def test_ship_library_does_not_import_rclpy():
+    import subprocess
+    import sys
+
+    code = "import sys, shiproute_planner.ship; print('rclpy' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"
