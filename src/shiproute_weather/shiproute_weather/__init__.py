@@ -1,0 +1,24 @@
+"""shiproute_weather: forecast loading, canonical dataset, sampling, scenarios (ROS-free).
+
+Public entry points (imported lazily so `import shiproute_weather` stays light):
+`open_forecast`, `ForecastSampler`, `scenario_dataset`, `scenario_path`, `scenario_names`.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+__all__ = ["ForecastSampler", "open_forecast", "scenario_dataset", "scenario_names",
+           "scenario_path"]
+
+_WHERE = {"ForecastSampler": "sampling", "open_forecast": "loaders",
+          "scenario_dataset": "scenarios", "scenario_names": "scenarios",
+          "scenario_path": "scenarios"}
+
+
+def __getattr__(name: str) -> Any:
+    if name in _WHERE:
+        import importlib
+
+        return getattr(importlib.import_module(f".{_WHERE[name]}", __name__), name)
+    raise AttributeError(f"module 'shiproute_weather' has no attribute {name!r}")
