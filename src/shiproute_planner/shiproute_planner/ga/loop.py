@@ -20,14 +20,14 @@ from .ranking import deb_order
 class GAConfig:
     """Seed GA settings."""
 
-    pop_size: int = 60
-    offspring: int = 60
+    pop_size: int = 80
+    offspring: int = 80
     tournament_k: int = 2
-    p_crossover: float = 0.9
+    p_crossover: float = 0.6
     p_one_point: float = 0.3  # share of crossovers that are one-point by stage
     p_mutation: float = 0.9
-    sigma_heading_deg: float = 4.0
-    sigma_rpm: float = 1.5
+    sigma_heading_deg: float = 1.0  # relative headings: a change turns the whole tail
+    sigma_rpm: float = 0.7
     jitter_heading_deg: float = 2.0
     jitter_rpm: float = 1.0
     init_spread_heading_deg: float = 6.0

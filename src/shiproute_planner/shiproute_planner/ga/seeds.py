@@ -59,7 +59,7 @@ def _densify(seeds: list[TrackSeed], spacing_m: float
 
 
 def track_to_genes(problem: RouteProblem, env: Environment, seeds: list[TrackSeed],
-                   land: LandMask | None = None, fan_deg: float = 60.0, fan_n: int = 17,
+                   land: LandMask | None = None, fan_deg: float = 60.0, fan_n: int = 13,
                    spacing_m: float = 10_000.0) -> np.ndarray:
     """Genes (len(seeds), 2n + 1) that follow each seed's polyline in the forecast.
 

@@ -22,6 +22,12 @@ def constant_rpm_for_rta(
 ) -> tuple[float, RouteEvaluation]:
     """Slowest constant RPM whose ETA <= RTA on the track (rpm_max if none does)."""
     lo, hi = problem.limits.rpm_min, problem.limits.rpm_max
+    full_lon, full_lat = np.asarray(lon_deg, dtype=float), np.asarray(lat_deg, dtype=float)
+    if full_lon.size > problem.n_stages + 2:
+        # search on a track with about one point per stage (same length to < 0.1 %)
+        from ..ga.seeds import resample_track
+
+        lon_deg, lat_deg = resample_track(full_lon, full_lat, problem.n_stages + 2)
     lon = np.broadcast_to(np.asarray(lon_deg, dtype=float), (n_try, np.size(lon_deg)))
     lat = np.broadcast_to(np.asarray(lat_deg, dtype=float), (n_try, np.size(lat_deg)))
     best = hi
@@ -42,8 +48,12 @@ def constant_rpm_for_rta(
             f = (e0 - problem.rta_s) / max(e0 - e1, 1e-9)
             best = float(rpms[k - 1] + np.clip(f, 0.0, 1.0) * (rpms[k] - rpms[k - 1]))
         lo, hi = float(rpms[k - 1]), best
-    final = sail_tracks(problem, env, land, lon[:1], lat[:1], np.array([[best]]))
-    if final.eta_s[0] > problem.rta_s and best < problem.limits.rpm_max:
-        best = float(hi if hi > best else min(best + 0.05, problem.limits.rpm_max))
-        final = sail_tracks(problem, env, land, lon[:1], lat[:1], np.array([[best]]))
+    lon, lat = full_lon[None, :], full_lat[None, :]
+    final = sail_tracks(problem, env, land, lon, lat, np.array([[best]]))
+    for _ in range(3):  # the full track may be slightly longer: nudge until on time
+        if final.eta_s[0] <= problem.rta_s or best >= problem.limits.rpm_max:
+            break
+        late = (final.eta_s[0] - problem.rta_s) / max(final.eta_s[0] - problem.depart_s, 1.0)
+        best = float(min(best * (1.0 + 1.2 * late) + 0.01, problem.limits.rpm_max))
+        final = sail_tracks(problem, env, land, lon, lat, np.array([[best]]))
     return best, final
