@@ -14,7 +14,7 @@ from ..geo.geodesy import direct, inverse
 from ..geo.landmask import LandMask
 from ..route.constraints import FLAG_HEADING_CHANGE, FLAG_LAND, leg_flags_and_violation
 from ..route.environment import Environment
-from ..route.evaluation import _clear_ports  # private on purpose: identical land rule
+from ..route.evaluation import clear_ports
 from ..route.legs import perf_arrays, sail_to
 from ..route.problem import RouteProblem
 from .legs import LegBatch
@@ -88,7 +88,7 @@ class PlannerLegSailor:
         lat = np.column_stack([np.ravel(lat0_deg), np.ravel(lat1_deg)]).astype(float)
         _, dist = inverse(lon[:, 0], lat[:, 0], lon[:, 1], lat[:, 1])
         # the evaluator's own port clearance, so search and final evaluation agree exactly
-        a_lon, a_lat, b_lon, b_lat = _clear_ports(self.problem, lon, lat, dist[:, None])
+        a_lon, a_lat, b_lon, b_lat = clear_ports(self.problem, lon, lat, dist[:, None])
         samples = self.land.segment_land_samples(a_lon, a_lat, b_lon, b_lat,
                                                  self.problem.land_spacing_deg)
         return (np.asarray(samples) > 0).reshape(shape)

@@ -26,6 +26,7 @@ from .isochrone import IsochroneConfig, isochrone_route
 from .latlon_grid import build_grid
 from .paths import limit_turns
 from .result import BaselineResult
+from .speed_refine import refine_schedule
 from .speed_schedule import optimise_schedule
 from .tc_astar import tc_astar_route
 
@@ -153,13 +154,20 @@ def retime_path(inp: BaselineInputs, first: BaselineResult, method: str, o: Grap
                                p.limits.rpm_min, p.limits.rpm_max))
     sched = optimise_schedule(inp.sailor(), lon, lat, p.depart_s, p.rta_s, levels,
                               o.schedule_bin_s)
-    final = sail_tracks(p, inp.env, inp.land, lon[None], lat[None], sched.rpm[None])
-    notes = ()
-    if _worse(final, ev):
-        final, notes = ev, ("the DP schedule was not better than the constant RPM; kept it",)
+    dp = sail_tracks(p, inp.env, inp.land, lon[None], lat[None], sched.rpm[None])
+    # refine from the better of the DP schedule and the constant RPM of stage one
+    const = sail_tracks(p, inp.env, inp.land, lon[None], lat[None], np.full((1, lon.size - 1),
+                                                                              rpm_c))
+    start, start_ev = (sched.rpm, dp) if not _worse(dp, const) else (
+        np.full(lon.size - 1, rpm_c), const)
+    _, final, n_ref = refine_schedule(p, inp.env, inp.land, lon, lat, start, p.stage_s)
+    notes: tuple[str, ...] = ()
+    if _worse(final, start_ev):
+        final, notes = start_ev, ("refinement did not improve the DP/constant schedule",)
     return BaselineResult(method, final, time.perf_counter() - t0, leg_rpm_varies(
-        final.legs["rpm"][0][final.legs["duration_s"][0] > 0]), first.route_evaluations + 1,
-        first.leg_evaluations + sched.leg_evaluations, notes=notes)
+        final.legs["rpm"][0][final.legs["duration_s"][0] > 0]),
+        first.route_evaluations + 3 + n_ref, first.leg_evaluations + sched.leg_evaluations,
+        notes=notes)
 
 
 def _worse(a, b) -> bool:
