@@ -130,12 +130,31 @@ def _variables(ds: xr.Dataset) -> list[xr.Dataset]:
     return out
 
 
+def _flatten_runs(p: xr.Dataset) -> xr.Dataset:
+    """(time, step) hypercubes (several model runs) -> one valid-time axis; where runs
+    overlap, the latest run wins."""
+    name = next(iter(p.data_vars))
+    da = p[name].transpose("time", "step", ...)
+    vt = p["valid_time"].transpose("time", "step").values.reshape(-1)
+    ref = np.repeat(p["time"].values, p.sizes["step"])
+    order = np.lexsort((ref, vt))
+    vt_s = vt[order]
+    keep = order[np.r_[vt_s[1:] != vt_s[:-1], True]]
+    values = da.values.reshape(-1, *da.shape[2:])[keep]
+    rest = da.dims[2:]
+    out = xr.DataArray(values, dims=("valid_time", *rest), attrs=da.attrs,
+                       coords={"valid_time": vt[keep], **{d: p[d] for d in rest if d in p.coords}})
+    return out.to_dataset(name=name).assign_coords(reference_time=ref.min())
+
+
 def _merge(parts: list[xr.Dataset], path: Path) -> xr.Dataset:
     """Merge per-variable datasets; forecast steps become valid times."""
     fixed = []
     for p in parts:
         p = p.drop_vars([c for c in ("surface", "meanSea", "heightAboveGround",
                                      "orderedSequenceData") if c in p.coords], errors="ignore")
+        if "step" in p.dims and "time" in p.dims:
+            p = _flatten_runs(p)
         if "step" in p.dims:
             p = p.swap_dims({"step": "valid_time"}).drop_vars(["step"], errors="ignore")
         elif "time" in p.dims and "valid_time" in p.coords and p["valid_time"].dims == ("time",):
