@@ -6,9 +6,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from shiproute_weather.loaders import open_forecast
 
 from shiproute_weather import canonical as cv
-from shiproute_weather.loaders import open_forecast
 
 eccodes = pytest.importorskip("eccodes")
 
