@@ -9,7 +9,7 @@ from __future__ import annotations
 import json
 import math
 import xml.etree.ElementTree as ET
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -101,16 +101,28 @@ def read_rtz(path: str | Path) -> VoyagePlan:
 
 
 def read_plan_json(path: str | Path) -> VoyagePlan:
-    """Read a planner plan JSON: ``waypoints`` with ``lat_deg``/``lon_deg`` (or
+    """Read a plan JSON: the planner's summary (``legs``; its sibling .rtz gives the route and
+    schedule), or ``waypoints`` with ``lat_deg``/``lon_deg`` (or
     ``latitude_deg``/``longitude_deg``), ``time_s`` (or ISO ``time``), ``shaft_rpm``;
     top level ``departure_s`` and ``ship_name`` when present."""
     path = Path(path)
     try:
         doc = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError) as exc:
+        raise SimulationError(f"cannot read plan JSON {path}: {exc}") from exc
+    if "waypoints" not in doc and "legs" in doc:
+        # planner summary (io.summary): legs hold start points only; the arrival point is in
+        # the RTZ written next to it by write_plan_files
+        sibling = path.with_suffix(".rtz")
+        if not sibling.is_file():
+            raise SimulationError(f"plan summary {path} has no arrival point; pass {sibling}")
+        plan = read_rtz(sibling)
+        return replace(plan, ship=str(doc.get("ship", "")))
+    try:
         wps = doc["waypoints"]
         lat = np.array([float(w.get("lat_deg", w.get("latitude_deg"))) for w in wps])
         lon = np.array([float(w.get("lon_deg", w.get("longitude_deg"))) for w in wps])
-    except (OSError, ValueError, KeyError, TypeError) as exc:
+    except (ValueError, KeyError, TypeError) as exc:
         raise SimulationError(f"cannot read plan JSON {path}: {exc}") from exc
     times = np.array([float(w["time_s"]) if "time_s" in w else _time_s(w.get("time"))
                       for w in wps])

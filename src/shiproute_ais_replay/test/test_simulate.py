@@ -109,3 +109,18 @@ def test_simulate_cli_writes_bag(tmp_path: Path, capsys):
     lat = np.array([s.latitude_deg for s in states[:-1]])
     assert np.abs(lat).max() < 20 / 111_195
     assert np.std([s.sog_kn for s in states[:-1]]) < 0.1
+
+
+def test_plan_summary_json_uses_sibling_rtz(tmp_path: Path):
+    from shiproute_ais_replay.errors import SimulationError
+    from shiproute_ais_replay.voyage_input import read_voyage
+
+    rtz = RTZ_TEMPLATE.replace("{eta}", "2026-03-05T06:00:00Z")
+    (tmp_path / "plan_x.json").write_text(json.dumps(
+        {"ship": "container_4600teu", "legs": [{"leg": 0, "lat_deg": 0.0, "lon_deg": 0.0}]}))
+    with pytest.raises(SimulationError, match="arrival point"):
+        read_voyage(tmp_path / "plan_x.json")
+    (tmp_path / "plan_x.rtz").write_text(rtz)
+    plan = read_voyage(tmp_path / "plan_x.json")
+    assert plan.ship == "container_4600teu"
+    assert list(plan.lat_deg) == [0.0, 0.0, 0.5] and plan.leg_rpm[0] == 60.0
