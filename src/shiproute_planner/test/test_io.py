@@ -54,3 +54,16 @@ def test_geojson_and_summary(plan, tmp_path):
     assert data["total_fuel_t"] == pytest.approx(sum(leg["leg_fuel_t"] for leg in data["legs"]))
     assert data["baseline"]["fuel_t"] == pytest.approx(plan.baseline_fuel_t)
     assert len(data["legs"]) == len(plan.waypoints) - 1
+
+
+def test_cli_writes_all_outputs(tmp_path, capsys):
+    from shiproute_planner.cli.plan import main
+
+    code = main(["--from", "New York", "--to", "Lisbon", "--depart", "2026-06-01T00:00Z",
+                 "--rta", "8d", "--budget", "1s", "--out", str(tmp_path), "--name", "ny"])
+    assert code in (0, 1)  # 1 = plan infeasible within the tiny budget, still written
+    out = capsys.readouterr().out
+    assert "fuel" in out and "baseline" in out and "ETA" in out
+    for ext in ("rtz", "geojson", "json", "png"):
+        assert (tmp_path / f"ny.{ext}").stat().st_size > 0
+    validate_rtz(tmp_path / "ny.rtz")

@@ -68,11 +68,10 @@ def _progress(p: Progress) -> None:
 
 def main(argv: list[str]) -> int:
     """Entry point of `shiproute plan`."""
-    ap = build_parser()
-    args = ap.parse_args(argv)
-    if args.list_methods:
+    if "--list-methods" in argv:
         print("\n".join(method_names()))
         return 0
+    args = build_parser().parse_args(argv)
     from ..io.rtz import validate_rtz, write_rtz
     from ..io.summary import write_geojson, write_json
 
