@@ -40,7 +40,7 @@ def time_to_ns(t: Time) -> int:
 
 def _f32(values: np.ndarray) -> array.array:
     a = array.array("f")
-    a.frombytes(np.ascontiguousarray(values, dtype=np.float32).tobytes())
+    a.frombytes(memoryview(np.ascontiguousarray(values, dtype=np.float32)).cast("B"))
     return a
 
 

@@ -11,7 +11,6 @@ import queue
 import sys
 import threading
 import time
-from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -30,8 +29,7 @@ from .convert import cycle_to_msg, slice_to_msg
 from .cycle_builder import MAX_SLICE_BYTES, MAX_SLICES, CycleConfig, build_cycle, corridor_box
 from .errors import WeatherError
 from .scenarios import scenario_path
-from .slices import SliceData
-from .stream import stream_cycle, stream_slices, streamable
+from .stream import load_slices, streamable
 from .watch import DirectoryWatcher
 
 CYCLE_TOPIC = "/shiproute/forecast/cycle"
@@ -160,9 +158,8 @@ class WeatherNode(Node):
             if not req.paths:
                 raise WeatherError("no paths given")
             if streamable(req.paths, self.cfg_base):
-                # bounded memory: validate the whole file first, then read it again to publish
-                info, notes = stream_cycle(req.paths[0], self.cfg_base), []
-                slices: Iterable[SliceData] = stream_slices(req.paths[0], self.cfg_base, info)
+                info, slices = load_slices(req.paths[0], self.cfg_base)  # block-wise memory
+                notes: list[str] = []
             else:
                 info, slices, notes = build_cycle(req.paths, self.cfg_base)
             cycle = cycle_to_msg(info, self.get_clock().now().to_msg())
@@ -172,15 +169,14 @@ class WeatherNode(Node):
         stamp = self.get_clock().now().to_msg()
         kept: list[ForecastSlice] = []
         nbytes = 0
-        try:
-            for s in slices:
-                m = slice_to_msg(s, stamp)
-                nbytes = s.nbytes
-                self.slice_pub.publish(m)
-                if self.publish_period_s > 0:
-                    kept.append(m)
-        except Exception as exc:  # file changed between the two passes
-            return self._failed(req, exc)
+        for k in range(len(slices)):
+            s, slices[k] = slices[k], None  # type: ignore[call-overload]  # free as we go
+            m = slice_to_msg(s, stamp)
+            nbytes = s.nbytes
+            del s
+            self.slice_pub.publish(m)
+            if self.publish_period_s > 0:
+                kept.append(m)
         dt = time.monotonic() - t0
         with self.lock:
             self.current = (cycle, kept) if self.publish_period_s > 0 else None

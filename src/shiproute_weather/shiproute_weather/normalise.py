@@ -76,8 +76,8 @@ def _convert(da: xr.DataArray, m: Mapping, where: str) -> np.ndarray:
     if factor != 1.0 or vals.dtype != np.float32:
         vals = vals.astype(np.float64) * factor
     if spec.units == "degree":
-        finite = vals[np.isfinite(vals)]
-        if m.going_to or (finite.size and (finite.min() < 0.0 or finite.max() >= 360.0)):
+        lo, hi = np.fmin.reduce(vals, axis=None), np.fmax.reduce(vals, axis=None)  # skip NaN
+        if m.going_to or lo < 0.0 or hi >= 360.0:
             vals = (vals.astype(np.float64) + (180.0 if m.going_to else 0.0)) % 360.0
     return vals
 

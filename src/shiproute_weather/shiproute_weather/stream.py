@@ -1,8 +1,8 @@
-"""Two-pass, bounded-memory path from one NetCDF file to slices.
+"""Block-wise path from one NetCDF file to validated slices with bounded peak memory.
 
-Pass 1 loads, normalises and validates the file in blocks of valid times (nothing is kept);
-pass 2 repeats that and yields the slices. Peak memory is one block instead of the whole
-cycle, so a publisher holds little more than its middleware history. The file is read twice.
+The file is read, normalised and validated in blocks of valid times, so no whole-variable
+arrays or decoder copies exist; the slices hold per-block arrays that are freed as a
+publisher drops them, leaving little more than the middleware history.
 """
 
 from __future__ import annotations
@@ -23,7 +23,7 @@ from .normalise import to_canonical
 from .slices import CycleInfo, SliceData, cycle_info, dataset_to_slices, snap_grid
 from .validate import validate
 
-BLOCK_TIMES = 16
+BLOCK_TIMES = 24
 
 
 def streamable(paths: list[str], cfg: CycleConfig) -> bool:
@@ -71,33 +71,28 @@ def _blocks(path: str, cfg: CycleConfig) -> Iterator[xr.Dataset]:
             yield snap_grid(block)
 
 
-def stream_cycle(path: str, cfg: CycleConfig) -> CycleInfo:
-    """Pass 1: validate the whole file block by block; returns the cycle announcement."""
-    times: list[np.ndarray] = []
+def load_slices(path: str, cfg: CycleConfig) -> tuple[CycleInfo, list[SliceData]]:
+    """Read, normalise and validate the file block by block into slices (one pass).
+
+    Nothing is published before the whole file has been validated. Each slice's arrays are
+    views into its block, so a caller that drops slices as it publishes them frees the
+    memory block by block (the middleware history then takes its place).
+    """
+    slices: list[SliceData] = []
     first: xr.Dataset | None = None
     for block in _blocks(path, cfg):
         if first is None:
             first = block.isel(time=[0])
-        times.append(block["time"].values)
+            if first.nbytes > cfg.max_slice_bytes:
+                raise GridError(path, f"one slice is {first.nbytes} B, above the "
+                                      f"{cfg.max_slice_bytes} B bound; set a region or stride")
+        slices.extend(dataset_to_slices(block))
     if first is None:
         raise WeatherError(f"{path}: no valid time")
-    if first.nbytes > cfg.max_slice_bytes:
-        raise GridError(path, f"one slice is {first.nbytes} B, above the {cfg.max_slice_bytes} B "
-                              "bound; set a region or grid_stride")
-    t = np.concatenate(times).astype("datetime64[ns]").astype(np.int64)
-    one = cycle_info(first, [path])
-    step = float((t[1] - t[0]) / 1e9) if t.size > 1 else 0.0
-    return replace(one, first_valid_time_ns=int(t[0]), last_valid_time_ns=int(t[-1]),
-                   step_s=step, slice_count=int(t.size))
-
-
-def stream_slices(path: str, cfg: CycleConfig, info: CycleInfo) -> Iterator[SliceData]:
-    """Pass 2: the slices, block by block, numbered over the whole cycle of `info`."""
-    k = 0
-    for block in _blocks(path, cfg):
-        for s in dataset_to_slices(block):
-            yield replace(s, slice_index=k, slice_count=info.slice_count)
-            k += 1
-    if k != info.slice_count:
-        raise WeatherError(f"{path}: changed while publishing ({k} slices, expected "
-                           f"{info.slice_count})")
+    n = len(slices)
+    slices = [replace(sl, slice_index=k, slice_count=n) for k, sl in enumerate(slices)]
+    t = np.array([sl.valid_time_ns for sl in slices], dtype=np.int64)
+    step = float((t[1] - t[0]) / 1e9) if n > 1 else 0.0
+    info = replace(cycle_info(first, [path]), first_valid_time_ns=int(t[0]),
+                   last_valid_time_ns=int(t[-1]), step_s=step, slice_count=n)
+    return info, slices

@@ -19,12 +19,12 @@ CURRENT_SPEED_MAX_M_S = 10.0
 def _check_range(ds: xr.Dataset, name: str, where: str) -> None:
     spec = cv.VARIABLES[name]
     a = ds[name].values
-    finite = a[np.isfinite(a)]
-    if np.isinf(a).any():
+    lo = float(np.fmin.reduce(a, axis=None))  # fmin/fmax skip NaN without copying
+    hi = float(np.fmax.reduce(a, axis=None))
+    if np.isnan(lo):
+        return  # all missing
+    if np.isinf(lo) or np.isinf(hi):
         raise ValueRangeError(where, name, "holds infinite values", "finite values or NaN")
-    if finite.size == 0:
-        return
-    lo, hi = float(finite.min()), float(finite.max())
     if lo < spec.valid_min or hi > spec.valid_max:
         raise ValueRangeError(where, name, f"spans {lo:.6g}..{hi:.6g} {spec.units}",
                               f"{spec.long_name} within {spec.valid_min:g}..{spec.valid_max:g} "
@@ -33,8 +33,9 @@ def _check_range(ds: xr.Dataset, name: str, where: str) -> None:
 
 def _check_speed(ds: xr.Dataset, u: str, v: str, limit: float, where: str) -> None:
     if u in ds and v in ds:
-        speed = np.hypot(ds[u].values, ds[v].values)
-        top = float(np.nanmax(speed)) if np.isfinite(speed).any() else 0.0
+        a, b = ds[u].values, ds[v].values
+        top2 = float(np.fmax.reduce(a * a + b * b, axis=None))
+        top = float(np.sqrt(top2)) if np.isfinite(top2) else 0.0
         if top >= limit:
             raise ValueRangeError(where, f"{u}/{v}", f"reach a speed of {top:.6g} m s-1",
                                   f"speeds below {limit:g} m s-1")

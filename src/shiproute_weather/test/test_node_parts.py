@@ -13,7 +13,7 @@ from shiproute_weather.combine import Box
 from shiproute_weather.cycle_builder import CycleConfig, build_cycle, corridor_box
 from shiproute_weather.errors import WeatherError
 from shiproute_weather.slices import slices_to_dataset
-from shiproute_weather.stream import stream_cycle, stream_slices, streamable
+from shiproute_weather.stream import load_slices, streamable
 from shiproute_weather.watch import DirectoryWatcher
 from weather_fixtures import small_canonical, write_nc
 
@@ -50,10 +50,10 @@ def test_streaming_equals_full_load(tmp_path: Path) -> None:
     cfg = CycleConfig(box=Box(31.0, 38.0, 172.0, 190.0))
     assert streamable([p], cfg)
     info_full, slices_full, _ = build_cycle([p], cfg)
-    info = stream_cycle(p, cfg)
+    info, slices = load_slices(p, cfg)
     assert info == info_full
-    xr.testing.assert_identical(slices_to_dataset(list(stream_slices(p, cfg, info))),
-                                slices_to_dataset(slices_full))
+    assert [s.slice_index for s in slices] == list(range(21))
+    xr.testing.assert_identical(slices_to_dataset(slices), slices_to_dataset(slices_full))
 
 
 def test_bounds_thin_grid_and_cut_slices(tmp_path: Path) -> None:
@@ -70,4 +70,4 @@ def test_streaming_rejects_a_bad_file_before_yielding(tmp_path: Path) -> None:
     ds["sea_surface_wave_significant_height"][37, 2, 30] = np.float32(40.0)
     p = str(write_nc(ds, tmp_path / "late_error.nc"))
     with pytest.raises(WeatherError, match=r"late_error\.nc"):
-        stream_cycle(p, CycleConfig())
+        load_slices(p, CycleConfig())
