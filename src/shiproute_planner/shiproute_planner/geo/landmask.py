@@ -33,6 +33,10 @@ class LandMask:
         self.polygons = load_land_polygons(resolution)
         self.exact = ExactLand(self.polygons)
         self.raster = self._load_or_build(cache_dir or data_dir())
+        # GA offspring share most legs with their parents (same genes -> same nodes), so
+        # exact results per segment are memoised; cleared when it grows past `_cache_max`
+        self._seg_cache: dict[bytes, int] = {}
+        self._cache_max = 500_000
 
     def _load_or_build(self, cache_dir: Path) -> np.ndarray:
         name = f"landmask_v{RASTER_VERSION}_gshhg_{self.resolution}_{self.cell_deg:g}deg.npy"
@@ -69,8 +73,25 @@ class LandMask:
     ) -> np.ndarray:
         """Number of samples on land along each great-circle segment (0 = clear)."""
         shape = np.shape(lon0)
-        arrays = [np.ascontiguousarray(a, dtype=float).ravel() for a in (lon0, lat0, lon1, lat1)]
         spacing = float(spacing_deg or self.cell_deg)
+        ends = np.stack([np.asarray(a, dtype=float).ravel() for a in (lon0, lat0, lon1, lat1)],
+                        axis=1)
+        ends = np.ascontiguousarray(np.append(ends, np.full((ends.shape[0], 1), spacing), 1))
+        keys = ends.view(np.dtype((np.void, ends.dtype.itemsize * 5))).ravel().tolist()
+        cache = self._seg_cache
+        out = np.array([cache.get(k, -1) for k in keys], dtype=np.int64)
+        todo = np.flatnonzero(out < 0)
+        if todo.size:
+            fresh = self._scan(ends[todo, :4], spacing)
+            out[todo] = fresh
+            if len(cache) > self._cache_max:
+                cache.clear()
+            cache.update(zip([keys[i] for i in todo], fresh.tolist(), strict=True))
+        return out.reshape(shape)
+
+    def _scan(self, ends: np.ndarray, spacing: float) -> np.ndarray:
+        """Land samples of segments given as rows (lon0, lat0, lon1, lat1)."""
+        arrays = [np.ascontiguousarray(ends[:, i]) for i in range(4)]
         n_seg = arrays[0].size
         land = np.zeros(n_seg, dtype=np.int64)
         cap = max(1024, 64 * n_seg)
@@ -85,7 +106,7 @@ class LandMask:
         if n:
             hit = self.exact.contains(c_lon[:n], c_lat[:n])
             land += np.bincount(c_seg[:n][hit], minlength=n_seg)
-        return land.reshape(shape)
+        return land
 
 
 @functools.lru_cache(maxsize=2)
