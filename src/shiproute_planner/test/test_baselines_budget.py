@@ -5,10 +5,13 @@ Voyage: 145E 36N -> 185E 42N (1,888 NM, open water, no land on the great circle)
 2026-03-05T18Z so the storm crosses the route, RTA at 16.5 kn average, 12 h stages (9).
 Each algorithm: 5 runs (RNG seeds 0-4) of 2,000 route evaluations through the same evaluator.
 
-Margins, from these repeated runs (measured 2026-11-23): seed GA 216.5 +- 8.3 t; NSGA-II and
-SPEA2 255.7 +- 22.5 t (identical: with one objective their survival orders are the same and
-pymoo seeds them alike); PSO 230.6 +- 19.2 t (best single run 201 t, but erratic). Observed
-gaps: 15 % and 6.1 %. The assertions ask for a third of each: 5 % and 2 %.
+Margins, from these repeated runs (5 seeds each, measured 2026-11-23 with the seed GA
+defaults of commit ac01e3a): seed GA 222.0 +- 13.0 t; NSGA-II and SPEA2 239.2 +- 23.1 t
+(identical: with one objective their survival orders coincide and pymoo seeds them alike);
+PSO 230.6 +- 19.2 t (erratic: best single run 201 t). Observed gaps 7.2 % and 3.7 % (with
+the GA defaults before that commit: 15 % and 6.1 %). The assertions ask for about 40 % of the
+smaller observed gaps: 3 % over NSGA-II/SPEA2 and 1.5 % over PSO. Seeds are fixed, so the
+test is deterministic; the margins say how much either side may drift before it flips.
 """
 
 from __future__ import annotations
@@ -44,7 +47,7 @@ def test_seed_ga_beats_unseeded_metaheuristics_at_equal_budget(storm_sampler, la
     ga = rows["seed_ga"]
     assert all(ga.feasible)
     assert all(r.evaluations == EVALUATIONS for r in rows.values())
-    for name, margin in (("nsga2", 0.05), ("spea2", 0.05), ("pso", 0.02)):
+    for name, margin in (("nsga2", 0.03), ("spea2", 0.03), ("pso", 0.015)):
         other = rows[name]
         assert ga.mean_tfoc_t < (1.0 - margin) * other.mean_tfoc_t, (
             name, ga.tfoc_t, other.tfoc_t)

