@@ -48,7 +48,10 @@ def _params(args: argparse.Namespace, data: demo_data.DemoData, out: Path) -> di
              "parameters": {"origin": demo_data.ORIGIN, "destination": demo_data.DESTINATION,
                             "rta": demo_data.RTA, "ship": demo_data.SHIP,
                             "budget_s": float(args.budget), "output_dir": str(out / "plans"),
-                            "seed_pool_dir": str(out / "seed_pool")}},
+                            "seed_pool_dir": str(out / "seed_pool"),
+                            # The recorded voyage sailed its own route, not our plan: re-plan on
+                            # forecast cycles here, not on every departure from the plan.
+                            "replan_cross_track_nm": 1000.0, "replan_schedule_h": 72.0}},
         ],
     }
 
@@ -58,7 +61,12 @@ class _Watcher:
 
     def __init__(self) -> None:
         import rclpy
-        from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+        from rclpy.qos import (
+            DurabilityPolicy,
+            QoSProfile,
+            ReliabilityPolicy,
+            qos_profile_sensor_data,
+        )
         from rosgraph_msgs.msg import Clock
 
         from shiproute_msgs.msg import RoutePlan
@@ -73,7 +81,8 @@ class _Watcher:
                                       self.plans.append, latched)
         self.node.create_subscription(
             Clock, "/clock",
-            lambda m: setattr(self, "clock_s", m.clock.sec + m.clock.nanosec * 1e-9), 10)
+            lambda m: setattr(self, "clock_s", m.clock.sec + m.clock.nanosec * 1e-9),
+            qos_profile_sensor_data)
 
     def spin_for(self, seconds: float) -> None:
         import rclpy

@@ -54,7 +54,7 @@ def _voyage_bag(path: Path, log) -> Path:
     files = write_plan_files(plan, plan_dir, forecast=forecast, png=False)
     tmp = path.with_name(path.name + ".tmp")
     bag_main(["simulate", str(tmp), "--plan", str(files["json"]), "--forecast", FIRST_CYCLE,
-                   "--ship", SHIP, "--rate-hz", str(STATE_RATE_HZ)])
+                   "--ship", SHIP, "--rate-hz", str(STATE_RATE_HZ), "--model-step-s", "1800"])
     tmp.rename(path)
     return path
 
