@@ -6,8 +6,9 @@ generation. "Seeded" variants put the planner's seeds (sea lane, great circle at
 RPM, pool) into the first population exactly as the seed GA does; unseeded variants start
 from pymoo's own random sampling within the gene bounds, as the original algorithms would.
 Budgets are counted in route evaluations so every algorithm gets the same number.
-The two-objective NSGA-II minimises (ETA, fuel) without the RTA constraint and returns its
-Pareto set; the route chosen is the least-fuel member arriving by the RTA.
+The two-objective NSGA-II minimises (ETA, fuel) without the RTA constraint (ETAs beyond the
+RTA + 48 h count as violations, so the front stays in the window of interest) and returns
+its Pareto set; the route chosen is the least-fuel member arriving by the RTA.
 """
 
 from __future__ import annotations
@@ -32,6 +33,8 @@ GeneEvaluation = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]
 GeneEvaluator = Callable[[np.ndarray], GeneEvaluation]
 
 ALGORITHMS = ("nsga2", "spea2", "pso")
+# the two-objective front is kept to ETAs up to this long after the RTA (as 3DDP's window)
+PARETO_LATE_WINDOW_S = 48 * 3600.0
 
 
 @dataclass(frozen=True)
@@ -50,9 +53,10 @@ class _GeneProblem(Problem):
     """pymoo problem over gene arrays; constraints as aggregated violations (<= 0 feasible)."""
 
     def __init__(self, evaluate: GeneEvaluator, lower: np.ndarray, upper: np.ndarray,
-                 two_objective: bool) -> None:
+                 two_objective: bool, eta_limit_s: float = np.inf) -> None:
         self._evaluate_genes = evaluate
         self._two = two_objective
+        self._eta_limit_s = eta_limit_s
         super().__init__(n_var=lower.size, n_obj=2 if two_objective else 1, n_ieq_constr=1,
                          xl=lower, xu=upper)
 
@@ -61,7 +65,8 @@ class _GeneProblem(Problem):
         total = np.sum(viol, axis=1) if viol.ndim == 2 else np.asarray(viol)
         if self._two:
             out["F"] = np.column_stack([eta, fuel])
-            out["G"] = (total - rta_viol)[:, None]
+            beyond_h = np.maximum(0.0, eta - self._eta_limit_s) / 3600.0
+            out["G"] = (total - rta_viol + beyond_h)[:, None]
         else:
             out["F"] = fuel[:, None]
             out["G"] = total[:, None]
@@ -103,7 +108,8 @@ def run_pymoo(
     else:
         termination = ("n_eval", int(n_evaluations))
     lower, upper = np.asarray(lower, float), np.asarray(upper, float)
-    problem = _GeneProblem(evaluate, lower, upper, two_objective)
+    eta_limit = (rta_s + PARETO_LATE_WINDOW_S) if (two_objective and rta_s is not None) else np.inf
+    problem = _GeneProblem(evaluate, lower, upper, two_objective, eta_limit)
     if seeds is not None and len(seeds):
         s = np.clip(np.atleast_2d(np.asarray(seeds, float))[:pop_size], lower, upper)
         fill = rng.uniform(lower, upper, size=(pop_size - s.shape[0], lower.size))
