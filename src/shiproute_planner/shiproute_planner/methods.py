@@ -16,6 +16,7 @@ import numpy as np
 
 from .errors import UnknownMethodError
 from .ga.loop import GAConfig, SeedGA
+from .ga.ranking import is_better
 from .ga.seeds import (
     TrackSeed,
     great_circle_track,
@@ -195,6 +196,13 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
             break
     best_x, _, _ = ga.best
     final = evaluate_genes(p, env, ctx.land, best_x[None, :])
+    b = ctx.baseline
+    if b is not None and is_better(
+        float(b.evaluation.violation[0]), float(b.evaluation.objective[0]),
+        float(final.violation[0]), float(final.objective[0]),
+    ):
+        # never hand out a plan worse than the constant-RPM baseline the GA was seeded with
+        return MethodResult(b.evaluation, "baseline", ga.generation, ga.evaluations, None)
     return MethodResult(final, best_src, ga.generation, ga.evaluations, best_x.copy())
 
 

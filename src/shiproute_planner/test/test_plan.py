@@ -48,10 +48,10 @@ def test_same_seed_same_plan(land_mask):
 def test_seed_pool_persists_and_is_used(land_mask, tmp_path):
     first = _plan("New York", "Lisbon", 8, land=land_mask, seed_pool_dir=tmp_path)
     stored = SeedPool(tmp_path).get("USNYC->PTLIS@06")
-    assert stored is not None and stored.genes
+    assert stored is not None and len(stored.lon_deg) >= 2
     second = _plan("New York", "Lisbon", 8, land=land_mask, seed_pool_dir=tmp_path, seed=9)
-    # the stored genes reproduce the first plan inside the second's first population and
-    # replacement is elitist, so the second plan is at least as good (Deb's rules)
+    # the stored route (genes when the GA produced it) seeds the second run, replacement is
+    # elitist and the baseline is a floor, so the second plan is at least as good (Deb)
     v1 = len(first.infeasible_reasons)
     if first.feasible:
         assert second.feasible and second.total_fuel_t <= first.total_fuel_t + 1e-6
@@ -77,18 +77,18 @@ def test_storm_plan_beats_baseline(land_mask, storm_sampler):
     assert plan.feasible, plan.infeasible_reasons
     assert plan.eta_s <= plan.rta_s
     assert plan.total_fuel_t < plan.baseline_fuel_t
-    lon, lat, _ = plan.track()
-    assert land_crossings(lon, lat) == []
+    for lon, lat in plan.optimised_tracks():
+        assert land_crossings(lon, lat, port_clearance_m=0.0) == []
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(reason="12-hour legs near ports and straits still clip coastline that the "
-                          "dense exact check finds", strict=False)
 def test_atlantic_plan_has_no_land_crossings(land_mask):
+    # the planner checks straight samples every 0.05 deg (finer in coastal cells); the
+    # reference check takes geodesic points every 500 m, all tested on the polygons
     plan = _plan("New York", "Lisbon", 8, land=land_mask, max_generations=40)
-    lon, lat, _ = plan.track()
-    assert plan.feasible
-    assert land_crossings(lon, lat) == []
+    assert plan.feasible, plan.infeasible_reasons
+    for lon, lat in plan.optimised_tracks():  # port approaches follow the sea lane
+        assert land_crossings(lon, lat, port_clearance_m=0.0) == []
 
 
 def test_multi_leg_voyage_has_its_own_time_windows(land_mask):
@@ -115,4 +115,4 @@ def test_replan_from_position_with_previous_plan_progress_and_cancel(land_mask):
     assert again.waypoints[0].lat_deg == pytest.approx(lat[k])
     assert again.generations <= 2 and calls  # cancelled after the second report
     assert again.seed_source in ("previous_plan", "great_circle", "sea_lane", "searoute",
-                                 "via_point")
+                                 "baseline", "via_point")
