@@ -16,7 +16,7 @@ import numpy as np
 
 from .errors import UnknownMethodError
 from .ga.loop import GAConfig, SeedGA
-from .ga.ranking import is_better
+from .ga.ranking import deb_order, is_better
 from .ga.seeds import (
     TrackSeed,
     great_circle_track,
@@ -169,6 +169,10 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
             sources.append(name)
     lo, hi = gene_bounds(p)
     cfg = ctx.ga_config or GAConfig()
+    if len(x_seed) > 1:  # best seeds first: the initial population jitters them most
+        sev = evaluate_genes(p, env, ctx.land, x_seed)
+        order = deb_order(sev.violation, sev.objective)
+        x_seed, sources = x_seed[order], [sources[i] for i in order]
     ga = SeedGA(lo, hi, p.n_stages, cfg, ctx.rng, x_seed)
     best_src = "none"
     n = p.n_stages

@@ -63,7 +63,10 @@ class SeedGA:
             base[:, 1:n] = 0.0
         n_left = size - sum(len(p) for p in parts)
         if n_left > 0:
-            idx = self.rng.integers(0, len(base), size=n_left)
+            # seeds arrive best first: half the copies come from the best three
+            top = self.rng.integers(0, min(3, len(base)), size=n_left)
+            idx = np.where(self.rng.random(n_left) < 0.5, top,
+                           self.rng.integers(0, len(base), size=n_left))
             x = base[idx].copy()
             scale = np.linspace(0.3, 3.0, n_left)[:, None]
             x[:, 0] += self.rng.normal(0, c.jitter_heading_deg, n_left) * scale[:, 0]
