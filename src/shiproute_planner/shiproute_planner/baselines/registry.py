@@ -26,8 +26,8 @@ def _inputs(ctx: MethodContext) -> BaselineInputs:
 def _adapter(run: BaselineRun, seed_source: str) -> Callable[[MethodContext], MethodResult]:
     def method(ctx: MethodContext) -> MethodResult:
         r = run(_inputs(ctx), ctx)
-        return MethodResult(r.evaluation, seed_source, 0,
-                            r.route_evaluations + r.leg_evaluations)
+        # MethodResult counts whole routes; graph searches' single legs are not routes
+        return MethodResult(r.evaluation, seed_source, 0, r.route_evaluations)
 
     method.__doc__ = run.__doc__
     return method
