@@ -116,3 +116,18 @@ def test_replan_from_position_with_previous_plan_progress_and_cancel(land_mask):
     assert again.generations <= 2 and calls  # cancelled after the second report
     assert again.seed_source in ("previous_plan", "great_circle", "sea_lane", "searoute",
                                  "baseline", "via_point")
+
+
+@pytest.mark.slow
+def test_route_around_land_when_the_straight_line_crosses_it(land_mask):
+    # Shanghai -> Yokohama: the straight line crosses Kyushu/Shikoku/Honshu
+    from shiproute_planner.geo.ports import resolve_port
+
+    a, b = resolve_port("Shanghai", land_mask), resolve_port("Yokohama", land_mask)
+    straight = land_mask.segment_land_samples(np.array([a.lon_deg]), np.array([a.lat_deg]),
+                                              np.array([b.lon_deg]), np.array([b.lat_deg]))
+    assert straight[0] > 0
+    plan = _plan("Shanghai", "Yokohama", 4, land=land_mask, max_generations=40)
+    assert plan.feasible, plan.infeasible_reasons
+    for lon, lat in plan.optimised_tracks():
+        assert land_crossings(lon, lat, port_clearance_m=0.0) == []
