@@ -80,6 +80,7 @@ def make_environment(ship: Any, forecast: Any = None) -> tuple[Environment, Any]
     if forecast is not None:
         if hasattr(forecast, "sample"):
             sampler = forecast
+            cycle = str(getattr(forecast, "cycle_id", "") or "")
         else:
             from shiproute_weather.sampling import ForecastSampler
 
@@ -162,13 +163,15 @@ def plan_voyage(
     with_baseline: bool = True,
     approach_nm: float = 25.0,
     approach_rpm: float | None = None,
+    cycle_id: str = "",
 ) -> RoutePlan:
     """Plan a voyage and return a frozen RoutePlan.
 
     `position` = (lat_deg, lon_deg, time POSIX s) of the ship for a re-plan under way: the
     voyage then starts there and `previous_plan` (shifted to it) seeds the GA. `cancel` is a
     callable returning True or an object with `is_set()` (threading.Event); a cancelled run
-    returns the best plan so far. `budget_s` is the wall time of the whole call; with
+    returns the best plan so far. `budget_s` is the wall time of the whole call (the search
+    keeps at least half of it, so a cold process may overrun by the loading time); with
     `max_generations` (and an ample budget) a run is reproducible for a given `seed`.
     The first and last `approach_nm` at each port follow the sea lane at `approach_rpm`
     (default mid-range); the method optimises between the approaches' sea ends.
@@ -176,6 +179,8 @@ def plan_voyage(
     t0 = time.perf_counter()
     land = land or default_land_mask()
     env, spec = make_environment(ship, forecast)
+    if cycle_id:
+        env = dataclasses.replace(env, cycle_id=cycle_id)
     lim = _limits(spec, limits)
     ports = [p if isinstance(p, Port) else resolve_port(p, land)
              for p in (origin, *via, destination)]
@@ -221,7 +226,9 @@ def plan_voyage(
                                    previous_plan if k == 0 else None, position)
         used = time.perf_counter() - t0
         share = dists[k] / dists[k:].sum()
-        leg_budget = max(0.0, (budget_s - used) * share)
+        # the search keeps at least half its share even when a cold process spent the
+        # budget on loading (sea-lane graph, coastline polygons, compiled kernels)
+        leg_budget = max((budget_s - used) * share, 0.5 * budget_s * share, 0.0)
         need = with_baseline or (method == "seed_ga" and not seeds)
         base = compute_baseline(problem, env, land) if need else None
         ctx = MethodContext(problem, env, land, rng, leg_budget, seeds, progress, is_cancelled,

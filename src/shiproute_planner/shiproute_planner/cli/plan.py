@@ -83,9 +83,16 @@ def main(argv: list[str]) -> int:
             via.append(name)
             via_rta.append(to_posix_s(when) if when else None)
         forecast = load_forecast(args.forecast) if args.forecast else None
+        # build the sampler outside the budget: --budget is planning time, not file loading
+        env_forecast = None
+        if forecast is not None:
+            from shiproute_weather.sampling import ForecastSampler
+
+            env_forecast = ForecastSampler(forecast)
         plan = plan_voyage(
             args.origin, args.destination, depart_s, _rta(args.rta, depart_s), args.ship,
-            forecast, via=via, via_rta=via_rta, objective=args.objective, method=args.method,
+            env_forecast, via=via, via_rta=via_rta, objective=args.objective, method=args.method,
+            cycle_id=str(forecast.attrs.get("cycle_id", "")) if forecast is not None else "",
             budget_s=args.budget, seed=args.seed, stage_hours=args.stage_hours,
             seed_pool_dir=args.seed_pool, progress=_progress)
         print(file=sys.stderr)
