@@ -235,16 +235,3 @@ def shift_track(lon: np.ndarray, lat: np.ndarray, time_s: np.ndarray, rpm: np.nd
         out_rpm = np.concatenate([out_rpm, np.full(out_lon.size - 1 - out_rpm.size, r[-1])])
     return TrackSeed("previous_plan", np.unwrap(out_lon, period=360.0), out_lat, out_rpm)
 
-
-def offset_tracks(lon: np.ndarray, lat: np.ndarray, offsets_deg: tuple[float, ...],
-                  lat_bound_deg: float) -> list[tuple[np.ndarray, np.ndarray]]:
-    """Variants of a polyline bent north/south by a smooth bump (zero at both ends).
-
-    The bump sin^2(pi s / S) keeps port approaches and straits of a sea-lane track and moves
-    its open-ocean middle by up to `offset` degrees of latitude: a cheap sweep of detours
-    (around a storm, or poleward for a shorter great-circle-like track)."""
-    _, seg = inverse(lon[:-1], lat[:-1], lon[1:], lat[1:])
-    s = np.concatenate([[0.0], np.cumsum(seg)])
-    bump = np.sin(np.pi * s / max(s[-1], 1.0)) ** 2
-    return [(lon.copy(), np.clip(lat + d * bump, -lat_bound_deg, lat_bound_deg))
-            for d in offsets_deg]
