@@ -103,7 +103,7 @@ def _run(path: str, topic: str, sub: subprocess.Popen[str], timeout_s: float) ->
     c0 = _cpu_s()
     t0 = time.perf_counter()
     if streamable([path], cfg):  # what the node does for one NetCDF file
-        info, slices = load_slices(path, cfg)
+        info, slices, _ = load_slices(path, cfg)
     else:
         info, slices, _ = build_cycle([path], cfg)
     t1 = time.perf_counter()

@@ -158,8 +158,7 @@ class WeatherNode(Node):
             if not req.paths:
                 raise WeatherError("no paths given")
             if streamable(req.paths, self.cfg_base):
-                info, slices = load_slices(req.paths[0], self.cfg_base)  # block-wise memory
-                notes: list[str] = []
+                info, slices, notes = load_slices(req.paths[0], self.cfg_base)  # block-wise
             else:
                 info, slices, notes = build_cycle(req.paths, self.cfg_base)
             cycle = cycle_to_msg(info, self.get_clock().now().to_msg())

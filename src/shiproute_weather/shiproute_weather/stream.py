@@ -71,21 +71,33 @@ def _blocks(path: str, cfg: CycleConfig) -> Iterator[xr.Dataset]:
             yield snap_grid(block)
 
 
-def load_slices(path: str, cfg: CycleConfig) -> tuple[CycleInfo, list[SliceData]]:
+def load_slices(path: str, cfg: CycleConfig
+                ) -> tuple[CycleInfo, list[SliceData], list[str]]:
     """Read, normalise and validate the file block by block into slices (one pass).
 
     Nothing is published before the whole file has been validated. Each slice's arrays are
     views into its block, so a caller that drops slices as it publishes them frees the
-    memory block by block (the middleware history then takes its place).
+    memory block by block (the middleware history then takes its place). The grid is thinned
+    like `cycle_builder.thin` when a slice would exceed `cfg.max_slice_bytes`.
     """
     slices: list[SliceData] = []
     first: xr.Dataset | None = None
+    stride = 1
+    notes: list[str] = []
     for block in _blocks(path, cfg):
         if first is None:
+            per_node = 4 * len(block.data_vars)
+            ny, nx = block.sizes["latitude"], block.sizes["longitude"]
+            while -(-ny // stride) * -(-nx // stride) * per_node > cfg.max_slice_bytes:
+                stride += 1
+            if stride > 1:
+                notes.append(f"grid thinned by {stride} to keep slices <= "
+                             f"{cfg.max_slice_bytes} B")
+        if stride > 1:
+            block = snap_grid(block.isel(latitude=slice(None, None, stride),
+                                         longitude=slice(None, None, stride)))
+        if first is None:
             first = block.isel(time=[0])
-            if first.nbytes > cfg.max_slice_bytes:
-                raise GridError(path, f"one slice is {first.nbytes} B, above the "
-                                      f"{cfg.max_slice_bytes} B bound; set a region or stride")
         slices.extend(dataset_to_slices(block))
     if first is None:
         raise WeatherError(f"{path}: no valid time")
@@ -95,4 +107,4 @@ def load_slices(path: str, cfg: CycleConfig) -> tuple[CycleInfo, list[SliceData]
     step = float((t[1] - t[0]) / 1e9) if n > 1 else 0.0
     info = replace(cycle_info(first, [path]), first_valid_time_ns=int(t[0]),
                    last_valid_time_ns=int(t[-1]), step_s=step, slice_count=n)
-    return info, slices
+    return info, slices, notes

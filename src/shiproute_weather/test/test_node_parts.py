@@ -50,7 +50,7 @@ def test_streaming_equals_full_load(tmp_path: Path) -> None:
     cfg = CycleConfig(box=Box(31.0, 38.0, 172.0, 190.0))
     assert streamable([p], cfg)
     info_full, slices_full, _ = build_cycle([p], cfg)
-    info, slices = load_slices(p, cfg)
+    info, slices, _ = load_slices(p, cfg)
     assert info == info_full
     assert [s.slice_index for s in slices] == list(range(21))
     xr.testing.assert_identical(slices_to_dataset(slices), slices_to_dataset(slices_full))
@@ -63,6 +63,13 @@ def test_bounds_thin_grid_and_cut_slices(tmp_path: Path) -> None:
     assert info.step_s == 6 * 3600.0 and len(slices) == 4 and info.slice_count == 4
     assert all(s.nbytes <= 20_000 for s in slices)
     assert any("thinned" in n for n in notes) and any("first 4" in n for n in notes)
+
+
+def test_streaming_thins_large_slices(tmp_path: Path) -> None:
+    p = str(write_nc(small_canonical(n_time=3), tmp_path / "big.nc"))
+    _info, slices, notes = load_slices(p, CycleConfig(max_slice_bytes=20_000))
+    assert all(s.nbytes <= 20_000 for s in slices) and "thinned" in notes[0]
+    assert slices[0].grid.dlat_deg == 1.0  # every second row of the 0.5 deg grid
 
 
 def test_streaming_rejects_a_bad_file_before_yielding(tmp_path: Path) -> None:
