@@ -25,7 +25,8 @@ RTA_SAFETY_H = 0.02  # aim this far inside the RTA so rounding never makes the p
 def leg_blocks(duration_s: np.ndarray, block_s: float) -> np.ndarray:
     """Block index of every leg: consecutive legs grouped into about `block_s` of sailing."""
     start = np.r_[0.0, np.cumsum(duration_s)[:-1]]
-    return np.floor(start / block_s).astype(np.int64)
+    raw = np.floor(start / block_s).astype(np.int64)
+    return np.unique(raw, return_inverse=True)[1].astype(np.int64)  # no empty blocks
 
 
 def refine_schedule(
