@@ -23,7 +23,7 @@ from .normalise import to_canonical
 from .slices import CycleInfo, SliceData, cycle_info, dataset_to_slices, snap_grid
 from .validate import validate
 
-BLOCK_TIMES = 24
+BLOCK_TIMES = 32
 
 
 def streamable(paths: list[str], cfg: CycleConfig) -> bool:
