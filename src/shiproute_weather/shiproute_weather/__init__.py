@@ -8,6 +8,12 @@ from __future__ import annotations
 
 from typing import Any
 
+# pyproj's PROJ must be loaded before ecCodes (GRIB): the ecCodes wheels carry PROJ symbols of
+# their own and whichever loads first wins; pyproj loaded second finds no database ("no
+# database context specified") and the process may crash at exit. Importing pyproj here, before
+# anything of this package can import eccodes/cfgrib, keeps both working.
+import pyproj  # noqa: F401
+
 __all__ = ["ForecastSampler", "open_forecast", "scenario_dataset", "scenario_names",
            "scenario_path"]
 
