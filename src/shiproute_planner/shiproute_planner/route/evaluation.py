@@ -88,10 +88,16 @@ def finish(
     lat: np.ndarray,
     time_s: np.ndarray,
     legs: dict[str, np.ndarray],
+    land_samples: np.ndarray | None = None,
 ) -> RouteEvaluation:
-    """Land check, constraint flags, violations, totals and objective of filled legs."""
+    """Land check, constraint flags, violations, totals and objective of filled legs.
+
+    `land_samples` (pop, m), when given, replaces the land check (the fast evaluator
+    computes it with a coarse pre-filter before the same exact segment test)."""
     active = legs["duration_s"] > 0
-    if land is not None:
+    if land_samples is not None:
+        legs["land_samples"] = np.where(active, land_samples, 0)
+    elif land is not None:
         lon0, lat0, lon1, lat1 = clear_ports(problem, lon, lat, legs["distance_m"])
         samples = land.segment_land_samples(lon0, lat0, lon1, lat1, problem.land_spacing_deg)
         legs["land_samples"] = np.where(active, samples, 0)
