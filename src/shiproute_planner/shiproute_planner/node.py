@@ -72,11 +72,28 @@ PARAMETERS: dict[str, tuple[object, str]] = {
 }
 
 
+@dataclass(frozen=True)
+class _Forecast:
+    """A complete cycle as the planner keeps it: the sampler (one interleaved float32 copy of
+    the fields) and the total Hs field for plots; the assembled dataset itself is dropped."""
+
+    sampler: object
+    hs_field: object
+
+    @classmethod
+    def of(cls, ds) -> _Forecast:
+        from shiproute_weather.sampling import ForecastSampler
+
+        hs_name = "sea_surface_wave_significant_height"
+        hs = ds[[hs_name]].copy(deep=True) if hs_name in ds else None
+        return cls(ForecastSampler(ds), hs)
+
+
 @dataclass
 class _Inputs:
     """What one planning run works on (a consistent snapshot)."""
 
-    forecast: object
+    forecast: _Forecast
     cycle_id: str
     position: tuple[float, float, float] | None
     previous: RoutePlan | None
@@ -200,16 +217,17 @@ class PlannerNode(Node):
         from shiproute_weather.convert import msgs_to_dataset
 
         try:
-            ds = msgs_to_dataset(slices)
+            forecast = _Forecast.of(msgs_to_dataset(slices))
         except Exception as err:  # a bad cycle must not kill the node
             self._last_error = f"forecast cycle {cycle_id!r} unusable: {err}"
             self.get_logger().error(self._last_error)
             return
+        n_slices = len(slices)
         with self._lock:
-            self._forecast, self._cycle_id = ds, cycle_id
+            self._forecast, self._cycle_id = forecast, cycle_id
             if self._planning:
                 self._cancel.set()  # supersede the running plan
-        self.get_logger().info(f"forecast cycle {cycle_id} complete ({len(slices)} slices)")
+        self.get_logger().info(f"forecast cycle {cycle_id} complete ({n_slices} slices)")
         self._request(f"new forecast cycle {cycle_id}")
 
     def _on_ship_state(self, msg: ShipState) -> None:
@@ -298,7 +316,7 @@ class PlannerNode(Node):
         self.get_logger().info(f"planning ({inputs.reason}) on cycle {inputs.cycle_id}")
         plan = plan_voyage(
             origin, str(self._p("destination")), depart, parse_utc(str(self._p("rta"))),
-            str(self._p("ship")), inputs.forecast,
+            str(self._p("ship")), inputs.forecast.sampler, cycle_id=inputs.cycle_id,
             objective=str(self._p("objective")), method=str(self._p("method")),
             budget_s=float(self._p("budget_s")), seed=int(self._p("rng_seed")),
             stage_hours=float(self._p("stage_hours")), previous_plan=inputs.previous,
@@ -344,7 +362,7 @@ class PlannerNode(Node):
             f"constant RPM, {plan.compute_time_s:.2f} s, feasible={plan.feasible} "
             f"({inputs.reason})"
         )
-        self._write_outputs(plan, inputs.forecast)
+        self._write_outputs(plan, inputs.forecast.hs_field)
 
     def _write_outputs(self, plan: RoutePlan, forecast) -> None:
         out = str(self._p("output_dir"))

@@ -72,13 +72,23 @@ def slice_to_msg(s: SliceData, stamp: Time | None = None) -> ForecastSlice:
 
 def msg_to_slice(msg: ForecastSlice) -> SliceData:
     """Slice of a ForecastSlice message (field arrays are float32 copies)."""
+    return _slice_of(msg, copy=True)
+
+
+def _slice_of(msg: ForecastSlice, copy: bool) -> SliceData:
+    """Slice of a message; with copy=False the arrays are views on the message's buffers."""
     grid = SliceGrid(float(msg.lat0_deg), float(msg.lon0_deg), float(msg.dlat_deg),
                      float(msg.dlon_deg), int(msg.n_lat), int(msg.n_lon))
     fields = tuple(FieldData(f.name, f.units, f.direction_convention,
-                             np.frombuffer(f.data, dtype=np.float32).copy())
+                             _f32_array(f.data, copy))
                    for f in msg.fields)
     return SliceData(msg.cycle_id, time_to_ns(msg.reference_time), time_to_ns(msg.valid_time),
                      int(msg.slice_index), int(msg.slice_count), msg.source, grid, fields)
+
+
+def _f32_array(data: array.array, copy: bool) -> np.ndarray:
+    view = np.frombuffer(data, dtype=np.float32)
+    return view.copy() if copy else view
 
 
 def cycle_to_msg(c: CycleInfo, stamp: Time | None = None) -> ForecastCycle:
@@ -118,5 +128,8 @@ def dataset_to_msgs(ds: xr.Dataset, source_files: Sequence[str] = ()
 
 
 def msgs_to_dataset(slices: Sequence[ForecastSlice]) -> xr.Dataset:
-    """Canonical dataset from the complete set of a cycle's ForecastSlice messages."""
-    return slices_to_dataset([msg_to_slice(m) for m in slices])
+    """Canonical dataset from the complete set of a cycle's ForecastSlice messages.
+
+    The messages' buffers are read in place (no per-slice copy): the dataset is one copy.
+    """
+    return slices_to_dataset([_slice_of(m, copy=False) for m in slices])
