@@ -160,7 +160,7 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
         base = compute_baseline(p, env, ctx.land)
     tracks = _seed_tracks(ctx, base) if base is not None else []
     for name, lon, lat, rpm in tracks:
-        seeds.append(TrackSeed(name, lon, lat, np.full(lon.size - 1, rpm)))
+        seeds.append(TrackSeed(name, lon, lat, np.broadcast_to(rpm, lon.size - 1).copy()))
 
     fast = fast_evaluator(p, env, ctx.land)
 
@@ -262,13 +262,22 @@ def _seed_tracks(ctx: MethodContext, base: Baseline) -> list[tuple]:
             g_lon, g_lat = great_circle_track(p, 7)
             spread = np.linspace(-ctx.offset_span_deg, ctx.offset_span_deg,
                                  ctx.n_offset_seeds + 1)
+            spread = np.concatenate([spread[spread != 0.0], [-3.0, 3.0]])
             for j in (2, 3, 4):
-                for d in spread[spread != 0.0]:
+                for d in spread:
                     mlat = float(np.clip(g_lat[j] + d, -p.limits.lat_bound_deg,
                                          p.limits.lat_bound_deg))
                     v = via_track(base.lon_deg, base.lat_deg, float(g_lon[j]), mlat)
                     tracks.append(("via_point", *v))
-    return [(name, lon, lat, scaled(lon, lat)) for name, lon, lat in tracks]
+    out = [(name, lon, lat, scaled(lon, lat)) for name, lon, lat in tracks]
+    # the baseline track with RPM ramps: passing a storm earlier or later than the
+    # constant-RPM schedule does is often cheaper than steering around it
+    n_leg = base.lon_deg.size - 1
+    ramp = np.linspace(-1.0, 1.0, max(n_leg, 1))
+    for slope in (-0.08, -0.04, 0.04, 0.08):
+        rpm = np.clip(base.rpm * (1.0 + slope * ramp), p.limits.rpm_min, p.limits.rpm_max)
+        out.append(("baseline_timed", base.lon_deg, base.lat_deg, rpm))
+    return out
 
 
 register_method("seed_ga", seed_ga_method)

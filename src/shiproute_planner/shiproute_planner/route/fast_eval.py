@@ -29,6 +29,7 @@ _F_ROWS = {"stw_m_s": 0, "sog_m_s": 1, "cog_deg": 2, "brake_power_kw": 3, "fuel_
 _B_ROWS = {"engine_limit_exceeded": 0, "surf_riding": 1, "parametric_roll": 2,
            "synchronous_roll": 3, "high_wave_group": 4}
 COARSE_FACTOR = 10  # 0.05 deg raster -> 0.5 deg near-land filter
+LAND_QUANTUM_DEG = 0.002  # coastal samples tested at the centre of their ~200 m cell
 _COARSE: dict[int, tuple[np.ndarray, np.ndarray]] = {}
 
 
@@ -81,7 +82,7 @@ class FastEvaluator:
     def _perform(self, rpm, hdg, sea) -> tuple[np.ndarray, np.ndarray]:
         out_f = np.empty((11, rpm.size))
         out_b = np.empty((5, rpm.size), dtype=np.bool_)
-        r = np.clip(np.nan_to_num(rpm, nan=self._rpm_lo), self._rpm_lo, self._rpm_hi)
+        r = np.clip(rpm, self._rpm_lo, self._rpm_hi)
         fk.perform(r, np.ascontiguousarray(hdg % 360.0), sea, *self._ship, out_f, out_b)
         return out_f, out_b
 
@@ -163,7 +164,8 @@ class FastEvaluator:
         idx = np.flatnonzero(near)
         if idx.size:
             out[idx] = self.land.segment_land_samples(
-                *(e[idx] for e in ends), self.problem.land_spacing_deg)
+                *(e[idx] for e in ends), self.problem.land_spacing_deg,
+                quantum_deg=LAND_QUANTUM_DEG)
         return out.reshape(distance.shape)
 
 
