@@ -171,7 +171,7 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
     x_seed = track_to_genes(p, env, seeds, ctx.land) if seeds else np.empty((0, p.n_var))
     sources = [s.source for s in seeds]
     for name, genes in ctx.gene_seeds:
-        if genes.size == p.n_var:
+        if genes.size == p.n_var and np.all(np.isfinite(genes)):
             x_seed = np.concatenate([x_seed, clip_genes(p, genes[None, :])])
             sources.append(name)
     lo, hi = gene_bounds(p)

@@ -69,6 +69,7 @@ def track_to_genes(problem: RouteProblem, env: Environment, seeds: list[TrackSee
     the polyline is the nearest polyline point to the new node.
     """
     lon, lat, _, rpm_at = _densify(seeds, spacing_m)
+    rpm_at = sane_rpm(rpm_at, problem.limits.rpm_min, problem.limits.rpm_max)
     lon -= np.round((lon[:, :1] - problem.dep_lon_deg) / 360.0) * 360.0
     s_count, k = lon.shape
     rows = np.arange(s_count)
@@ -218,6 +219,28 @@ def via_track(lon: np.ndarray, lat: np.ndarray, via_lon: float, via_lat: float,
     out_lon = np.concatenate([lon[: a + 1], l1[1:], l2[1:], lon[b + 1:]])
     out_lat = np.concatenate([lat[: a + 1], t1[1:], t2[1:], lat[b + 1:]])
     return np.unwrap(out_lon, period=360.0), out_lat
+
+
+def sane_rpm(rpm: np.ndarray, rpm_min: float, rpm_max: float) -> np.ndarray:
+    """RPMs usable as seed values: non-finite entries take the nearest finite value along
+    the last axis (mid-range if none), everything clipped into the engine range.
+
+    A previous plan (or pool entry) can carry NaN RPMs, e.g. on a waypoint that ends a
+    part of the plan; fed to the ship model they abort the whole re-plan."""
+    r = np.array(rpm, dtype=float, copy=True)
+    rows = r.reshape(-1, r.shape[-1]) if r.ndim else r.reshape(1, 1)
+    for row in rows:
+        ok = np.isfinite(row)
+        if not ok.any():
+            row[:] = 0.5 * (rpm_min + rpm_max)
+        elif not ok.all():
+            idx = np.flatnonzero(ok)
+            near = idx[np.clip(np.searchsorted(idx, np.arange(row.size)), 0, idx.size - 1)]
+            prev = idx[np.clip(np.searchsorted(idx, np.arange(row.size)) - 1, 0, idx.size - 1)]
+            pick = np.where(np.abs(prev - np.arange(row.size)) <= np.abs(
+                near - np.arange(row.size)), prev, near)
+            row[~ok] = row[pick[~ok]]
+    return np.clip(rows.reshape(r.shape), rpm_min, rpm_max)
 
 
 def shift_track(lon: np.ndarray, lat: np.ndarray, time_s: np.ndarray, rpm: np.ndarray,

@@ -74,7 +74,7 @@ class LandMask:
         same coasts generation after generation pays the polygon test once per fine cell:
         a lazily built fine raster, exact at its cell centres."""
         inv = 1.0 / quantum_deg
-        n_lon = int(round(360.0 * inv))
+        n_lon = round(360.0 * inv)
         i = np.floor((np.asarray(lat_deg, dtype=float) + 90.0) * inv).astype(np.int64)
         j = np.floor(((np.asarray(lon_deg, dtype=float) + 180.0) % 360.0) * inv).astype(np.int64)
         key = i * n_lon + j

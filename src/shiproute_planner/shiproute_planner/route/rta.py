@@ -47,6 +47,8 @@ def constant_rpm_for_rta(
             e0, e1 = ev.eta_s[k - 1], ev.eta_s[k]
             f = (e0 - problem.rta_s) / max(e0 - e1, 1e-9)
             best = float(rpms[k - 1] + np.clip(f, 0.0, 1.0) * (rpms[k] - rpms[k - 1]))
+            if not np.isfinite(best):  # NaN ETAs must never turn into a NaN RPM
+                best = float(rpms[k])
         lo, hi = float(rpms[k - 1]), best
     lon, lat = full_lon[None, :], full_lat[None, :]
     final = sail_tracks(problem, env, land, lon, lat, np.array([[best]]))
@@ -54,6 +56,9 @@ def constant_rpm_for_rta(
         if final.eta_s[0] <= problem.rta_s or best >= problem.limits.rpm_max:
             break
         late = (final.eta_s[0] - problem.rta_s) / max(final.eta_s[0] - problem.depart_s, 1.0)
-        best = float(min(best * (1.0 + 1.2 * late) + 0.01, problem.limits.rpm_max))
+        if not np.isfinite(late):
+            best = problem.limits.rpm_max
+        else:
+            best = float(min(best * (1.0 + 1.2 * late) + 0.01, problem.limits.rpm_max))
         final = sail_tracks(problem, env, land, lon, lat, np.array([[best]]))
     return best, final

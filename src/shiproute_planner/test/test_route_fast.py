@@ -1,0 +1,128 @@
+"""The GA's compiled population evaluator against the exact evaluator and pyproj."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from shiproute_planner.ga.seeds import great_circle_track
+from shiproute_planner.geo.geodesy import direct, inverse
+from shiproute_planner.planning import _limits, make_environment, to_posix_s
+from shiproute_planner.route import _fast_kernels as fk
+from shiproute_planner.route.encoding import gene_bounds, join_genes
+from shiproute_planner.route.fast_eval import fast_evaluator
+from shiproute_planner.route.generate import evaluate_genes
+from shiproute_planner.route.problem import RouteProblem
+
+
+def test_rk4_geodesic_direct_matches_pyproj_to_metres():
+    rng = np.random.default_rng(3)
+    n = 400
+    lon = rng.uniform(-180, 180, n)
+    lat = rng.uniform(-65, 65, n)
+    az = rng.uniform(0, 360, n)
+    dist = rng.uniform(1e3, 6e5, n)  # up to a 12-h leg at 27 kn
+    lon1, lat1 = np.empty(n), np.empty(n)
+    fk.direct_many(lon, lat, az, dist, lon1, lat1)
+    ref_lon, ref_lat = direct(lon, lat, az, dist)
+    _, err = inverse(lon1, lat1, ref_lon, ref_lat)
+    assert err.max() < 5.0  # metres; RK4 local error ~ R (h/R)^5 with h <= 500 km
+
+
+def test_lambert_inverse_matches_pyproj():
+    rng = np.random.default_rng(4)
+    n = 400
+    lon0, lat0 = rng.uniform(100, 250, n), rng.uniform(-60, 60, n)
+    lon1, lat1 = lon0 + rng.uniform(-20, 20, n), np.clip(lat0 + rng.uniform(-15, 15, n), -70, 70)
+    az, d = np.empty(n), np.empty(n)
+    fk.inverse_many(lon0, lat0, lon1, lat1, az, d)
+    ref_az, ref_d = inverse(lon0, lat0, lon1, lat1)
+    # Lambert's formula: tens of metres over thousands of km; the auxiliary-sphere azimuth
+    # differs from the geodesic one by O(f) of the longitude difference's effect
+    assert np.max(np.abs(d - ref_d)) < 100.0
+    assert np.max(np.abs((az - ref_az + 180) % 360 - 180)) < 0.1
+
+
+@pytest.fixture(scope="module")
+def storm_problem(storm_sampler):
+    env, spec = make_environment("container_4600teu", storm_sampler)
+    d = to_posix_s("2026-03-03T18:00Z")
+    return RouteProblem(129.5, 34.8, -118.5, 33.5, d, d + 13 * 86400.0, _limits(spec, None)), env
+
+
+def test_fast_and_exact_evaluations_agree_on_random_populations(storm_problem, land_mask):
+    problem, env = storm_problem
+    lo, hi = gene_bounds(problem)
+    rng = np.random.default_rng(7)
+    n = problem.n_stages
+    # GA-like population: great-circle headings (one per stage) with noise, random RPMs
+    g_lon, g_lat = great_circle_track(problem, n + 1)
+    az, _ = inverse(g_lon[:-1], g_lat[:-1], g_lon[1:], g_lat[1:])
+    rpm = rng.uniform(lo[n], hi[n], (60, 1)) + rng.normal(0, 3, (60, n + 1))
+    x = join_genes(np.repeat(az[None, :], 60, axis=0), np.clip(rpm, lo[n], hi[n]))
+    x[:, :n] += rng.normal(0, 2.0, (60, n))
+    fast = fast_evaluator(problem, env, land_mask)
+    assert fast is not None
+    a = evaluate_genes(problem, env, land_mask, x)
+    b = fast.evaluate(x)
+    inside = np.abs(a.lat_deg).max(axis=1) < 70.0  # beyond the bound both are infeasible
+    assert inside.sum() > 30
+    # stated tolerances: fuel 0.5 %, ETA 0.1 h, nodes 1 NM (RK4 vs Karney geodesics differ by
+    # metres per leg; the weather then differs by as much as the sampled field changes)
+    assert np.max(np.abs(b.fuel_t / a.fuel_t - 1)[inside]) < 5e-3
+    assert np.max(np.abs(b.eta_s - a.eta_s)[inside]) < 360.0
+    d_nm = np.hypot((b.lon_deg - a.lon_deg) * np.cos(np.radians(a.lat_deg)),
+                    b.lat_deg - a.lat_deg) * 60.0
+    assert np.max(d_nm[inside]) < 1.0
+    assert np.array_equal(a.flags[inside] & 1, b.flags[inside] & 1)  # land verdicts
+    assert np.mean(a.flags[inside] == b.flags[inside]) > 0.95
+
+
+def test_fill_sea_matches_seastate_from_forecast(storm_sampler):
+    from shiproute_planner.ship import SeaState
+    from shiproute_weather.sampler_arrays import sampler_arrays
+
+    rng = np.random.default_rng(5)
+    n = 500
+    lon, lat = rng.uniform(125, 245, n), rng.uniform(20, 60, n)
+    t = to_posix_s("2026-03-03T18:00Z") + rng.uniform(0, 13 * 86400, n)
+    sample = storm_sampler.sample(lon, lat, t)
+    for key in ("sea_surface_wave_mean_period", "sea_surface_wind_wave_mean_period",
+                "sea_surface_swell_wave_mean_period"):
+        if key in sample:
+            sample[key] = np.clip(sample[key], 0.5, 30.0)
+    ref = SeaState.from_forecast(sample)
+    a = sampler_arrays(storm_sampler)
+    from shiproute_weather._interp_kernel import trilinear
+
+    wx = np.empty((a.data.shape[3], n))
+    trilinear(a.data, a.times_s, a.lat0_deg, a.dlat_deg, a.lon0_deg, a.dlon_deg, a.periodic,
+              lon, lat, t, wx)
+    chan = np.array([a.channels.get(v, -1) for v in fk.SEA_VARIABLES], dtype=np.int64)
+    isdir = np.array([v in a.directions for v in fk.SEA_VARIABLES])
+    sea = np.empty((10, n))
+    env, _ = make_environment("container_4600teu", storm_sampler)
+    fk.fill_sea(wx, chan, isdir, sea, env.model._limits)
+    names = ("wind_u_m_s", "wind_v_m_s", "wind_wave_hs_m", "wind_wave_from_deg",
+             "wind_wave_period_s", "swell_hs_m", "swell_from_deg", "swell_period_s",
+             "current_u_m_s", "current_v_m_s")
+    for i, name in enumerate(names):
+        r = np.broadcast_to(getattr(ref, name), (n,))
+        diff = sea[i] - r
+        if name.endswith("_deg"):
+            diff = (diff + 180.0) % 360.0 - 180.0
+        assert np.max(np.abs(diff)) < 1e-6, name
+
+
+def test_quantised_land_test_is_exact_at_cell_centres(land_mask):
+    q = 0.002
+    rng = np.random.default_rng(9)
+    # points around the Tsugaru Strait and the Channel Islands
+    lon = np.concatenate([rng.uniform(139.5, 141.8, 300), rng.uniform(-120.6, -118.2, 300)])
+    lat = np.concatenate([rng.uniform(40.9, 42.0, 300), rng.uniform(32.7, 34.3, 300)])
+    got = land_mask.contains_quantised(lon, lat, q)
+    c_lon = (np.floor((lon + 180.0) / q) + 0.5) * q - 180.0
+    c_lat = (np.floor((lat + 90.0) / q) + 0.5) * q - 90.0
+    assert np.array_equal(got, land_mask.exact.contains(c_lon, c_lat))
+    assert got.any() and not got.all()
+    again = land_mask.contains_quantised(lon, lat, q)  # served from the cache
+    assert np.array_equal(got, again)
