@@ -142,6 +142,12 @@ class LandMask:
             if n >= 0:
                 break
             cap *= 4
+        if n and quantum_deg > 0:
+            # GA loop: a segment with raster-land samples is on land whatever its coastal
+            # samples say, so only clear segments' coastal samples are tested
+            keep = land[c_seg[:n]] == 0
+            c_lon, c_lat, c_seg = c_lon[:n][keep], c_lat[:n][keep], c_seg[:n][keep]
+            n = c_seg.size
         if n:
             if quantum_deg > 0:
                 hit = self.contains_quantised(c_lon[:n], c_lat[:n], quantum_deg)
