@@ -16,11 +16,11 @@ from datetime import timedelta
 
 import numpy as np
 
+from ..ga.seeds import great_circle_track
 from ..geo.geodesy import direct, inverse
 from ..geo.landmask import default_land_mask
 from ..geo.verify import land_crossings
 from ..planning import make_environment, plan_voyage, to_posix_s
-from ..ga.seeds import great_circle_track
 from ..route.encoding import clip_genes, gene_bounds, join_genes
 from ..route.fast_eval import fast_evaluator
 from ..route.generate import evaluate_genes
