@@ -26,6 +26,7 @@ from .ga.seeds import (
 )
 from .geo.geodesy import inverse
 from .geo.landmask import LandMask
+from .geo.verify import land_crossings
 from .route.encoding import clip_genes, gene_bounds
 from .route.environment import Environment
 from .route.evaluation import RouteEvaluation, clear_ports
@@ -33,6 +34,10 @@ from .route.fast_eval import fast_evaluator
 from .route.generate import evaluate_genes
 from .route.problem import RouteProblem
 from .route.rta import constant_rpm_for_rta
+
+EXACT_CHOICE_RESERVE_S = 0.1
+# RPM ramps (relative change from the first to the last leg / 2) of timed seed variants
+TIMED_SLOPES = (-0.08, -0.04, 0.04, 0.08)
 
 
 @dataclass(frozen=True)
@@ -159,6 +164,10 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
     if base is None and not seeds:
         base = compute_baseline(p, env, ctx.land)
     tracks = _seed_tracks(ctx, base) if base is not None else []
+    for s in ctx.seeds[:2]:  # given seeds (previous plan, pool): also earlier/later versions
+        for slope in TIMED_SLOPES:
+            ramp = np.linspace(-1.0, 1.0, max(s.rpm.size, 1))
+            tracks.append((f"{s.source}_timed", s.lon_deg, s.lat_deg, s.rpm * (1 + slope * ramp)))
     for name, lon, lat, rpm in tracks:
         seeds.append(TrackSeed(name, lon, lat, np.broadcast_to(rpm, lon.size - 1).copy()))
 
@@ -181,6 +190,8 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
         order = deb_order(sev.violation, sev.objective)
         x_seed, sources = x_seed[order], [sources[i] for i in order]
     ga = SeedGA(lo, hi, p.n_stages, cfg, ctx.rng, x_seed)
+    # keep time for the exact re-evaluation of the final candidates (~0.1 s)
+    deadline_s = ctx.budget_s - min(0.15 * ctx.budget_s, EXACT_CHOICE_RESERVE_S)
     best_src = "none"
     n = p.n_stages
     while True:
@@ -202,7 +213,7 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
         if ctx.progress is not None:
             ctx.progress(Progress(ctx.leg_index, ga.generation, ga.evaluations,
                                   f if v <= 0 else float("nan"), v, elapsed))
-        if (elapsed >= ctx.budget_s or ga.generation >= ctx.max_generations or ctx.cancelled()
+        if (elapsed >= deadline_s or ga.generation >= ctx.max_generations or ctx.cancelled()
                 or (ctx.stall_generations and ga.stalled(ctx.stall_generations))):
             break
     best_x, final = exact_choice(p, env, ctx.land, ga.pop)
@@ -217,7 +228,7 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
 
 
 def exact_choice(p: RouteProblem, env: Environment, land: LandMask, pop: np.ndarray,
-                 top: int = 6) -> tuple[np.ndarray, RouteEvaluation]:
+                 top: int = 8) -> tuple[np.ndarray, RouteEvaluation]:
     """Best of the final population re-evaluated with the exact evaluator (pyproj geodesics).
 
     The GA's compiled evaluator agrees to metres per leg, but a route tuned to arrive just on
@@ -232,7 +243,17 @@ def exact_choice(p: RouteProblem, env: Environment, land: LandMask, pop: np.ndar
     cand.append(np.clip(bumped, lo, hi))
     x = np.concatenate(cand)
     ev = evaluate_genes(p, env, land, x)
-    k = int(deb_order(ev.violation, ev.objective)[0])
+    order = deb_order(ev.violation, ev.objective)
+    if land is not None:
+        # the independent dense check (geodesic points every 500 m, all on the polygons)
+        # must agree: the first feasible candidate that passes it wins
+        for k in order[:4]:
+            if ev.violation[k] > 0:
+                break
+            if not land_crossings(ev.lon_deg[k], ev.lat_deg[k], port_clearance_m=0.0,
+                                  exact=land.exact):
+                return x[k].copy(), ev.take(int(k))
+    k = int(order[0])
     return x[k].copy(), ev.take(k)
 
 
@@ -274,7 +295,7 @@ def _seed_tracks(ctx: MethodContext, base: Baseline) -> list[tuple]:
     # constant-RPM schedule does is often cheaper than steering around it
     n_leg = base.lon_deg.size - 1
     ramp = np.linspace(-1.0, 1.0, max(n_leg, 1))
-    for slope in (-0.08, -0.04, 0.04, 0.08):
+    for slope in TIMED_SLOPES:
         rpm = np.clip(base.rpm * (1.0 + slope * ramp), p.limits.rpm_min, p.limits.rpm_max)
         out.append(("baseline_timed", base.lon_deg, base.lat_deg, rpm))
     return out

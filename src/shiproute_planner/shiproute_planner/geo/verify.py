@@ -14,11 +14,14 @@ from .landexact import ExactLand
 
 
 def land_crossings(lon_deg: np.ndarray, lat_deg: np.ndarray, resolution: str = "i",
-                   step_m: float = 500.0, port_clearance_m: float = 3000.0) -> list[int]:
-    """Indices of legs of a track with any sample on land (ports' clearance excluded)."""
+                   step_m: float = 500.0, port_clearance_m: float = 3000.0,
+                   exact: ExactLand | None = None) -> list[int]:
+    """Indices of legs of a track with any sample on land (ports' clearance excluded).
+
+    `exact` reuses an already built polygon test (e.g. `LandMask.exact`) of `resolution`."""
     lon = np.unwrap(np.asarray(lon_deg, dtype=float), period=360.0)
     lat = np.asarray(lat_deg, dtype=float)
-    exact = ExactLand(load_land_polygons(resolution))
+    exact = exact or ExactLand(load_land_polygons(resolution))
     _, dist = inverse(lon[:-1], lat[:-1], lon[1:], lat[1:])
     total = np.concatenate([[0.0], np.cumsum(dist)])
     bad = []
