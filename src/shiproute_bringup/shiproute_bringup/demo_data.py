@@ -59,19 +59,15 @@ def _voyage_bag(path: Path, log) -> Path:
     return path
 
 
-def _warm_up(root: Path, log) -> None:
-    """Compile (once; numba caches on disk) every kernel the nodes use, so a node's first plan
-    is timed as a plan, not as a compilation."""
-    stamp = root / "demo" / "kernels_warm"
-    if stamp.exists():
-        return
+def _warm_up(log) -> None:
+    """Compile (numba caches on disk, so only the first time or after a code change is slow)
+    every kernel the nodes use, so a node's first plan is timed as a plan, not a compilation."""
     from shiproute_planner.planning import plan_voyage
     from shiproute_weather.scenarios import scenario_dataset
 
-    log("compiling the planner's kernels (once)")
+    log("warming the planner's compiled kernels")
     plan_voyage(ORIGIN, DESTINATION, DEPARTURE, RTA, SHIP, scenario_dataset(FIRST_CYCLE),
-                budget_s=2.0)
-    stamp.write_text("numba kernels compiled and cached\n")
+                budget_s=1.0)
 
 
 def prepare(log=print) -> DemoData:
@@ -82,5 +78,5 @@ def prepare(log=print) -> DemoData:
     first = scenario_path(FIRST_CYCLE)
     second = scenario_path(SECOND_CYCLE)
     bag = _voyage_bag(root / "demo" / "busan_long_beach_march_voyage", log)
-    _warm_up(root, log)
+    _warm_up(log)
     return DemoData(first, second, bag, root / "seed_pool")
