@@ -51,6 +51,8 @@ class Recorder(Node):
                 continue
             if self.wanted == set() and topic in ("/rosout", "/parameter_events"):
                 continue
+            if not self.get_publishers_info_by_topic(topic):
+                continue  # subscriber-only so far: wait for a publisher to know its QoS
             typename = types[0]
             try:
                 cls = rclpy_class(typename)
