@@ -35,7 +35,7 @@ from .route.generate import evaluate_genes
 from .route.problem import RouteProblem
 from .route.rta import constant_rpm_for_rta
 
-EXACT_CHOICE_RESERVE_S = 0.1
+EXACT_CHOICE_RESERVE_S = 0.25
 # RPM ramps (relative change from the first to the last leg / 2) of timed seed variants
 TIMED_SLOPES = (-0.08, -0.04, 0.04, 0.08)
 
@@ -190,7 +190,7 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
         order = deb_order(sev.violation, sev.objective)
         x_seed, sources = x_seed[order], [sources[i] for i in order]
     ga = SeedGA(lo, hi, p.n_stages, cfg, ctx.rng, x_seed)
-    # keep time for the exact re-evaluation of the final candidates (~0.1 s)
+    # keep time for the exact re-evaluation and dense land check of the final candidates
     deadline_s = ctx.budget_s - min(0.15 * ctx.budget_s, EXACT_CHOICE_RESERVE_S)
     best_src = "none"
     n = p.n_stages
@@ -228,7 +228,7 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
 
 
 def exact_choice(p: RouteProblem, env: Environment, land: LandMask, pop: np.ndarray,
-                 top: int = 8) -> tuple[np.ndarray, RouteEvaluation]:
+                 top: int = 24) -> tuple[np.ndarray, RouteEvaluation]:
     """Best of the final population re-evaluated with the exact evaluator (pyproj geodesics).
 
     The GA's compiled evaluator agrees to metres per leg, but a route tuned to arrive just on
@@ -247,7 +247,7 @@ def exact_choice(p: RouteProblem, env: Environment, land: LandMask, pop: np.ndar
     if land is not None:
         # the independent dense check (geodesic points every 500 m, all on the polygons)
         # must agree: the first feasible candidate that passes it wins
-        for k in order[:4]:
+        for k in order[:6]:
             if ev.violation[k] > 0:
                 break
             if not land_crossings(ev.lon_deg[k], ev.lat_deg[k], port_clearance_m=0.0,
