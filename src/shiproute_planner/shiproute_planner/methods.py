@@ -36,6 +36,7 @@ from .route.problem import RouteProblem
 from .route.rta import constant_rpm_for_rta
 
 EXACT_CHOICE_RESERVE_S = 0.25
+EXACT_CHECK_EVERY = 15  # generations between exact confirmations of the GA's best
 # RPM ramps (relative change from the first to the last leg / 2) of timed seed variants
 TIMED_SLOPES = (-0.08, -0.04, 0.04, 0.08)
 
@@ -191,6 +192,7 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
         x_seed, sources = x_seed[order], [sources[i] for i in order]
     ga = SeedGA(lo, hi, p.n_stages, cfg, ctx.rng, x_seed)
     # keep time for the exact re-evaluation and dense land check of the final candidates
+    confirmed: list[np.ndarray] = []
     deadline_s = ctx.budget_s - min(0.15 * ctx.budget_s, EXACT_CHOICE_RESERVE_S)
     best_src = "none"
     n = p.n_stages
@@ -204,6 +206,11 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
             x[-k:] = np.clip(x[-k:], lo, hi)
         ev = evaluate(x)
         ga.tell(x, ev.violation, ev.objective)
+        # archive of bests the exact evaluator confirms: the fallback when the final
+        # population sits where a boolean criterion flips between the two evaluators
+        if (fast is not None and ga.generation % EXACT_CHECK_EVERY == 0 and ga.best[1] <= 0
+                and evaluate_genes(p, env, ctx.land, ga.best[0][None, :]).feasible[0]):
+            confirmed.append(ga.best[0].copy())
         if ga.generation == 0:
             order = np.lexsort((ev.objective[: len(sources)], ev.violation[: len(sources)] > 0,
                                 ev.violation[: len(sources)]))
@@ -216,7 +223,9 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
         if (elapsed >= deadline_s or ga.generation >= ctx.max_generations or ctx.cancelled()
                 or (ctx.stall_generations and ga.stalled(ctx.stall_generations))):
             break
-    best_x, final = exact_choice(p, env, ctx.land, ga.pop)
+    pool_x = ga.pop if not confirmed else np.concatenate([ga.pop[:24], confirmed[::-1],
+                                                          ga.pop[24:]])
+    best_x, final = exact_choice(p, env, ctx.land, pool_x, top=min(24, len(ga.pop)))
     b = ctx.baseline
     if b is not None and is_better(
         float(b.evaluation.violation[0]), float(b.evaluation.objective[0]),
@@ -246,6 +255,11 @@ def exact_choice(p: RouteProblem, env: Environment, land: LandMask, pop: np.ndar
     cand.append(np.clip(bumped, lo, hi))
     x = np.concatenate(cand)
     ev = evaluate_genes(p, env, land, x)
+    if not ev.feasible.any() and len(pop) > top:
+        # boolean criteria (IMO resonances, land) can flip between the two evaluators at
+        # the edge of feasibility: look at the rest of the population before giving up
+        x = np.concatenate([x, pop[top:]])
+        ev = evaluate_genes(p, env, land, x)
     order = deb_order(ev.violation, ev.objective)
     if land is not None:
         # the independent dense check (geodesic points every 500 m, all on the polygons)
