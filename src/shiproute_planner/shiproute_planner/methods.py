@@ -193,7 +193,7 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
     ga = SeedGA(lo, hi, p.n_stages, cfg, ctx.rng, x_seed)
     # keep time for the exact re-evaluation and dense land check of the final candidates
     confirmed: list[np.ndarray] = []
-    deadline_s = ctx.budget_s - min(0.15 * ctx.budget_s, EXACT_CHOICE_RESERVE_S)
+    deadline_s = ctx.budget_s - min(0.3 * ctx.budget_s, EXACT_CHOICE_RESERVE_S)
     best_src = "none"
     n = p.n_stages
     while True:
