@@ -164,7 +164,9 @@ def test_plan_replan_on_new_cycle_corrupt_file_half_cycle_and_restart(tmp_path: 
                             first.plan_id in peer.paths, 10, "path + profile of the first plan")
             _check_consistent(first, peer.paths[first.plan_id], peer.profiles[first.plan_id])
             assert abs(first.waypoints[0].latitude_deg - BUSAN[0]) < 0.3
-            assert any(p.suffix == ".rtz" for p in out.iterdir())
+            # Files are written after publishing, off the executor thread.
+            rosproc.wait_until(lambda: out.is_dir() and any(out.glob(f"*{first.plan_id}.rtz")),
+                               20.0)
 
             # 2. A corrupt file in the watched directory: no new plan, weather keeps serving.
             (watch / "broken.nc").write_bytes(b"CDF\x01" + b"\x00garbage" * 100)
