@@ -96,7 +96,8 @@ def run(budget_s: float, repeats: int) -> dict:
         for k, path in enumerate(files):
             cid = f"bench-cycle-{k + 1}"
             (watch / path.name).symlink_to(path)
-            spin_until(lambda c=cid: c in plans, 60 + 5 * budget_s, f"plan on {cid}")
+            spin_until(lambda c=cid: c in plans and c in cycles, 60 + 5 * budget_s,
+                       f"plan on {cid}")
             latencies.append(plans[cid] - cycles[cid])
         rss = psutil.Process(planner.proc.pid).memory_info().rss / 2**20
     finally:
