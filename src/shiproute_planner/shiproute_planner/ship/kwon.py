@@ -15,7 +15,7 @@ import numpy as np
 
 from .calm import calm_curve
 from .performance import LegPerformance
-from .physics import PhysicsModel, flatten_sea
+from .physics import PhysicsModel, flatten_legs
 from .seastate import SeaState
 from .spec import ShipSpec
 from .validate import check_inputs, check_range, check_sea
@@ -100,11 +100,7 @@ class KwonModel:
         rpm = np.asarray(rpm, dtype=float)
         heading_deg = np.asarray(heading_deg, dtype=float)
         check_inputs(self.ship, rpm, heading_deg, sea)
-        shape = np.broadcast_shapes(rpm.shape, heading_deg.shape, sea.shape())
-        n = int(np.prod(shape))
-        rpm1 = np.broadcast_to(rpm, shape).reshape(n)
-        hdg = np.broadcast_to(heading_deg, shape).reshape(n)
-        s = flatten_sea(sea, shape, n)
+        shape, _, rpm1, hdg, s = flatten_legs(rpm, heading_deg, sea)
         v_calm, pb, _ = self.curve.at_rpm(rpm1)
         v = v_calm * (1.0 - self.speed_loss_fraction(v_calm, hdg, s))
         out = self.physics.finish_legs(rpm1, hdg, s, v, pb)

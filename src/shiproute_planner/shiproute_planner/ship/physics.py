@@ -186,5 +186,15 @@ def flatten_sea(sea: SeaState, shape: tuple[int, ...], n: int) -> SeaState:
     return SeaState(**{k: np.ascontiguousarray(a).reshape(n) for k, a in vars(b).items()})
 
 
+def flatten_legs(
+    first: np.ndarray, heading_deg: np.ndarray, sea: SeaState
+) -> tuple[tuple[int, ...], int, np.ndarray, np.ndarray, SeaState]:
+    """Broadcast (rpm or speed, heading, sea) to one shape and flatten them to n legs."""
+    shape = np.broadcast_shapes(first.shape, heading_deg.shape, sea.shape())
+    n = int(np.prod(shape))
+    return (shape, n, np.broadcast_to(first, shape).reshape(n),
+            np.broadcast_to(heading_deg, shape).reshape(n), flatten_sea(sea, shape, n))
+
+
 def _take(s: SeaState, idx: np.ndarray) -> SeaState:
     return SeaState(**{k: a[idx] for k, a in vars(s).items()})

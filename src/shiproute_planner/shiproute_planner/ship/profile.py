@@ -21,7 +21,7 @@ from scipy.interpolate import RegularGridInterpolator
 
 from .errors import ProfileError
 from .performance import LegPerformance, PerformanceModel
-from .physics import PhysicsModel, flatten_sea, relative_wave_deg
+from .physics import PhysicsModel, flatten_legs, flatten_sea, relative_wave_deg
 from .seastate import SeaState
 from .spec import ShipSpec
 from .validate import check_inputs, check_range, check_sea
@@ -148,11 +148,7 @@ class ProfileModel:
         rpm = np.asarray(rpm, dtype=float)
         heading_deg = np.asarray(heading_deg, dtype=float)
         check_inputs(self.ship, rpm, heading_deg, sea)
-        shape = np.broadcast_shapes(rpm.shape, heading_deg.shape, sea.shape())
-        n = int(np.prod(shape))
-        rpm1 = np.broadcast_to(rpm, shape).reshape(n)
-        hdg = np.broadcast_to(heading_deg, shape).reshape(n)
-        s = flatten_sea(sea, shape, n)
+        shape, _, rpm1, hdg, s = flatten_legs(rpm, heading_deg, sea)
         weather = self._weather(hdg, s)
         if self.axis == "rpm":
             pts = np.column_stack([rpm1, weather])
