@@ -8,6 +8,28 @@ import numba
 import numpy as np
 
 _FINE = 3  # refinement of the sample step inside coastal cells
+_D2R = math.pi / 180.0
+
+
+@numba.njit(cache=True, nogil=True)
+def segment_ends(lat0_deg: float, lon0_deg: float, lat1_deg: float, lon1_deg: float):
+    """Unit vectors of a segment's ends and its great-circle arc [deg]."""
+    la0, lo0, la1, lo1 = lat0_deg * _D2R, lon0_deg * _D2R, lat1_deg * _D2R, lon1_deg * _D2R
+    ax, ay, az = math.cos(la0) * math.cos(lo0), math.cos(la0) * math.sin(lo0), math.sin(la0)
+    bx, by, bz = math.cos(la1) * math.cos(lo1), math.cos(la1) * math.sin(lo1), math.sin(la1)
+    dot = min(1.0, max(-1.0, ax * bx + ay * by + az * bz))
+    return ax, ay, az, bx, by, bz, math.acos(dot) / _D2R
+
+
+@numba.njit(cache=True, nogil=True)
+def chord_sample(ax: float, ay: float, az: float, bx: float, by: float, bz: float, f: float):
+    """Latitude and longitude [deg] of the point at fraction f along the chord A->B, projected
+    back onto the sphere (the samples of a great-circle segment)."""
+    x = ax + f * (bx - ax)
+    y = ay + f * (by - ay)
+    z = az + f * (bz - az)
+    r = math.sqrt(x * x + y * y + z * z)
+    return math.asin(z / r) / _D2R, math.atan2(y, x) / _D2R
 
 
 @numba.njit(cache=True, nogil=True)
@@ -33,29 +55,18 @@ def scan_segments(
     or -1 if the coastal buffers were too small.
     """
     n_lat, n_lon = raster.shape
-    d2r = math.pi / 180.0
     inv = 1.0 / cell_deg
     n_coast = 0
     cap = coast_lon.size
     for s in range(lon0.size):
-        la0, lo0, la1, lo1 = lat0[s] * d2r, lon0[s] * d2r, lat1[s] * d2r, lon1[s] * d2r
-        ax, ay, az = math.cos(la0) * math.cos(lo0), math.cos(la0) * math.sin(lo0), math.sin(la0)
-        bx, by, bz = math.cos(la1) * math.cos(lo1), math.cos(la1) * math.sin(lo1), math.sin(la1)
-        dot = min(1.0, max(-1.0, ax * bx + ay * by + az * bz))
-        arc_deg = math.acos(dot) / d2r
+        ax, ay, az, bx, by, bz, arc_deg = segment_ends(lat0[s], lon0[s], lat1[s], lon1[s])
         n = max(1, math.ceil(arc_deg / spacing_deg))
         count = 0
         k = 0
         sub = 0  # > 0 while refining inside a coastal stretch
         steps = _FINE * n
         while k <= steps:
-            f = k / steps
-            x = ax + f * (bx - ax)
-            y = ay + f * (by - ay)
-            z = az + f * (bz - az)
-            r = math.sqrt(x * x + y * y + z * z)
-            lat = math.asin(z / r) / d2r
-            lon = math.atan2(y, x) / d2r
+            lat, lon = chord_sample(ax, ay, az, bx, by, bz, k / steps)
             i = min(max(int((lat + 90.0) * inv), 0), n_lat - 1)
             j = min(max(int((lon + 180.0) * inv), 0), n_lon - 1)
             v = raster[i, j]

@@ -12,6 +12,7 @@ import math
 import numpy as np
 from numba import njit
 
+from ..geo._kernels import chord_sample, segment_ends
 from ..ship import fast_kernel as fk
 
 # canonical variables in the order of the `chan`/`isdir` arrays handed to `sea_and_perform`
@@ -199,14 +200,9 @@ def near_land(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, spacing_deg
     half the segment's arc; else clear if no great-circle sample (every `spacing_deg`, below
     the coarse cell size) falls in a coarse cell flagged as land-or-coast-or-next-to-it."""
     n_lat, n_lon = coarse.shape
-    d2r = math.pi / 180.0
     inv = 1.0 / coarse_deg
     for s in range(lon0.size):
-        la0, lo0, la1, lo1 = lat0[s] * d2r, lon0[s] * d2r, lat1[s] * d2r, lon1[s] * d2r
-        ax, ay, az = math.cos(la0) * math.cos(lo0), math.cos(la0) * math.sin(lo0), math.sin(la0)
-        bx, by, bz = math.cos(la1) * math.cos(lo1), math.cos(la1) * math.sin(lo1), math.sin(la1)
-        dot = min(1.0, max(-1.0, ax * bx + ay * by + az * bz))
-        arc = math.acos(dot) / d2r
+        ax, ay, az, bx, by, bz, arc = segment_ends(lat0[s], lon0[s], lat1[s], lon1[s])
         i0 = min(max(int((lat0[s] + 90.0) * inv), 0), n_lat - 1)
         j0 = min(max(int(((lon0[s] + 180.0) % 360.0) * inv), 0), n_lon - 1)
         i1 = min(max(int((lat1[s] + 90.0) * inv), 0), n_lat - 1)
@@ -217,13 +213,7 @@ def near_land(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, spacing_deg
         n = max(1, math.ceil(arc / spacing_deg))
         hit = False
         for k in range(n + 1):
-            f = k / n
-            x = ax + f * (bx - ax)
-            y = ay + f * (by - ay)
-            z = az + f * (bz - az)
-            r = math.sqrt(x * x + y * y + z * z)
-            lat = math.asin(z / r) / d2r
-            lon = math.atan2(y, x) / d2r
+            lat, lon = chord_sample(ax, ay, az, bx, by, bz, k / n)
             i = min(max(int((lat + 90.0) * inv), 0), n_lat - 1)
             j = min(max(int((lon + 180.0) * inv), 0), n_lon - 1)
             if coarse[i, j]:
