@@ -49,13 +49,11 @@ def ros_context(domain_id: int) -> Iterator[Any]:
 
 def spin_until(executor: Any, predicate: Any, timeout_s: float, what: str = "condition") -> Any:
     """Spin ``executor`` in 50 ms steps until ``predicate()`` is truthy; raise after timeout_s."""
-    import time
 
-    deadline = time.monotonic() + timeout_s
-    while True:
+    def step() -> Any:
         value = predicate()
-        if value:
-            return value
-        if time.monotonic() >= deadline:
-            raise ProcessTimeoutError(f"{what} not reached within {timeout_s:.1f} s")
-        executor.spin_once(timeout_sec=0.05)
+        if not value:
+            executor.spin_once(timeout_sec=0.05)
+        return value
+
+    return wait_until(step, timeout_s, interval_s=0.0, what=what)
