@@ -60,6 +60,17 @@ def _decode_in_place(da: xr.DataArray) -> xr.DataArray:
     return da.copy(data=a)
 
 
+def decode_variables(ds: xr.Dataset) -> xr.Dataset:
+    """Shallow copy of `ds` with every data variable read and decoded (`_decode_in_place`).
+
+    The new arrays are swapped in with one `Dataset.copy(data=...)`: assigning variables one
+    by one would re-align the whole dataset per variable, which costs more than the reading.
+    """
+    data = {name: (_decode_in_place(ds[name]).variable.data if ds[name].ndim >= 2
+                   else ds[name].values) for name in ds.data_vars}
+    return ds.copy(data=data)
+
+
 def open_netcdf_raw(path: Path) -> xr.Dataset:
     """Open a NetCDF file fully into memory (netcdf4 engine, h5netcdf as fallback).
 
@@ -76,12 +87,7 @@ def open_netcdf_raw(path: Path) -> xr.Dataset:
         try:
             with xr.open_dataset(path, engine=engine, decode_timedelta=True,
                                  mask_and_scale=False) as ds:
-                out = ds.copy()
-                for name in list(out.data_vars):
-                    if out[name].ndim >= 2:
-                        out[name] = _decode_in_place(out[name])
-                    else:
-                        out[name] = out[name].load()
+                out = decode_variables(ds)
                 for name in out.coords:
                     out[name].load()
                 return out

@@ -18,7 +18,7 @@ from .combine import subset
 from .coords import rename_coords
 from .cycle_builder import CycleConfig
 from .errors import ForecastFileError, GridError, WeatherError
-from .loaders import NETCDF_CHUNK_CACHE_BYTES, _decode_in_place, detect_format
+from .loaders import NETCDF_CHUNK_CACHE_BYTES, decode_variables, detect_format
 from .normalise import to_canonical
 from .slices import CycleInfo, SliceData, cycle_info, dataset_to_slices, snap_grid
 from .validate import validate
@@ -47,11 +47,9 @@ def _blocks(path: str, cfg: CycleConfig) -> Iterator[xr.Dataset]:
         attrs: dict[str, str] | None = None
         last_t = None
         for i in range(0, min(n, cfg.max_slices), BLOCK_TIMES):
-            sub = lazy.isel(time=slice(i, min(i + BLOCK_TIMES, n, cfg.max_slices))).copy()
             try:
-                for name in list(sub.data_vars):
-                    sub[name] = _decode_in_place(sub[name]) if sub[name].ndim >= 2 else \
-                        sub[name].load()
+                sub = decode_variables(
+                    lazy.isel(time=slice(i, min(i + BLOCK_TIMES, n, cfg.max_slices))))
             except Exception as exc:
                 raise ForecastFileError(path, f"unreadable data in valid times {i}.. ({exc})") \
                     from exc
