@@ -33,21 +33,25 @@ def detect_format(path: Path) -> str:
 
 
 NETCDF_CHUNK_CACHE_BYTES = 1 << 20
+_CF_DECODE_ATTRS = ("scale_factor", "add_offset", "_FillValue", "missing_value")
 
 
-def _decode_in_place(da: xr.DataArray) -> xr.DataArray:
-    """CF mask/scale decoding without the extra full-size copies xarray's lazy decoding makes."""
-    enc = da.attrs
-    a = da.values
-    scale = enc.pop("scale_factor", None)
-    offset = enc.pop("add_offset", None)
-    fills = [enc.pop(k) for k in ("_FillValue", "missing_value") if k in enc]
+def _decode_array(var: xr.Variable) -> np.ndarray:
+    """CF mask/scale decoding without the extra full-size copies xarray's lazy decoding makes.
+
+    The raw array is read once and scaled/masked in place (a NaN fill value needs no mask).
+    """
+    enc = var.attrs
+    a = var.values
+    scale = enc.get("scale_factor")
+    offset = enc.get("add_offset")
     mask = None
-    for f in fills:
-        for v in np.atleast_1d(f):
-            if not (isinstance(v, float) and np.isnan(v)):
-                m = a == v
-                mask = m if mask is None else mask | m
+    for key in ("_FillValue", "missing_value"):
+        for v in np.atleast_1d(enc.get(key, [])):
+            if isinstance(v, float | np.floating) and np.isnan(v):
+                continue
+            m = a == v
+            mask = m if mask is None else mask | m
     if scale is not None or offset is not None or mask is not None:
         if a.dtype.kind != "f" or scale is not None or offset is not None:
             a = a.astype(np.float32 if a.dtype.itemsize <= 2 else np.float64)
@@ -57,18 +61,24 @@ def _decode_in_place(da: xr.DataArray) -> xr.DataArray:
             a += offset
         if mask is not None:
             a[mask] = np.nan
-    return da.copy(data=a)
+    return a
 
 
 def decode_variables(ds: xr.Dataset) -> xr.Dataset:
-    """Shallow copy of `ds` with every data variable read and decoded (`_decode_in_place`).
+    """Copy of `ds` with every data variable read, and CF-decoded when it has >= 2 dims.
 
     The new arrays are swapped in with one `Dataset.copy(data=...)`: assigning variables one
     by one would re-align the whole dataset per variable, which costs more than the reading.
+    The decoding attributes are dropped from the decoded variables; `ds` is not changed.
     """
-    data = {name: (_decode_in_place(ds[name]).variable.data if ds[name].ndim >= 2
-                   else ds[name].values) for name in ds.data_vars}
-    return ds.copy(data=data)
+    decoded = [name for name in ds.data_vars if ds.variables[name].ndim >= 2]
+    data = {name: _decode_array(ds.variables[name]) if name in decoded
+            else ds.variables[name].values for name in ds.data_vars}
+    out = ds.copy(data=data)
+    for name in decoded:
+        for key in _CF_DECODE_ATTRS:
+            out.variables[name].attrs.pop(key, None)
+    return out
 
 
 def open_netcdf_raw(path: Path) -> xr.Dataset:

@@ -69,7 +69,7 @@ def _find_named(ds: xr.Dataset, names: tuple[str, ...], standard: str) -> str | 
 
 def _convert(da: xr.DataArray, m: Mapping, where: str) -> np.ndarray:
     spec = cv.VARIABLES[m.canonical]
-    vals = _surface(da).transpose(*_DIMS).values
+    vals = da.values if da.dims == _DIMS else _surface(da).transpose(*_DIMS).values
     factor = si_factor(_units(da), spec.units, where, str(da.name))
     if spec.units == "s" and m.period_kind != "tm01":
         factor *= to_tm01_factor(m.period_kind)

@@ -118,7 +118,8 @@ def dataset_to_slices(ds: xr.Dataset) -> Iterator[SliceData]:
     """Yield one SliceData per valid time (fields in canonical order, float32 copies)."""
     grid = slice_grid(ds)
     names = cv.present_variables(ds)
-    arrays = {n: ds[n].transpose("time", "latitude", "longitude").values for n in names}
+    arrays = {n: ds.variables[n].transpose("time", "latitude", "longitude").values
+              for n in names}
     times = ds["time"].values.astype("datetime64[ns]").astype(np.int64)
     ref = iso_to_ns(ds.attrs["forecast_reference_time"])
     for k, t in enumerate(times):
