@@ -23,7 +23,11 @@ from .normalise import to_canonical
 from .slices import CycleInfo, SliceData, cycle_info, dataset_to_slices, snap_grid
 from .validate import validate
 
-BLOCK_TIMES = 32
+#: Valid times per block. A block's memory is freed only once all its slices are published,
+#: so while publishing the process briefly holds one block twice (slices + middleware
+#: history): 16 (~23 MB at 0.5 deg) instead of 32 lowers the peak by ~22 MB for ~13 ms of
+#: per-block overhead each.
+BLOCK_TIMES = 16
 
 
 def streamable(paths: list[str], cfg: CycleConfig) -> bool:
