@@ -158,6 +158,9 @@ def scenario_path(name: str, rebuild: bool = False) -> Path:
     path = data_dir() / "scenarios" / f"{name}.v{FORMAT_VERSION}.nc"
     if rebuild or not path.exists():
         write_scenario(name, path)
+        for old in path.parent.glob(f"{name}.v*.nc"):  # caches of earlier format versions
+            if old != path:
+                old.unlink(missing_ok=True)
     return path
 
 

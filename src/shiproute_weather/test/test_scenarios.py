@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from shiproute_weather.scenario_fields import build_fields
-from shiproute_weather.scenarios import SCENARIOS, scenario_dataset, scenario_path
+from shiproute_weather.scenarios import FORMAT_VERSION, SCENARIOS, scenario_dataset, scenario_path
 from shiproute_weather.synth_seas import MARCH_SWELL
 from shiproute_weather.synth_wind import MARCH
 
@@ -45,7 +45,11 @@ def test_generation_is_deterministic() -> None:
 @pytest.fixture(scope="module")
 def storm(tmp_path_factory: pytest.TempPathFactory):
     mp = pytest.MonkeyPatch()
-    mp.setenv("SHIPROUTE_DATA_DIR", str(tmp_path_factory.mktemp("data")))
+    data = tmp_path_factory.mktemp("data")
+    (data / "scenarios").mkdir()
+    for stale in ("storm_march.v0.nc", "storm_march_cycle2.v0.nc"):  # older cache versions
+        (data / "scenarios" / stale).write_bytes(b"CDF\x01")
+    mp.setenv("SHIPROUTE_DATA_DIR", str(data))
     try:
         yield scenario_dataset("storm_march")
     finally:
@@ -55,6 +59,9 @@ def storm(tmp_path_factory: pytest.TempPathFactory):
 @pytest.mark.slow
 def test_storm_scenario_file_and_ranges(storm) -> None:
     path = scenario_path("storm_march")
+    # generating replaced the scenario's older cache version, not another scenario's
+    assert sorted(p.name for p in Path(path).parent.iterdir()) == [
+        f"storm_march.v{FORMAT_VERSION}.nc", "storm_march_cycle2.v0.nc"]
     # uncompressed float32 cache: the data bytes plus a small HDF5 header, nothing more
     data_bytes = len(cv.CANONICAL_ORDER) * 129 * 105 * 261 * 4
     assert data_bytes <= Path(path).stat().st_size < data_bytes + 1_000_000
