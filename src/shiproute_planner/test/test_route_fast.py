@@ -73,7 +73,9 @@ def test_fast_and_exact_evaluations_agree_on_random_populations(storm_problem, l
     d_nm = np.hypot((b.lon_deg - a.lon_deg) * np.cos(np.radians(a.lat_deg)),
                     b.lat_deg - a.lat_deg) * 60.0
     assert np.max(d_nm[inside]) < 1.0
-    assert np.array_equal(a.flags[inside] & 1, b.flags[inside] & 1)  # land verdicts
+    # land verdicts: the GA decides coastal samples on a ~1 km grid, the exact test at the
+    # sample itself; they may differ only for routes grazing a coast
+    assert np.mean((a.flags[inside] & 1) == (b.flags[inside] & 1)) > 0.95
     assert np.mean(a.flags[inside] == b.flags[inside]) > 0.95
 
 
@@ -113,16 +115,67 @@ def test_fill_sea_matches_seastate_from_forecast(storm_sampler):
         assert np.max(np.abs(diff)) < 1e-6, name
 
 
-def test_quantised_land_test_is_exact_at_cell_centres(land_mask):
-    q = 0.002
+def _brute_force_hits(land, lon0, lat0, lon1, lat1, spacing_deg):
+    """Every chord point the exact scan can visit: land cells hit, coastal cells hit when the
+    exact test puts the centre of the point's fine cell on land."""
+    from shiproute_planner.geo._kernels import _FINE, chord_sample, segment_ends
+
+    out = np.zeros(lon0.size, dtype=bool)
+    raster = np.asarray(land.raster)
+    for s in range(lon0.size):
+        ends = segment_ends(lat0[s], lon0[s], lat1[s], lon1[s])
+        steps = _FINE * max(1, int(np.ceil(ends[6] / spacing_deg)))
+        pts = np.array([chord_sample(*ends[:6], k / steps) for k in range(steps + 1)])
+        i = np.clip(((pts[:, 0] + 90.0) / land.cell_deg).astype(int), 0, raster.shape[0] - 1)
+        j = np.clip((((pts[:, 1] + 180.0) % 360.0) / land.cell_deg).astype(int), 0,
+                    raster.shape[1] - 1)
+        v = raster[i, j]
+        hit = v == 1
+        coast = v == 2
+        if coast.any():
+            hit[coast] = land.fine_coast.contains(pts[coast, 1], pts[coast, 0])
+        out[s] = hit.any()
+    return out
+
+
+def test_ga_land_verdict_is_the_brute_force_one_and_agrees_with_the_exact_test(land_mask):
+    from shiproute_planner.route import _route_kernel as rk
+    from shiproute_planner.route.fast_eval import COARSE_FACTOR
+
     rng = np.random.default_rng(9)
-    # points around the Tsugaru Strait and the Channel Islands
-    lon = np.concatenate([rng.uniform(139.5, 141.8, 300), rng.uniform(-120.6, -118.2, 300)])
-    lat = np.concatenate([rng.uniform(40.9, 42.0, 300), rng.uniform(32.7, 34.3, 300)])
-    got = land_mask.contains_quantised(lon, lat, q)
-    c_lon = (np.floor((lon + 180.0) / q) + 0.5) * q - 180.0
-    c_lat = (np.floor((lat + 90.0) / q) + 0.5) * q - 90.0
-    assert np.array_equal(got, land_mask.exact.contains(c_lon, c_lat))
-    assert got.any() and not got.all()
-    again = land_mask.contains_quantised(lon, lat, q)  # served from the cache
-    assert np.array_equal(got, again)
+    # legs of up to ~6 deg around the Tsugaru Strait, the Aleutians, the Channel Islands and
+    # across the antimeridian
+    centres = [(140.5, 41.5), (-175.0, 52.0), (-119.4, 33.6), (179.5, 51.5)]
+    lon0, lat0, lon1, lat1 = [], [], [], []
+    for c_lon, c_lat in centres:
+        a = rng.uniform(-3, 3, (4, 150))
+        lon0.append(c_lon + a[0])
+        lat0.append(c_lat + 0.5 * a[1])
+        lon1.append(c_lon + a[2])
+        lat1.append(c_lat + 0.5 * a[3])
+    lon0, lat0, lon1, lat1 = (np.concatenate(v) for v in (lon0, lat0, lon1, lat1))
+    coarse = fk.coarse_land_raster(np.asarray(land_mask.raster), COARSE_FACTOR)
+    coarse_deg = land_mask.cell_deg * COARSE_FACTOR
+    clear = fk.clear_distance_deg(coarse, coarse_deg)
+    fine = land_mask.fine_coast
+    got = np.full(lon0.size, -1, dtype=np.int64)
+    todo = np.arange(lon0.size)
+    rounds = 0
+    while todo.size:  # as the evaluator does: resolve the cells met, rescan those legs
+        missing = np.empty(64, dtype=np.int64)  # small: exercises the full-buffer path
+        part = np.empty(todo.size, dtype=np.int64)
+        n = rk.ga_land_hits(lon0[todo], lat0[todo], lon1[todo], lat1[todo], coarse, clear,
+                            coarse_deg, np.asarray(land_mask.raster),
+                            np.asarray(land_mask.sea_distance_cells), land_mask.cell_deg,
+                            0.05, fine.slots, fine.fine, missing, part)
+        got[todo] = part
+        fine.add(missing[:n])
+        todo = todo[part < 0]
+        rounds += 1
+        assert rounds < 500
+    brute = _brute_force_hits(land_mask, lon0, lat0, lon1, lat1, 0.05)
+    assert 0.2 < brute.mean() < 0.9  # the sample has both kinds of legs
+    assert np.array_equal(got > 0, brute)  # skipping sea never skips a land or coastal cell
+    exact = land_mask.segment_land_samples(lon0, lat0, lon1, lat1, 0.05) > 0
+    # the ~1 km grid differs from the exact test only for legs grazing a coast
+    assert np.mean(exact == brute) > 0.97

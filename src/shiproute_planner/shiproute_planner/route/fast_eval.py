@@ -1,25 +1,30 @@
 """Fast population evaluator for the GA: the same route model as `generate.evaluate_genes`
 with the per-call overheads removed.
 
-Per stage one call of the weather package's trilinear kernel (whole population), one
-compiled call that turns the channels into sea states and runs the ship model's kernel, and
-one compiled geodesic step (RK4 on the WGS 84 geodesic ODE instead of pyproj). Land: a
-coarse (0.5 deg, dilated) raster filters out open-ocean segments; the rest go through the
-same `LandMask.segment_land_samples` as the exact evaluator. Agreement with the exact
-evaluator is tested; the planner re-evaluates its final choice exactly.
+One compiled call (`_route_kernel.generate_routes`) generates a whole population: per stage
+the weather package's trilinear kernel, the sea state, the ship model's kernel and a geodesic
+step (RK4 on the WGS 84 geodesic ODE instead of pyproj). Land: a coarse (0.5 deg, dilated)
+raster clears open-ocean legs; the rest are sampled at the exact scan's points against the
+0.05-deg raster with coastal cells counted as land (`_route_kernel.ga_land_hits`), so a leg the
+GA calls clear is clear to the exact test too. Agreement with the exact evaluator is tested;
+the planner re-evaluates its final choice exactly.
 """
 
 from __future__ import annotations
 
-import numba
+import itertools
+import os
+from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
+
 import numpy as np
 
 from ..geo.landmask import LandMask
 from . import _fast_kernels as fk
+from . import _route_kernel as rk
 from .encoding import split_genes
 from .environment import PERF_FIELDS, Environment
 from .evaluation import RouteEvaluation, clear_ports, finish
-from .legs import MIN_SOG_M_S
 from .problem import RouteProblem
 
 # out_f rows / out_b rows of ship.fast_kernel.evaluate_kernel -> PERF_FIELDS
@@ -29,8 +34,23 @@ _F_ROWS = {"stw_m_s": 0, "sog_m_s": 1, "cog_deg": 2, "brake_power_kw": 3, "fuel_
 _B_ROWS = {"engine_limit_exceeded": 0, "surf_riding": 1, "parametric_roll": 2,
            "synchronous_roll": 3, "high_wave_group": 4}
 COARSE_FACTOR = 10  # 0.05 deg raster -> 0.5 deg near-land filter
-LAND_QUANTUM_DEG = 0.002  # coastal samples tested at the centre of their ~200 m cell
 _COARSE: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+MISS_BUFFER = 4096  # unresolved coastal cells one scan may report
+MIN_CHUNK = 16  # rows per thread below which one thread does it all
+N_THREADS = max(1, min(4, os.cpu_count() or 1))
+_POOL = ThreadPoolExecutor(max_workers=N_THREADS, thread_name_prefix="shiproute-eval")
+
+
+def in_chunks(n: int, work: Callable[[int, int], None]) -> None:
+    """Run work(a, b) over 0..n in one chunk per core (the kernels release the GIL)."""
+    k = max(1, min(N_THREADS, n // MIN_CHUNK))
+    if k == 1:
+        work(0, n)
+        return
+    bounds = np.linspace(0, n, k + 1).astype(int)
+    futures = [_POOL.submit(work, int(a), int(b)) for a, b in itertools.pairwise(bounds)]
+    for f in futures:
+        f.result()
 
 
 class FastEvaluator:
@@ -38,23 +58,23 @@ class FastEvaluator:
     environment is not the tabulated ship model with a `ForecastSampler` or calm water)."""
 
     def __init__(self, problem: RouteProblem, env: Environment, land: LandMask | None) -> None:
-        from shiproute_weather._interp_kernel import trilinear
-
         self.problem, self.env, self.land = problem, env, land
-        self._trilinear = trilinear
         m = env.model
         self._ship = (m._par, *m._tables)
         self._limits = m._limits
         self._rpm_lo, self._rpm_hi = float(m._limits[0, 0]), float(m._limits[0, 1])
-        self._wx = None
         if env.sampler is not None:
             from shiproute_weather.sampler_arrays import sampler_arrays
 
             a = sampler_arrays(env.sampler)
-            self._wx = a
-            self._chan = np.array([a.channels.get(v, -1) for v in fk.SEA_VARIABLES],
-                                  dtype=np.int64)
-            self._isdir = np.array([v in a.directions for v in fk.SEA_VARIABLES])
+            chan = np.array([a.channels.get(v, -1) for v in fk.SEA_VARIABLES], dtype=np.int64)
+            isdir = np.array([v in a.directions for v in fk.SEA_VARIABLES])
+            self._weather = (True, a.data, a.times_s, a.lat0_deg, a.dlat_deg, a.lon0_deg,
+                             a.dlon_deg, bool(a.periodic), chan, isdir)
+        else:  # calm water: the kernel skips sampling
+            self._weather = (False, np.zeros((1, 1, 1, 1)), np.zeros(1), 0.0, 1.0, 0.0, 1.0,
+                             False, np.full(len(fk.SEA_VARIABLES), -1, dtype=np.int64),
+                             np.zeros(len(fk.SEA_VARIABLES), dtype=np.bool_))
         self._coarse = None
         if land is not None:
             key = id(land)
@@ -63,78 +83,29 @@ class FastEvaluator:
                 coarse = fk.coarse_land_raster(np.asarray(land.raster), COARSE_FACTOR)
                 _COARSE[key] = (coarse, fk.clear_distance_deg(coarse, self._coarse_deg))
             self._coarse, self._clear = _COARSE[key]
-
-    def _stage(self, lon, lat, t, rpm, hdg) -> tuple[np.ndarray, np.ndarray]:
-        """Ship model outputs (11, P) and flags (5, P) at the points for rpm/heading."""
-        pop = lon.size
-        sea = np.empty((10, pop))
-        if self._wx is None:
-            sea[:] = 0.0
-            sea[4] = sea[7] = 8.0
-        else:
-            a = self._wx
-            wx = np.empty((a.data.shape[3], pop))
-            self._trilinear(a.data, a.times_s, a.lat0_deg, a.dlat_deg, a.lon0_deg, a.dlon_deg,
-                            a.periodic, lon, lat, t, wx)
-            fk.fill_sea(wx, self._chan, self._isdir, sea, self._limits)
-        return self._perform(rpm, hdg, sea), sea
-
-    def _perform(self, rpm, hdg, sea) -> tuple[np.ndarray, np.ndarray]:
-        out_f = np.empty((11, rpm.size))
-        out_b = np.empty((5, rpm.size), dtype=np.bool_)
-        r = np.clip(rpm, self._rpm_lo, self._rpm_hi)
-        fk.perform(r, np.ascontiguousarray(hdg % 360.0), sea, *self._ship, out_f, out_b)
-        return out_f, out_b
+            self._raster = np.asarray(land.raster)
+            self._sea_dist = np.asarray(land.sea_distance_cells)
 
     def evaluate(self, x: np.ndarray) -> RouteEvaluation:
-        """Generate and evaluate routes from genes `x` (pop, 2n + 1).
-
-        Runs on one thread: for a few hundred points per stage, waking numba's workers
-        costs more than the work (and far more on a busy machine)."""
-        prev = numba.get_num_threads()
-        numba.set_num_threads(1)
-        try:
-            return self._evaluate(x)
-        finally:
-            numba.set_num_threads(prev)
-
-    def _evaluate(self, x: np.ndarray) -> RouteEvaluation:
+        """Generate and evaluate routes from genes `x` (pop, 2n + 1)."""
         p = self.problem
         headings, rpm = split_genes(p, x)
         pop, n = headings.shape
         m = n + 1
-        lon = np.empty((pop, m + 1))
-        lat = np.empty((pop, m + 1))
-        t = np.empty((pop, m + 1))
-        lon[:, 0], lat[:, 0], t[:, 0] = p.dep_lon_deg, p.dep_lat_deg, p.depart_s
+        lon, lat, t = np.empty((pop, m + 1)), np.empty((pop, m + 1)), np.empty((pop, m + 1))
         out_f = np.empty((11, pop, m))
         out_b = np.empty((5, pop, m), dtype=np.bool_)
-        nl, nt = np.empty(pop), np.empty(pop)
-        for i in range(n):
-            lo_i, la_i, t_i = (np.ascontiguousarray(a[:, i]) for a in (lon, lat, t))
-            (f, b), _ = self._stage(lo_i, la_i, t_i, np.ascontiguousarray(rpm[:, i]),
-                                    headings[:, i])
-            out_f[:, :, i], out_b[:, :, i] = f, b
-            fk.direct_many(lo_i, la_i, f[2], np.maximum(f[1], 0.0) * p.stage_s, nl, nt)
-            lon[:, i + 1], lat[:, i + 1] = nl, nt
-            t[:, i + 1] = t_i + p.stage_s
-        # final connection: steer so that the course over ground points at the port
-        lo_n, la_n, t_n = (np.ascontiguousarray(a[:, n]) for a in (lon, lat, t))
-        arr_lon, arr_lat = np.full(pop, p.arr_lon_deg), np.full(pop, p.arr_lat_deg)
-        course, dist_n = np.empty(pop), np.empty(pop)
-        fk.inverse_many(lo_n, la_n, arr_lon, arr_lat, course, dist_n)
-        rpm_n = np.ascontiguousarray(rpm[:, n])
-        (f, b), sea = self._stage(lo_n, la_n, t_n, rpm_n, course)
-        drift = (f[2] - course + 180.0) % 360.0 - 180.0
-        heading_n = course.copy()
-        if np.any(np.abs(drift) > 1e-6):
-            heading_n = (course - drift) % 360.0
-            f, b = self._perform(rpm_n, heading_n, sea)
-        out_f[:, :, n], out_b[:, :, n] = f, b
-        along = f[1] * np.cos(np.radians(f[2] - course))
-        dur_n = np.where(dist_n > 0.0, dist_n / np.maximum(along, MIN_SOG_M_S), 0.0)
-        lon[:, m], lat[:, m] = p.arr_lon_deg, p.arr_lat_deg
-        t[:, m] = t_n + dur_n
+        heading_n, dist_n, dur_n = np.empty(pop), np.empty(pop), np.empty(pop)
+        headings, rpm = np.ascontiguousarray(headings), np.ascontiguousarray(rpm)
+
+        def generate(a: int, b: int) -> None:
+            rk.generate_routes(headings[a:b], rpm[a:b], p.dep_lon_deg, p.dep_lat_deg,
+                               p.depart_s, p.stage_s, p.arr_lon_deg, p.arr_lat_deg,
+                               self._rpm_lo, self._rpm_hi, *self._weather, self._limits,
+                               *self._ship, lon[a:b], lat[a:b], t[a:b], out_f[:, a:b],
+                               out_b[:, a:b], heading_n[a:b], dist_n[a:b], dur_n[a:b])
+
+        in_chunks(pop, generate)
         legs = {k: out_f[r] for k, r in _F_ROWS.items()}
         legs.update({k: out_b[r] for k, r in _B_ROWS.items()})
         legs = {k: legs[k] for k in PERF_FIELDS}
@@ -152,20 +123,33 @@ class FastEvaluator:
         return finish(p, self.land, lon, lat, t, legs, self._land_samples(lon, lat, distance))
 
     def _land_samples(self, lon, lat, distance) -> np.ndarray | None:
-        """Land samples per leg: coarse filter, then the exact evaluator's segment test."""
+        """Land samples per leg from the compiled scan (`ga_land_hits`); coastal cells it
+        meets for the first time are resolved exactly and their legs scanned again."""
         if self.land is None:
             return None
         ends = [np.ascontiguousarray(e).ravel()
                 for e in clear_ports(self.problem, lon, lat, distance)]
-        near = np.empty(ends[0].size, dtype=np.bool_)
-        fk.near_land(*ends, self._coarse, self._clear, self._coarse_deg, 0.4 * self._coarse_deg,
-                     near)
-        out = np.zeros(ends[0].size, dtype=np.int64)
-        idx = np.flatnonzero(near)
-        if idx.size:
-            out[idx] = self.land.segment_land_samples(
-                *(e[idx] for e in ends), self.problem.land_spacing_deg,
-                quantum_deg=LAND_QUANTUM_DEG)
+        out = np.empty(ends[0].size, dtype=np.int64)
+        fine = self.land.fine_coast
+        todo = np.arange(out.size)
+        while todo.size:
+            part = [e[todo] for e in ends]
+            got = np.empty(todo.size, dtype=np.int64)
+            misses: list[np.ndarray] = []
+
+            def scan(a: int, b: int, part=part, got=got, misses=misses) -> None:
+                buf = np.empty(MISS_BUFFER, dtype=np.int64)
+                n = rk.ga_land_hits(*(e[a:b] for e in part), self._coarse, self._clear,
+                                    self._coarse_deg, self._raster, self._sea_dist,
+                                    self.land.cell_deg, self.problem.land_spacing_deg,
+                                    fine.slots, fine.fine, buf, got[a:b])
+                misses.append(buf[:n])
+
+            in_chunks(todo.size, scan)
+            out[todo] = got
+            if any(m.size for m in misses):
+                fine.add(np.concatenate(misses))
+            todo = todo[got < 0]
         return out.reshape(distance.shape)
 
 

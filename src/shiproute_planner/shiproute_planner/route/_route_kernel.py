@@ -1,0 +1,177 @@
+"""Whole-population route generation in one compiled call, and the GA's land verdict.
+
+`generate_routes` runs the stage loop of `fast_eval` (weather sampling, sea state, ship model,
+geodesic step; then the final connection steered at the port) inside numba, so a population
+costs one Python call instead of four per stage. `ga_land_hits` is the GA loop's land test:
+the exact scan's candidate samples, decided by the raster and, in coastal cells, by exact
+verdicts on a ~1 km grid resolved on first use (`geo.fine_coast`).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+from shiproute_weather._interp_kernel import trilinear as _trilinear_parallel
+
+from ..geo._kernels import _FINE, chord_sample, segment_ends
+from . import _fast_kernels as fk
+
+# the sampler's kernel compiled serially: populations run in chunks on Python threads, and
+# numba's parallel launcher must not be entered from two threads at once
+trilinear = njit(nogil=True)(_trilinear_parallel.py_func)  # no cache: it would share
+# the parallel version's cache entry (same function and file)
+_GRADE_STEP = 4 * _FINE  # samples per step once a leg is known to touch land
+MIN_SOG_M_S = 0.1  # same floor as route.legs: the final connection's speed along the course
+
+
+@njit(cache=True, nogil=True)
+def _stage(lon, lat, t, rpm, hdg, has_wx, data, times_s, lat0, dlat, lon0, dlon, periodic,
+           chan, isdir, limits, par, r_calm, wake, u_ws, u_sw, m0_ws, m0_sw, caa, sfoc_x,
+           sfoc_y, wx, sea, f, b):
+    """Ship model outputs f (11, P) and flags b (5, P) at the points for rpm/heading."""
+    if has_wx:
+        trilinear(data, times_s, lat0, dlat, lon0, dlon, periodic, lon, lat, t, wx)
+        fk.fill_sea(wx, chan, isdir, sea, limits)
+    else:
+        sea[:] = 0.0
+        sea[4] = 8.0
+        sea[7] = 8.0
+    fk.perform(rpm, hdg, sea, par, r_calm, wake, u_ws, u_sw, m0_ws, m0_sw, caa, sfoc_x, sfoc_y,
+               f, b)
+
+
+@njit(cache=True, nogil=True)
+def generate_routes(headings, rpm, dep_lon, dep_lat, depart_s, stage_s, arr_lon, arr_lat,
+                    rpm_lo, rpm_hi, has_wx, data, times_s, lat0, dlat, lon0, dlon, periodic,
+                    chan, isdir, limits, par, r_calm, wake, u_ws, u_sw, m0_ws, m0_sw, caa,
+                    sfoc_x, sfoc_y, lon, lat, t, out_f, out_b, heading_n, dist_n, dur_n):
+    """Nodes (pop, n + 2) and leg outputs (11|5, pop, n + 1) of routes from stage headings
+    (pop, n) [deg going to] and RPMs (pop, n + 1); see `fast_eval.FastEvaluator`."""
+    pop, n = headings.shape
+    nch = data.shape[3]
+    wx = np.empty((nch, pop))
+    sea = np.empty((10, pop))
+    f = np.empty((11, pop))
+    b = np.empty((5, pop), dtype=np.bool_)
+    lo_i, la_i, t_i = np.empty(pop), np.empty(pop), np.empty(pop)
+    r_i, h_i, d_i = np.empty(pop), np.empty(pop), np.empty(pop)
+    nl, nt = np.empty(pop), np.empty(pop)
+    for p in range(pop):
+        lo_i[p], la_i[p], t_i[p] = dep_lon, dep_lat, depart_s
+        lon[p, 0], lat[p, 0], t[p, 0] = dep_lon, dep_lat, depart_s
+    for i in range(n):
+        for p in range(pop):
+            r_i[p] = min(max(rpm[p, i], rpm_lo), rpm_hi)
+            h_i[p] = headings[p, i] % 360.0
+        _stage(lo_i, la_i, t_i, r_i, h_i, has_wx, data, times_s, lat0, dlat, lon0, dlon,
+               periodic, chan, isdir, limits, par, r_calm, wake, u_ws, u_sw, m0_ws, m0_sw, caa,
+               sfoc_x, sfoc_y, wx, sea, f, b)
+        for p in range(pop):
+            d_i[p] = max(f[1, p], 0.0) * stage_s
+        fk.direct_many(lo_i, la_i, f[2], d_i, nl, nt)
+        for p in range(pop):
+            for k in range(11):
+                out_f[k, p, i] = f[k, p]
+            for k in range(5):
+                out_b[k, p, i] = b[k, p]
+            lo_i[p], la_i[p] = nl[p], nt[p]
+            t_i[p] += stage_s
+            lon[p, i + 1], lat[p, i + 1], t[p, i + 1] = nl[p], nt[p], t_i[p]
+    # final connection: steer so that the course over ground points at the port
+    a_lon, a_lat = np.full(pop, arr_lon), np.full(pop, arr_lat)
+    course = np.empty(pop)
+    fk.inverse_many(lo_i, la_i, a_lon, a_lat, course, dist_n)
+    for p in range(pop):
+        r_i[p] = min(max(rpm[p, n], rpm_lo), rpm_hi)
+        h_i[p] = course[p]
+    _stage(lo_i, la_i, t_i, r_i, h_i, has_wx, data, times_s, lat0, dlat, lon0, dlon, periodic,
+           chan, isdir, limits, par, r_calm, wake, u_ws, u_sw, m0_ws, m0_sw, caa, sfoc_x,
+           sfoc_y, wx, sea, f, b)
+    redo = False
+    for p in range(pop):
+        drift = (f[2, p] - course[p] + 180.0) % 360.0 - 180.0
+        heading_n[p] = course[p]
+        if abs(drift) > 1e-6:
+            heading_n[p] = (course[p] - drift) % 360.0
+            redo = True
+    if redo:  # same sea state, corrected heading
+        fk.perform(r_i, heading_n, sea, par, r_calm, wake, u_ws, u_sw, m0_ws, m0_sw, caa,
+                   sfoc_x, sfoc_y, f, b)
+    for p in range(pop):
+        for k in range(11):
+            out_f[k, p, n] = f[k, p]
+        for k in range(5):
+            out_b[k, p, n] = b[k, p]
+        along = f[1, p] * math.cos(math.radians(f[2, p] - course[p]))
+        dur_n[p] = dist_n[p] / max(along, MIN_SOG_M_S) if dist_n[p] > 0.0 else 0.0
+        lon[p, n + 1], lat[p, n + 1] = arr_lon, arr_lat
+        t[p, n + 1] = t_i[p] + dur_n[p]
+
+
+@njit(cache=True, nogil=True)
+def ga_land_hits(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, raster, sea_dist,
+                 cell_deg, spacing_deg, slots, fine, missing, out):
+    """Land samples per segment for the GA loop. A segment found clear so far that met a
+    coastal cell not yet resolved gets -1, to be scanned again once
+    `geo.fine_coast.FineCoast.add` has resolved the cells written to `missing` (returns how
+    many; when `missing` is full, later cells are left for the next scan).
+
+    Candidate samples are every point the exact scan (`geo._kernels.scan_segments`) can
+    visit: fractions k / steps of the chord with its refined step throughout. A sample counts
+    in a land cell, and in a coastal cell when the exact verdict at the centre of its fine
+    cell (`fine[slots[cell]]`) is land. Samples in coarse cells with no land or coast in or
+    next to them are sea for sure and skipped by the cell's clear distance, and so are samples
+    closer than `sea_dist` (chessboard cells to the nearest land or coastal cell); after the
+    first hit the walk grades the rest in steps of four cells."""
+    n_lat, n_lon = raster.shape
+    c_lat, c_lon = coarse.shape
+    f = fine.shape[1]
+    inv, c_inv = 1.0 / cell_deg, 1.0 / coarse_deg
+    n_miss = 0
+    for s in range(lon0.size):
+        ax, ay, az, bx, by, bz, arc = segment_ends(lat0[s], lon0[s], lat1[s], lon1[s])
+        steps = _FINE * max(1, math.ceil(arc / spacing_deg))
+        # chord fractions run at most ~0.1 % faster than arc fractions for legs < 20 deg
+        per_step = max(0.9 * arc / steps, 1e-12)  # zero-length legs: one sample decides
+        count = 0
+        unresolved = False
+        k = 0
+        while k <= steps:
+            la, lo = chord_sample(ax, ay, az, bx, by, bz, k / steps)
+            ci = min(max(int((la + 90.0) * c_inv), 0), c_lat - 1)
+            cj = min(max(int(((lo + 180.0) % 360.0) * c_inv), 0), c_lon - 1)
+            if not coarse[ci, cj] and clear_deg[ci, cj] > per_step:
+                k += 1 + int(clear_deg[ci, cj] / per_step)
+                continue
+            y = (la + 90.0) * inv
+            x = ((lo + 180.0) % 360.0) * inv
+            i = min(max(int(y), 0), n_lat - 1)
+            j = min(max(int(x), 0), n_lon - 1)
+            v = raster[i, j]
+            if count:  # on land already: the verdict stands, the count only grades it
+                count += _GRADE_STEP if v != 0 else 0
+                k += _GRADE_STEP
+                continue
+            if v == 1:
+                count += 1
+            elif v == 2:
+                key = i * n_lon + j
+                slot = slots[key] if key in slots else -1
+                if slot < 0:
+                    unresolved = True
+                    if n_miss < missing.size:
+                        missing[n_miss] = key
+                        n_miss += 1
+                elif fine[slot, min(int((y - i) * f), f - 1), min(int((x - j) * f), f - 1)]:
+                    count += 1
+            elif sea_dist[i, j] > 1:
+                # cells within d - 1 of this one are sea: lat moves <= arc, lon <= arc / cos
+                d = sea_dist[i, j] - 1
+                cos_lat = math.cos(math.radians(min(abs(la) + (d + 1) * cell_deg, 89.0)))
+                k += 1 + int(d * cell_deg * cos_lat / per_step)
+                continue
+            k += 1
+        out[s] = -1 if count == 0 and unresolved else count
+    return n_miss
