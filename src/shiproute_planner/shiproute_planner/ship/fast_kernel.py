@@ -188,8 +188,8 @@ def _imo(par, v, hs, t_mean, cos_rel, peak, out):
     we = abs(wp + wp * wp * v * cos_rel / G)
     te = 2.0 * math.pi / max(we, 1e-6)
     tr = par[P_TROLL]
-    if abs(te / (0.5 * tr) - 1.0) < par[P_TOL]:
-        out[1] = True  # parametric rolling
+    if abs(cos_rel) >= COS_45 and abs(te / (0.5 * tr) - 1.0) < par[P_TOL]:
+        out[1] = True  # parametric rolling (head or following sector only)
     if abs(te / tr - 1.0) < par[P_TOL]:
         out[2] = True  # synchronous rolling
 

@@ -144,5 +144,8 @@ def imo_flags(
     tr = natural_roll_period_s(ship)
     tol = ship.seakeeping.roll_resonance_tolerance
     sync = present & (np.abs(te / tr - 1.0) < tol)
-    param = present & (np.abs(te / (0.5 * tr) - 1.0) < tol)
+    # parametric roll needs the waves to run along the hull (the waterplane changes with the
+    # wave passage): head or following seas within 45 deg, as in the ABS parametric roll guide
+    along = (rel <= 45.0) | (rel >= 135.0)
+    param = present & along & (np.abs(te / (0.5 * tr) - 1.0) < tol)
     return surf, param, sync, high
