@@ -65,6 +65,14 @@ def lane_approaches(dep: Port, arr: Port, approach_m: float, with_dep: bool = Tr
     return out_dep, out_arr
 
 
+def approach_length_m(ap: Approach | None) -> float:
+    """Length [m] of an approach polyline (0 for none)."""
+    if ap is None:
+        return 0.0
+    return float(np.sum(inverse(ap.lon_deg[:-1], ap.lat_deg[:-1], ap.lon_deg[1:],
+                                ap.lat_deg[1:])[1]))
+
+
 def sail_approach(env: Environment, ap: Approach, rpm: float, t0_s: float,
                   limits: RouteLimits) -> RouteEvaluation:
     """Sail an approach at constant `rpm` from `t0_s` (no land check, no RTA)."""

@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from .approach import lane_approaches, sail_approach
+from .approach import approach_length_m, lane_approaches, sail_approach
 from .errors import InvalidVoyageError, PlanCancelledError
 from .ga.loop import GAConfig
 from .ga.pool import Seed, SeedPool, pool_key
@@ -174,7 +174,8 @@ def plan_voyage(
     keeps at least half of it, so a cold process may overrun by the loading time); with
     `max_generations` (and an ample budget) a run is reproducible for a given `seed`.
     The first and last `approach_nm` at each port follow the sea lane at `approach_rpm`
-    (default mid-range); the method optimises between the approaches' sea ends.
+    (default: the calm-water RPM of the mean speed that meets the RTA); the method
+    optimises between the approaches' sea ends.
     """
     t0 = time.perf_counter()
     land = land or default_land_mask()
@@ -205,10 +206,11 @@ def plan_voyage(
     results, baselines, problems, sources, approaches = [], [], [], [], []
     gens = evals = 0
     leg_depart = depart_s
-    rpm_ap = approach_rpm or 0.5 * (lim.rpm_min + lim.rpm_max)
     for k, (a, b) in enumerate(itertools.pairwise(ports)):
         ap_dep, ap_arr = lane_approaches(a, b, approach_nm * 1852.0,
                                          with_dep=not (k == 0 and position is not None))
+        rpm_ap = approach_rpm or _lane_rpm(env, a, b, ap_dep, ap_arr, leg_depart,
+                                           leg_rtas[k], lim)
         pre = sail_approach(env, ap_dep, rpm_ap, leg_depart, lim) if ap_dep else None
         t_leg = float(pre.eta_s[0]) if pre is not None else leg_depart
         rta_leg = leg_rtas[k]
@@ -255,6 +257,31 @@ def plan_voyage(
     return _assemble(ports, problems, results, baselines, sources, approaches, env, spec,
                      method, objective, depart_s, rta_s, leg_rtas, gens, evals,
                      time.perf_counter() - t0)
+
+
+def _lane_rpm(env: Environment, a: Port, b: Port, ap_dep, ap_arr, depart_s: float,
+              rta_s: float, lim: RouteLimits) -> float:
+    """Approach RPM: calm water RPM of the mean speed that meets the RTA on the approaches
+    plus the great circle between their sea ends, within the engine range."""
+    ends = [(a.lon_deg, a.lat_deg), (b.lon_deg, b.lat_deg)]
+    if ap_dep is not None:
+        ends[0] = (ap_dep.lon_deg[-1], ap_dep.lat_deg[-1])
+    if ap_arr is not None:
+        ends[1] = (ap_arr.lon_deg[0], ap_arr.lat_deg[0])
+    length = (approach_length_m(ap_dep) + approach_length_m(ap_arr)
+              + float(inverse(*ends[0], *ends[1])[1]))
+    speed = length / max(rta_s - depart_s, 3600.0)
+    model = env.model
+    if hasattr(model, "rpm_for_speed"):
+        from .ship import SeaState
+
+        try:
+            rpm = float(model.rpm_for_speed(np.array([speed]), np.array([0.0]),
+                                            SeaState.calm(1))[0])
+            return float(np.clip(rpm, lim.rpm_min, lim.rpm_max))
+        except (ValueError, ArithmeticError):
+            pass  # outside the model's range: fall back to mid-range
+    return 0.5 * (lim.rpm_min + lim.rpm_max)
 
 
 def _cancel_fn(cancel: Any) -> Callable[[], bool]:
