@@ -8,6 +8,7 @@ register themselves with `register_method`.
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -27,6 +28,7 @@ from .ga.seeds import (
 from .geo.geodesy import inverse
 from .geo.landmask import LandMask
 from .geo.verify import land_crossings
+from .route.constraints import FLAG_LAND
 from .route.encoding import clip_genes, gene_bounds
 from .route.environment import Environment
 from .route.evaluation import RouteEvaluation, clear_ports
@@ -36,6 +38,7 @@ from .route.problem import RouteProblem
 from .route.rta import constant_rpm_for_rta
 
 EXACT_CHOICE_RESERVE_S = 0.25
+DENSE_CHECKS = 12  # feasible final candidates given the dense land check, best first
 EXACT_CHECK_EVERY = 15  # generations between exact confirmations of the GA's best
 # RPM ramps (relative change from the first to the last leg / 2) of timed seed variants
 TIMED_SLOPES = (-0.08, -0.04, 0.04, 0.08)
@@ -261,17 +264,33 @@ def exact_choice(p: RouteProblem, env: Environment, land: LandMask, pop: np.ndar
         x = np.concatenate([x, pop[top:]])
         ev = evaluate_genes(p, env, land, x)
     order = deb_order(ev.violation, ev.objective)
-    if land is not None:
-        # the independent dense check (geodesic points every 500 m, all on the polygons)
-        # must agree: the first feasible candidate that passes it wins
-        for k in order[:6]:
-            if ev.violation[k] > 0:
-                break
-            if not land_crossings(ev.lon_deg[k], ev.lat_deg[k], port_clearance_m=0.0,
-                                  exact=land.exact):
-                return x[k].copy(), ev.take(int(k))
-    k = int(order[0])
-    return x[k].copy(), ev.take(k)
+    if land is None:
+        k = int(order[0])
+        return x[k].copy(), ev.take(k)
+    # the independent dense check (geodesic points every 500 m, all on the polygons) must
+    # agree: the first feasible candidate that passes it wins
+    first_bad: tuple[int, list[int]] | None = None
+    for k in order[:DENSE_CHECKS]:
+        if ev.violation[k] > 0:
+            break
+        bad = land_crossings(ev.lon_deg[k], ev.lat_deg[k], port_clearance_m=0.0,
+                             exact=land.exact)
+        if not bad:
+            return x[k].copy(), ev.take(int(k))
+        first_bad = first_bad or (int(k), bad)
+    if first_bad is None:
+        k = int(order[0])
+        return x[k].copy(), ev.take(k)
+    k, bad = first_bad  # nothing passed: the best, flagged with the legs the check rejects
+    return x[k].copy(), with_land_legs(ev.take(k), bad)
+
+
+def with_land_legs(ev: RouteEvaluation, legs: list[int]) -> RouteEvaluation:
+    """One-row evaluation with `legs` flagged as crossing land (violation 2 per leg)."""
+    leg_flags = ev.leg_flags.copy()
+    leg_flags[0, legs] |= np.uint32(FLAG_LAND)
+    return dataclasses.replace(ev, leg_flags=leg_flags, flags=ev.flags | np.uint32(FLAG_LAND),
+                               violation=ev.violation + 2.0 * len(legs))
 
 
 def _seed_tracks(ctx: MethodContext, base: Baseline) -> list[tuple]:

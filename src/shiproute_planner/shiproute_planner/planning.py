@@ -254,6 +254,7 @@ def plan_voyage(
         if post is not None:
             leg_depart = float(post.eta_s[0])
         approaches.append((pre, post))
+    land.fine_coast.save()  # coastal cells this plan resolved: later processes start with them
     return _assemble(ports, problems, results, baselines, sources, approaches, env, spec,
                      method, objective, depart_s, rta_s, leg_rtas, gens, evals,
                      time.perf_counter() - t0)

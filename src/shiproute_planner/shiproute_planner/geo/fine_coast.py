@@ -1,19 +1,21 @@
 """Exact land verdicts on a fine grid inside the raster's coastal cells, filled lazily.
 
 The GA's compiled land scan decides samples in sea and land cells from the 0.05-deg raster;
-in coastal cells it looks up the exact GSHHG verdict at the centre of the sample's fine cell
-(`cell_deg / factor`, ~1 km by default). Coastal cells are resolved on first use, all their
-fine cells in one vectorised polygon test, and kept for the life of the land mask, so a GA
-whose routes sweep the same coasts generation after generation pays each cell once.
+in coastal cells it looks up the sample's fine cell (`cell_deg / factor`, ~1 km by default),
+which is land when the exact GSHHG test puts its centre or a neighbouring fine cell's centre
+on land: a margin of about one fine cell, so routes the GA accepts clear the dense check of
+the final plan (points every 500 m). Coastal cells are resolved on first use, all their fine
+cells in one vectorised polygon test, and kept for the life of the land mask, so a GA whose
+routes sweep the same coasts generation after generation pays each cell once.
 """
 
 from __future__ import annotations
 
+import os
 import threading
+from pathlib import Path
 
 import numpy as np
-from numba import types
-from numba.typed import Dict
 
 from .raster import COAST
 
@@ -21,37 +23,71 @@ from .raster import COAST
 class FineCoast:
     """Lazily resolved fine land grid of the coastal cells of a `LandMask` raster."""
 
-    def __init__(self, raster: np.ndarray, cell_deg: float, contains, factor: int = 5) -> None:
+    def __init__(self, raster: np.ndarray, cell_deg: float, contains, factor: int = 5,
+                 path: Path | None = None) -> None:
         self.raster = raster
         self.cell_deg = float(cell_deg)
         self.factor = int(factor)
         self._contains = contains  # exact point-in-land test: (lon, lat) arrays -> bool array
         self.n_lon = int(raster.shape[1])
-        # coastal cell key (i * n_lon + j) -> slot in `fine`
-        self.slots = Dict.empty(key_type=types.int64, value_type=types.int64)
+        # resolved coastal cells: sorted keys (i * n_lon + j) and their fine grids, row-aligned
+        # (sorted arrays: the compiled scan finds a cell by binary search)
+        self.keys = np.zeros(0, dtype=np.int64)
         self.fine = np.zeros((0, self.factor, self.factor), dtype=np.bool_)
         self._lock = threading.Lock()
+        self.path = path  # cells resolved by earlier processes, extended by `save`
+        self._saved = 0
+        if path is not None and path.is_file():
+            self._load(path)
+
+    def _load(self, path: Path) -> None:
+        """Cells resolved earlier (a corrupt or mismatched file is ignored and rebuilt)."""
+        try:
+            with np.load(path) as z:
+                keys, fine = z["keys"].astype(np.int64), z["fine"].astype(np.bool_)
+        except (OSError, ValueError, KeyError):
+            return
+        if fine.shape[1:] == (self.factor, self.factor) and keys.size == fine.shape[0] and (
+                np.all(np.diff(keys) > 0)):
+            self.keys, self.fine, self._saved = keys, fine, keys.size
+
+    def save(self) -> None:
+        """Store the resolved cells for later processes (atomic replace; no-op if unchanged)."""
+        with self._lock:
+            if self.path is None or self.keys.size == self._saved:
+                return
+            keys, fine = self.keys, self.fine
+        tmp = self.path.with_suffix(f".{os.getpid()}.tmp.npz")
+        try:
+            np.savez(tmp, keys=keys, fine=fine)
+            os.replace(tmp, self.path)
+            self._saved = keys.size
+        except OSError:
+            tmp.unlink(missing_ok=True)  # read-only data directory: keep it in memory only
 
     def add(self, keys: np.ndarray) -> int:
         """Resolve the coastal cells `keys` not yet known; returns how many were new."""
         with self._lock:
-            keys = np.unique(np.asarray(keys, dtype=np.int64))
-            keys = np.array([k for k in keys.tolist() if k not in self.slots], dtype=np.int64)
+            keys = np.setdiff1d(np.asarray(keys, dtype=np.int64), self.keys)
             if keys.size == 0:
                 return 0
             i, j = keys // self.n_lon, keys % self.n_lon
             if not np.all(np.asarray(self.raster)[i, j] == COAST):
                 raise ValueError("FineCoast.add: keys must name coastal raster cells")
             f = self.factor
-            sub = (np.arange(f) + 0.5) / f
+            sub = (np.arange(-1, f + 1) + 0.5) / f  # the cell's fine cells and a ring around
             lat = -90.0 + (i[:, None, None] + sub[None, :, None]) * self.cell_deg
             lon = -180.0 + (j[:, None, None] + sub[None, None, :]) * self.cell_deg
             lat, lon = np.broadcast_arrays(lat, lon)
             land = np.asarray(self._contains(lon.ravel(), lat.ravel()), dtype=np.bool_)
-            base = self.fine.shape[0]
-            self.fine = np.concatenate([self.fine, land.reshape(-1, f, f)])
-            for n, k in enumerate(keys.tolist()):
-                self.slots[k] = base + n
+            land = land.reshape(-1, f + 2, f + 2)
+            grown = np.zeros((keys.size, f, f), dtype=np.bool_)
+            for di in range(3):  # land within one fine cell (8-neighbourhood)
+                for dj in range(3):
+                    grown |= land[:, di:di + f, dj:dj + f]
+            all_keys = np.concatenate([self.keys, keys])
+            order = np.argsort(all_keys, kind="stable")
+            self.keys, self.fine = all_keys[order], np.concatenate([self.fine, grown])[order]
             return int(keys.size)
 
     def contains(self, lon_deg: np.ndarray, lat_deg: np.ndarray) -> np.ndarray:
@@ -65,5 +101,5 @@ class FineCoast:
         f = self.factor
         fi = np.minimum(((lat + 90.0) * inv - i) * f, f - 1).astype(np.int64)
         fj = np.minimum((lon * inv - j) * f, f - 1).astype(np.int64)
-        slot = np.array([self.slots[k] for k in (i * self.n_lon + j).tolist()], dtype=np.int64)
+        slot = np.searchsorted(self.keys, i * self.n_lon + j)
         return self.fine[slot, fi, fj]

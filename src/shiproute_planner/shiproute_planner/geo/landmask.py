@@ -22,6 +22,7 @@ from .landexact import ExactLand
 from .raster import COAST, LAND, build_land_raster
 
 RASTER_VERSION = 1
+FINE_FACTOR = 5  # fine cells per raster cell side in coastal cells (0.01 deg, ~1.1 km)
 
 
 class LandMask:
@@ -64,7 +65,10 @@ class LandMask:
     @functools.cached_property
     def fine_coast(self) -> FineCoast:
         """Exact verdicts on a ~1 km grid inside coastal cells, resolved as the GA meets them."""
-        return FineCoast(np.asarray(self.raster), self.cell_deg, self.exact.contains)
+        name = (f"finecoast_v{RASTER_VERSION}_gshhg_{self.resolution}_{self.cell_deg:g}deg"
+                f"_{FINE_FACTOR}.npz")
+        return FineCoast(np.asarray(self.raster), self.cell_deg, self.exact.contains,
+                         FINE_FACTOR, self._cache_dir / name)
 
     @functools.cached_property
     def sea_distance_cells(self) -> np.ndarray:

@@ -10,6 +10,8 @@ verdicts on a ~1 km grid resolved on first use (`geo.fine_coast`).
 from __future__ import annotations
 
 import math
+import types
+from typing import Any
 
 import numpy as np
 from numba import njit
@@ -18,10 +20,20 @@ from shiproute_weather._interp_kernel import trilinear as _trilinear_parallel
 from ..geo._kernels import _FINE, chord_sample, segment_ends
 from . import _fast_kernels as fk
 
+
+def _serial_copy(fn: Any, name: str) -> Any:
+    """`fn`'s Python function under another name: numba keys its on-disk cache by qualified
+    name and source file, so a serial compilation of a parallel kernel needs its own name."""
+    py = fn.py_func
+    copy = types.FunctionType(py.__code__.replace(co_name=name, co_qualname=name), py.__globals__,
+                              name, py.__defaults__, py.__closure__)
+    copy.__qualname__ = name
+    return copy
+
+
 # the sampler's kernel compiled serially: populations run in chunks on Python threads, and
 # numba's parallel launcher must not be entered from two threads at once
-trilinear = njit(nogil=True)(_trilinear_parallel.py_func)  # no cache: it would share
-# the parallel version's cache entry (same function and file)
+trilinear = njit(cache=True, nogil=True)(_serial_copy(_trilinear_parallel, "trilinear_serial"))
 _GRADE_STEP = 4 * _FINE  # samples per step once a leg is known to touch land
 MIN_SOG_M_S = 0.1  # same floor as route.legs: the final connection's speed along the course
 
@@ -112,7 +124,7 @@ def generate_routes(headings, rpm, dep_lon, dep_lat, depart_s, stage_s, arr_lon,
 
 @njit(cache=True, nogil=True)
 def ga_land_hits(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, raster, sea_dist,
-                 cell_deg, spacing_deg, slots, fine, missing, out):
+                 cell_deg, spacing_deg, fine_keys, fine, missing, out):
     """Land samples per segment for the GA loop. A segment found clear so far that met a
     coastal cell not yet resolved gets -1, to be scanned again once
     `geo.fine_coast.FineCoast.add` has resolved the cells written to `missing` (returns how
@@ -120,11 +132,11 @@ def ga_land_hits(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, raster, 
 
     Candidate samples are every point the exact scan (`geo._kernels.scan_segments`) can
     visit: fractions k / steps of the chord with its refined step throughout. A sample counts
-    in a land cell, and in a coastal cell when the exact verdict at the centre of its fine
-    cell (`fine[slots[cell]]`) is land. Samples in coarse cells with no land or coast in or
-    next to them are sea for sure and skipped by the cell's clear distance, and so are samples
-    closer than `sea_dist` (chessboard cells to the nearest land or coastal cell); after the
-    first hit the walk grades the rest in steps of four cells."""
+    in a land cell, and in a coastal cell when its fine cell is land (`fine` row of the cell
+    in sorted `fine_keys`; see `geo.fine_coast`). Samples in coarse cells with no land or
+    coast in or next to them are sea for sure and skipped by the cell's clear distance, and
+    so are samples closer than `sea_dist` (chessboard cells to the nearest land or coastal
+    cell); after the first hit the walk grades the rest in steps of four cells."""
     n_lat, n_lon = raster.shape
     c_lat, c_lon = coarse.shape
     f = fine.shape[1]
@@ -158,8 +170,8 @@ def ga_land_hits(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, raster, 
                 count += 1
             elif v == 2:
                 key = i * n_lon + j
-                slot = slots[key] if key in slots else -1
-                if slot < 0:
+                slot = np.searchsorted(fine_keys, key)
+                if slot >= fine_keys.size or fine_keys[slot] != key:
                     unresolved = True
                     if n_miss < missing.size:
                         missing[n_miss] = key

@@ -142,7 +142,7 @@ class FastEvaluator:
                 n = rk.ga_land_hits(*(e[a:b] for e in part), self._coarse, self._clear,
                                     self._coarse_deg, self._raster, self._sea_dist,
                                     self.land.cell_deg, self.problem.land_spacing_deg,
-                                    fine.slots, fine.fine, buf, got[a:b])
+                                    fine.keys, fine.fine, buf, got[a:b])
                 misses.append(buf[:n])
 
             in_chunks(todo.size, scan)
