@@ -1,9 +1,13 @@
-"""Port approaches: the first and last `approach_m` of a voyage follow the sea lane.
+"""Port approaches: the voyage leaves and reaches its ports along the sea lane.
 
-Harbours and estuaries (Busan's inner harbour, the Tagus, Long Beach behind its breakwaters)
-cannot be entered by a straight 12-hour leg. The planner therefore optimises between the sea
-ends of the approaches and sails the approaches themselves along the `searoute` lane at a
-fixed RPM (pilotage waters: not land-checked, the lane's own geometry is trusted).
+Harbours, estuaries and straits near a port (Busan's harbour, the Tsugaru Strait, Long Beach
+behind the Channel Islands) cannot be threaded by straight 12-hour legs. The planner therefore
+optimises between the sea ends of the approaches and sails the approaches themselves along
+the `searoute` lane at a fixed RPM (coastal waters: not land-checked, the lane's own geometry
+is trusted). An approach is at least `approach_m` long and, with a `CoastalPassage` rule,
+runs on until the great circle from its end to the other approach's end is clear of land:
+ocean routing starts where the coastal passage (straits, capes, island chains next to the
+port) ends, and the optimised part has a land-free straight route.
 """
 
 from __future__ import annotations
@@ -14,6 +18,7 @@ import numpy as np
 
 from .ga.seeds import _searoute_coords
 from .geo.geodesy import direct, inverse, unwrap_near, wrap_lon
+from .geo.landmask import LandMask
 from .geo.ports import Port
 from .route.environment import Environment
 from .route.evaluation import RouteEvaluation
@@ -36,9 +41,66 @@ def _cut(lon: np.ndarray, lat: np.ndarray, cum: np.ndarray, d: float) -> tuple[f
     return float(plon), float(plat)
 
 
+@dataclass(frozen=True)
+class CoastalPassage:
+    """Where approaches end: at the first lane point (from the port outwards, within the
+    first `share` of the lane) from which the great circle to the other approach's end is
+    clear of land; candidates every `step_m`."""
+
+    land: LandMask
+    share: float = 1.0 / 6.0
+    step_m: float = 5.0 * 1852.0
+
+
+def _points_at(lon: np.ndarray, lat: np.ndarray, cum: np.ndarray,
+               d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Points at lane distances `d` [m] (geodesic interpolation within lane segments)."""
+    j = np.clip(np.searchsorted(cum, d, side="right") - 1, 0, lon.size - 2)
+    az, _ = inverse(lon[j], lat[j], lon[j + 1], lat[j + 1])
+    p_lon, p_lat = direct(lon[j], lat[j], az, d - cum[j])
+    return np.asarray(p_lon, dtype=float), np.asarray(p_lat, dtype=float)
+
+
+def _clear_sight_m(lon: np.ndarray, lat: np.ndarray, cum: np.ndarray, far: tuple[float, float],
+                   rule: CoastalPassage, min_m: float) -> float:
+    """First lane distance >= min_m from which the great circle to `far` misses land
+    (min_m if none within the first `share` of the lane)."""
+    d = np.arange(min_m, max(rule.share * cum[-1], min_m) + 1.0, rule.step_m)
+    p_lon, p_lat = _points_at(lon, lat, cum, d)
+    far_lon = np.full(d.size, unwrap_near(far[0], float(p_lon[0])))
+    hits = rule.land.segment_land_samples(p_lon, p_lat, far_lon, np.full(d.size, far[1]))
+    clear = np.flatnonzero(hits == 0)
+    return float(d[clear[0]]) if clear.size else min_m
+
+
+def _coastal_ends(lon: np.ndarray, lat: np.ndarray, cum: np.ndarray, rule: CoastalPassage,
+                  min_m: float) -> tuple[float, float]:
+    """Departure and arrival approach lengths [m] whose ends see each other over open sea:
+    alternately the shortest one end can be with the other fixed, starting from the arrival
+    end at its farthest; (min_m, min_m) when no such pair exists."""
+    r_lon, r_lat, r_cum = lon[::-1], lat[::-1], cum[-1] - cum[::-1]
+
+    def end(lo: np.ndarray, la: np.ndarray, cu: np.ndarray, d: float) -> tuple[float, float]:
+        p = _points_at(lo, la, cu, np.array([d]))
+        return float(p[0][0]), float(p[1][0])
+
+    d_arr = max(rule.share * cum[-1], min_m)
+    d_dep = min_m
+    for _ in range(2):
+        d_dep = _clear_sight_m(lon, lat, cum, end(r_lon, r_lat, r_cum, d_arr), rule, min_m)
+        d_arr = _clear_sight_m(r_lon, r_lat, r_cum, end(lon, lat, cum, d_dep), rule, min_m)
+    a, b = end(lon, lat, cum, d_dep), end(r_lon, r_lat, r_cum, d_arr)
+    hits = rule.land.segment_land_samples(np.array([a[0]]), np.array([a[1]]),
+                                          np.array([unwrap_near(b[0], a[0])]), np.array([b[1]]))
+    return (d_dep, d_arr) if hits[0] == 0 else (min_m, min_m)
+
+
 def lane_approaches(dep: Port, arr: Port, approach_m: float, with_dep: bool = True,
-                    with_arr: bool = True) -> tuple[Approach | None, Approach | None]:
-    """Departure and arrival approaches cut from the sea lane between two ports."""
+                    with_arr: bool = True, coastal: CoastalPassage | None = None
+                    ) -> tuple[Approach | None, Approach | None]:
+    """Departure and arrival approaches cut from the sea lane between two ports: at least
+    `approach_m` long and, with `coastal`, on until the great circle between their ends
+    clears the land (through the straits and past the capes next to each port)."""
     if approach_m <= 0 or not (with_dep or with_arr):
         return None, None
     coords = _searoute_coords(round(float(wrap_lon(dep.lon_deg)), 4), round(dep.lat_deg, 4),
@@ -53,14 +115,17 @@ def lane_approaches(dep: Port, arr: Port, approach_m: float, with_dep: bool = Tr
     cum = np.concatenate([[0.0], np.cumsum(seg)])
     if cum[-1] < 4.0 * approach_m:
         return None, None
+    d_dep = d_arr = approach_m
+    if coastal is not None:
+        d_dep, d_arr = _coastal_ends(lon, lat, cum, coastal, approach_m)
     out_dep = out_arr = None
     if with_dep:
-        e = _cut(lon, lat, cum, approach_m)
-        k = cum < approach_m
+        e = _cut(lon, lat, cum, d_dep)
+        k = cum < d_dep
         out_dep = Approach(np.append(lon[k], e[0]), np.append(lat[k], e[1]))
     if with_arr:
-        s = _cut(lon, lat, cum, cum[-1] - approach_m)
-        k = cum > cum[-1] - approach_m
+        s = _cut(lon, lat, cum, cum[-1] - d_arr)
+        k = cum > cum[-1] - d_arr
         out_arr = Approach(np.insert(lon[k], 0, s[0]), np.insert(lat[k], 0, s[1]))
     return out_dep, out_arr
 

@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .errors import UnknownMethodError
+from .ga.islands import IslandGA, cross_track_rad
 from .ga.loop import GAConfig, SeedGA
 from .ga.ranking import deb_order, is_better
 from .ga.seeds import (
@@ -77,6 +78,8 @@ class MethodContext:
     stall_generations: int = 0  # 0 = no stall termination
     baseline: Baseline | None = None  # computed on demand when None
     gene_seeds: list[tuple[str, np.ndarray]] = field(default_factory=list)  # ready genes
+    n_islands: int = 3  # seed GA: seed groups searched apart (by side of the great circle)
+    island_share: float = 0.5  # share of the search time (or generations) before the merge
 
 
 @dataclass(frozen=True)
@@ -189,24 +192,34 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
             sources.append(name)
     lo, hi = gene_bounds(p)
     cfg = ctx.ga_config or GAConfig()
+    offsets = np.zeros(len(x_seed))
     if len(x_seed) > 1:  # best seeds first: the initial population jitters them most
         sev = evaluate(x_seed)
         order = deb_order(sev.violation, sev.objective)
         x_seed, sources = x_seed[order], [sources[i] for i in order]
-    ga = SeedGA(lo, hi, p.n_stages, cfg, ctx.rng, x_seed)
+        offsets = cross_track_rad(sev.lon_deg[order], sev.lat_deg[order],
+                                  (p.dep_lon_deg, p.dep_lat_deg), (p.arr_lon_deg, p.arr_lat_deg))
+    ga: SeedGA | IslandGA
+    if len(x_seed) >= 2 * ctx.n_islands and ctx.n_islands > 1:
+        ga = IslandGA(lo, hi, p.n_stages, cfg, ctx.rng, x_seed, offsets, ctx.n_islands)
+    else:
+        ga = SeedGA(lo, hi, p.n_stages, cfg, ctx.rng, x_seed)
     # keep time for the exact re-evaluation and dense land check of the final candidates
     confirmed: list[np.ndarray] = []
     deadline_s = ctx.budget_s - min(0.3 * ctx.budget_s, EXACT_CHOICE_RESERVE_S)
     best_src = "none"
     n = p.n_stages
+    merge_s = ctx.island_share * deadline_s
     while True:
+        if isinstance(ga, IslandGA) and not ga.merged and (
+                time.perf_counter() - ctx.t_start >= merge_s
+                or ga.generation >= ctx.island_share * ctx.max_generations):
+            ga.merge()
         x = ga.ask()
-        if ga.pop is not None and len(x) > 8:
-            # local move: the current best with all RPMs scaled (trades ETA slack for fuel)
-            k = max(4, len(x) // 8)
-            x[-k:] = ga.best[0]
-            x[-k:, n:] *= 1.0 + ctx.rng.normal(0.0, 0.004, size=(k, 1))
-            x[-k:] = np.clip(x[-k:], lo, hi)
+        if ga.pop is not None:
+            parts = ga.parts() if isinstance(ga, IslandGA) else [(slice(0, len(x)), ga)]
+            for sl, isl in parts:
+                _rpm_scaled_best(x[sl], isl.best[0], n, lo, hi, ctx.rng)
         ev = evaluate(x)
         ga.tell(x, ev.violation, ev.objective)
         # archive of bests the exact evaluator confirms: the fallback when the final
@@ -237,6 +250,18 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
         # never hand out a plan worse than the constant-RPM baseline the GA was seeded with
         return MethodResult(b.evaluation, "baseline", ga.generation, ga.evaluations, None)
     return MethodResult(final, best_src, ga.generation, ga.evaluations, best_x.copy())
+
+
+def _rpm_scaled_best(x: np.ndarray, best: np.ndarray, n: int, lo: np.ndarray, hi: np.ndarray,
+                     rng: np.random.Generator) -> None:
+    """Local move in place: the last eighth of offspring `x` become the population's best
+    with all RPMs scaled by ~0.4 % (trades ETA slack for fuel and back)."""
+    if len(x) <= 8:
+        return
+    k = max(4, len(x) // 8)
+    x[-k:] = best
+    x[-k:, n:] *= 1.0 + rng.normal(0.0, 0.004, size=(k, 1))
+    x[-k:] = np.clip(x[-k:], lo, hi)
 
 
 def exact_choice(p: RouteProblem, env: Environment, land: LandMask, pop: np.ndarray,

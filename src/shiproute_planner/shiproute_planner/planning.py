@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from .approach import approach_length_m, lane_approaches, sail_approach
+from .approach import CoastalPassage, approach_length_m, lane_approaches, sail_approach
 from .errors import InvalidVoyageError, PlanCancelledError
 from .ga.loop import GAConfig
 from .ga.pool import Seed, SeedPool, pool_key
@@ -163,6 +163,7 @@ def plan_voyage(
     with_baseline: bool = True,
     approach_nm: float = 25.0,
     approach_rpm: float | None = None,
+    coastal_passage: bool = True,
     cycle_id: str = "",
 ) -> RoutePlan:
     """Plan a voyage and return a frozen RoutePlan.
@@ -174,8 +175,11 @@ def plan_voyage(
     keeps at least half of it, so a cold process may overrun by the loading time); with
     `max_generations` (and an ample budget) a run is reproducible for a given `seed`.
     The first and last `approach_nm` at each port follow the sea lane at `approach_rpm`
-    (default: the calm-water RPM of the mean speed that meets the RTA); the method
-    optimises between the approaches' sea ends.
+    (default: the calm-water RPM of the mean speed that meets the RTA), and with
+    `coastal_passage` on through the straits and past the capes next to each port until the
+    great circle between the approaches' ends is clear of land (each within the first/last
+    sixth of the lane; off lets the method choose between straits); the method optimises
+    between the approaches' sea ends.
     """
     t0 = time.perf_counter()
     land = land or default_land_mask()
@@ -206,9 +210,11 @@ def plan_voyage(
     results, baselines, problems, sources, approaches = [], [], [], [], []
     gens = evals = 0
     leg_depart = depart_s
+    coastal = CoastalPassage(land) if coastal_passage else None
     for k, (a, b) in enumerate(itertools.pairwise(ports)):
         ap_dep, ap_arr = lane_approaches(a, b, approach_nm * 1852.0,
-                                         with_dep=not (k == 0 and position is not None))
+                                         with_dep=not (k == 0 and position is not None),
+                                         coastal=coastal)
         rpm_ap = approach_rpm or _lane_rpm(env, a, b, ap_dep, ap_arr, leg_depart,
                                            leg_rtas[k], lim)
         pre = sail_approach(env, ap_dep, rpm_ap, leg_depart, lim) if ap_dep else None
