@@ -74,10 +74,10 @@ def _clear_sight_m(lon: np.ndarray, lat: np.ndarray, cum: np.ndarray, far: tuple
 
 
 def _coastal_ends(lon: np.ndarray, lat: np.ndarray, cum: np.ndarray, rule: CoastalPassage,
-                  min_m: float) -> tuple[float, float]:
+                  min_dep_m: float, min_m: float) -> tuple[float, float]:
     """Departure and arrival approach lengths [m] whose ends see each other over open sea:
     alternately the shortest one end can be with the other fixed, starting from the arrival
-    end at its farthest; (min_m, min_m) when no such pair exists."""
+    end at its farthest; the minimums when no such pair exists."""
     r_lon, r_lat, r_cum = lon[::-1], lat[::-1], cum[-1] - cum[::-1]
 
     def end(lo: np.ndarray, la: np.ndarray, cu: np.ndarray, d: float) -> tuple[float, float]:
@@ -85,22 +85,23 @@ def _coastal_ends(lon: np.ndarray, lat: np.ndarray, cum: np.ndarray, rule: Coast
         return float(p[0][0]), float(p[1][0])
 
     d_arr = max(rule.share * cum[-1], min_m)
-    d_dep = min_m
+    d_dep = min_dep_m
     for _ in range(2):
-        d_dep = _clear_sight_m(lon, lat, cum, end(r_lon, r_lat, r_cum, d_arr), rule, min_m)
+        d_dep = _clear_sight_m(lon, lat, cum, end(r_lon, r_lat, r_cum, d_arr), rule, min_dep_m)
         d_arr = _clear_sight_m(r_lon, r_lat, r_cum, end(lon, lat, cum, d_dep), rule, min_m)
     a, b = end(lon, lat, cum, d_dep), end(r_lon, r_lat, r_cum, d_arr)
     hits = rule.land.segment_land_samples(np.array([a[0]]), np.array([a[1]]),
                                           np.array([unwrap_near(b[0], a[0])]), np.array([b[1]]))
-    return (d_dep, d_arr) if hits[0] == 0 else (min_m, min_m)
+    return (d_dep, d_arr) if hits[0] == 0 else (min_dep_m, min_m)
 
 
 def lane_approaches(dep: Port, arr: Port, approach_m: float, with_dep: bool = True,
-                    with_arr: bool = True, coastal: CoastalPassage | None = None
-                    ) -> tuple[Approach | None, Approach | None]:
+                    with_arr: bool = True, coastal: CoastalPassage | None = None,
+                    dep_min_m: float | None = None) -> tuple[Approach | None, Approach | None]:
     """Departure and arrival approaches cut from the sea lane between two ports: at least
-    `approach_m` long and, with `coastal`, on until the great circle between their ends
-    clears the land (through the straits and past the capes next to each port)."""
+    `approach_m` long (the departure one `dep_min_m`, e.g. 0 for a ship under way) and, with
+    `coastal`, on until the great circle between their ends clears the land (through the
+    straits and past the capes next to each port). None for an approach of zero length."""
     if approach_m <= 0 or not (with_dep or with_arr):
         return None, None
     coords = _searoute_coords(round(float(wrap_lon(dep.lon_deg)), 4), round(dep.lat_deg, 4),
@@ -115,11 +116,12 @@ def lane_approaches(dep: Port, arr: Port, approach_m: float, with_dep: bool = Tr
     cum = np.concatenate([[0.0], np.cumsum(seg)])
     if cum[-1] < 4.0 * approach_m:
         return None, None
-    d_dep = d_arr = approach_m
+    d_arr = approach_m
+    d_dep = approach_m if dep_min_m is None else dep_min_m
     if coastal is not None:
-        d_dep, d_arr = _coastal_ends(lon, lat, cum, coastal, approach_m)
+        d_dep, d_arr = _coastal_ends(lon, lat, cum, coastal, d_dep, approach_m)
     out_dep = out_arr = None
-    if with_dep:
+    if with_dep and d_dep > 0:
         e = _cut(lon, lat, cum, d_dep)
         k = cum < d_dep
         out_dep = Approach(np.append(lon[k], e[0]), np.append(lat[k], e[1]))

@@ -19,12 +19,12 @@ from typing import Any
 
 import numpy as np
 
-from .approach import CoastalPassage, approach_length_m, lane_approaches, sail_approach
+from .approach import Approach, CoastalPassage, approach_length_m, lane_approaches, sail_approach
 from .errors import InvalidVoyageError, PlanCancelledError
 from .ga.loop import GAConfig
 from .ga.pool import Seed, SeedPool, pool_key
 from .ga.seeds import TrackSeed, shift_track
-from .geo.geodesy import inverse
+from .geo.geodesy import inverse, unwrap_near
 from .geo.landmask import LandMask, default_land_mask
 from .geo.ports import Port, resolve_port
 from .methods import MethodContext, Progress, compute_baseline, get_method
@@ -212,9 +212,15 @@ def plan_voyage(
     leg_depart = depart_s
     coastal = CoastalPassage(land) if coastal_passage else None
     for k, (a, b) in enumerate(itertools.pairwise(ports)):
-        ap_dep, ap_arr = lane_approaches(a, b, approach_nm * 1852.0,
-                                         with_dep=not (k == 0 and position is not None),
-                                         coastal=coastal)
+        # under way the ship finishes the coastal passage it is in, if any (from where it is)
+        under_way = k == 0 and position is not None
+        rest = _rest_of_approach(previous_plan, position) if under_way else None
+        ap_dep, ap_arr = lane_approaches(
+            a, b, approach_nm * 1852.0,
+            with_dep=not under_way or (coastal is not None and previous_plan is None),
+            coastal=coastal, dep_min_m=0.0 if under_way else None)
+        if rest is not None:
+            ap_dep = rest
         rpm_ap = approach_rpm or _lane_rpm(env, a, b, ap_dep, ap_arr, leg_depart,
                                            leg_rtas[k], lim)
         pre = sail_approach(env, ap_dep, rpm_ap, leg_depart, lim) if ap_dep else None
@@ -264,6 +270,23 @@ def plan_voyage(
     return _assemble(ports, problems, results, baselines, sources, approaches, env, spec,
                      method, objective, depart_s, rta_s, leg_rtas, gens, evals,
                      time.perf_counter() - t0)
+
+
+def _rest_of_approach(previous: RoutePlan | None,
+                      position: tuple[float, float, float] | None) -> Approach | None:
+    """What is left of the previous plan's departure approach from the ship's position (lat,
+    lon, time), or None when the ship is past it (or there is no previous plan)."""
+    if previous is None or position is None or not previous.optimised_spans:
+        return None
+    lon, lat, t = previous.track()
+    start = previous.optimised_spans[0][0]
+    now = position[2]
+    if start == 0 or now >= t[start]:
+        return None
+    ahead = np.flatnonzero((t > now) & (np.arange(t.size) <= start))
+    p_lon = unwrap_near(position[1], float(lon[ahead[0]])) if ahead.size else position[1]
+    return Approach(np.concatenate([[p_lon], lon[ahead]]),
+                    np.concatenate([[position[0]], lat[ahead]]))
 
 
 def _lane_rpm(env: Environment, a: Port, b: Port, ap_dep, ap_arr, depart_s: float,

@@ -20,7 +20,7 @@ from ..ga.seeds import great_circle_track
 from ..geo.geodesy import direct, inverse
 from ..geo.landmask import default_land_mask
 from ..geo.verify import land_crossings
-from ..planning import make_environment, plan_voyage, to_posix_s
+from ..planning import make_environment, plan_voyage
 from ..route.encoding import clip_genes, gene_bounds, join_genes
 from ..route.fast_eval import fast_evaluator
 from ..route.generate import evaluate_genes
@@ -65,7 +65,7 @@ def evals_per_s(env, land, plan_problem: RouteProblem, pop: int = 200, reps: int
     def ev(x):
         return evaluate_genes(plan_problem, env, land, x) if fast is None else fast.evaluate(x)
 
-    for _ in range(3):  # compiled kernels, coastal cells of this voyage (as in a GA run)
+    for _ in range(30):  # compiled kernels, coastal cells of this voyage (as a GA run does)
         ev(ga_like_population(plan_problem, pop, rng))
     xs = [ga_like_population(plan_problem, pop, rng) for _ in range(reps)]
     t0 = time.perf_counter()
@@ -105,10 +105,11 @@ def run(budget_s: float, warm_budget_s: float, ref_factor: float, seed: int) -> 
                       budget_s=budget_s * ref_factor, **{**common, "seed": seed + 1})
     feasible = [p.total_fuel_t for p in (cold, ref) if p.feasible]
     reference = min(feasible) if feasible else ref.total_fuel_t
-    lon, lat, _ = cold.track()
-    depart_s = to_posix_s(DEPART)
-    problem = RouteProblem(lon[0], lat[0], lon[-1], lat[-1], depart_s,
-                           depart_s + 13 * 86400.0, _limits_of(cold, env))
+    # evaluation speed on the problem the GA solved: between the approaches' sea ends
+    a, b = cold.optimised_spans[0]
+    w0, w1 = cold.waypoints[a], cold.waypoints[b]
+    problem = RouteProblem(w0.lon_deg, w0.lat_deg, w1.lon_deg, w1.lat_deg, w0.time_s,
+                           cold.leg_rtas_s[0] - (cold.eta_s - w1.time_s), _limits_of(cold, env))
     return {
         "setup_s": round(setup_s, 3),
         "cold_plan_s": round(cold_s, 3),

@@ -68,7 +68,10 @@ class FineCoast:
     def add(self, keys: np.ndarray) -> int:
         """Resolve the coastal cells `keys` not yet known; returns how many were new."""
         with self._lock:
-            keys = np.setdiff1d(np.asarray(keys, dtype=np.int64), self.keys)
+            keys = np.unique(np.asarray(keys, dtype=np.int64))
+            pos = np.minimum(np.searchsorted(self.keys, keys), max(self.keys.size - 1, 0))
+            if self.keys.size:
+                keys = keys[self.keys[pos] != keys]
             if keys.size == 0:
                 return 0
             i, j = keys // self.n_lon, keys % self.n_lon

@@ -173,7 +173,7 @@ def ga_land_hits(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, raster, 
                 slot = np.searchsorted(fine_keys, key)
                 if slot >= fine_keys.size or fine_keys[slot] != key:
                     unresolved = True
-                    if n_miss < missing.size:
+                    if n_miss < missing.size and (n_miss == 0 or missing[n_miss - 1] != key):
                         missing[n_miss] = key
                         n_miss += 1
                 elif fine[slot, min(int((y - i) * f), f - 1), min(int((x - j) * f), f - 1)]:
