@@ -93,6 +93,19 @@ class FineCoast:
             self.keys, self.fine = all_keys[order], np.concatenate([self.fine, grown])[order]
             return int(keys.size)
 
+    def resolve_box(self, lon_min_deg: float, lon_max_deg: float, lat_min_deg: float,
+                    lat_max_deg: float) -> int:
+        """Resolve every coastal cell in a box (longitudes may run past 180); returns how
+        many were new. ~20,000 cells/s, once per machine when `save`d."""
+        inv = 1.0 / self.cell_deg
+        raster = np.asarray(self.raster)
+        i0 = max(int((lat_min_deg + 90.0) * inv), 0)
+        i1 = min(int((lat_max_deg + 90.0) * inv) + 1, raster.shape[0])
+        cols = (np.arange(int(lon_min_deg * inv), int(lon_max_deg * inv) + 1)
+                + int(180.0 * inv)) % self.n_lon
+        ii, jj = np.nonzero(raster[i0:i1][:, np.unique(cols)] == COAST)
+        return self.add((ii + i0) * self.n_lon + np.unique(cols)[jj])
+
     def contains(self, lon_deg: np.ndarray, lat_deg: np.ndarray) -> np.ndarray:
         """Verdict of the fine cell holding each point (coastal cells only; resolves them)."""
         inv = 1.0 / self.cell_deg
