@@ -1,20 +1,46 @@
-"""Numba kernel: NaN-aware trilinear (time, latitude, longitude) interpolation on a regular grid."""
+"""Numba kernel: NaN-aware trilinear (time, latitude, longitude) interpolation on a regular grid.
+
+The field array may be float32/float64, or uint16 holding IEEE 754 binary16 (half precision)
+bit patterns (see `_half_kernel`): numba has no float16 on the CPU, so half-precision storage
+is read through a 65,536-entry float32 table (256 kB, stays in cache).
+"""
 
 from __future__ import annotations
 
 import math
 
 import numpy as np
-from numba import njit, prange
+from numba import njit, prange, types
+from numba.extending import overload
+
+from ._half_kernel import HALF_TO_FLOAT32
 
 #: Minimum share of the interpolation weight that must fall on valid (non-NaN) nodes; below it
 #: the result is NaN. At 0.5 a point is valued only when it is closer to sea nodes than land.
 MIN_VALID_WEIGHT = 0.5
 
 
+def node_value(data: np.ndarray, it: int, iy: int, ix: int, c: int) -> float:
+    """Value of one grid node; decodes binary16 bit patterns held in a uint16 array."""
+    v = data[it, iy, ix, c]
+    return float(HALF_TO_FLOAT32[v]) if data.dtype == np.uint16 else float(v)
+
+
+@overload(node_value, jit_options={"cache": True})
+def _node_value_impl(data, it, iy, ix, c):
+    if data.dtype == types.uint16:
+        def half(data, it, iy, ix, c):
+            return HALF_TO_FLOAT32[data[it, iy, ix, c]]
+        return half
+
+    def plain(data, it, iy, ix, c):
+        return data[it, iy, ix, c]
+    return plain
+
+
 @njit(cache=True, parallel=True, fastmath=False)
 def trilinear(
-    data: np.ndarray,  # (n_time, n_lat, n_lon, n_channel) float32
+    data: np.ndarray,  # (n_time, n_lat, n_lon, n_channel) float32, or uint16 binary16 bits
     times_s: np.ndarray,  # (n_time,) float64 ascending
     lat0: float, dlat: float, lon0: float, dlon: float, periodic: bool,
     lon_deg: np.ndarray, lat_deg: np.ndarray, t_s: np.ndarray,  # (n,) float64
@@ -73,7 +99,7 @@ def trilinear(
                 w = (wt if (k & 4) else 1.0 - wt) * (wy if (k & 2) else 1.0 - wy) * (
                     wx if (k & 1) else 1.0 - wx)
                 if w > 0.0:
-                    v = data[itk, iyk, ixk, c]
+                    v = node_value(data, itk, iyk, ixk, c)
                     if v == v:
                         acc += w * v
                         wsum += w

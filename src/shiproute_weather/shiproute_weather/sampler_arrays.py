@@ -23,7 +23,7 @@ class SamplerArrays:
     direction variable (its cosine follows at index + 1).
     """
 
-    data: np.ndarray  # (time, lat, lon, channel) float32
+    data: np.ndarray  # (time, lat, lon, channel) float32, or uint16 binary16 bits
     times_s: np.ndarray
     lat0_deg: float
     dlat_deg: float
@@ -35,13 +35,14 @@ class SamplerArrays:
 
 
 def sampler_arrays(sampler: ForecastSampler) -> SamplerArrays:
-    """The packed arrays of `sampler` (no copy)."""
+    """The packed arrays of `sampler` (no copy; half-precision storage as its uint16 bits,
+    which `_interp_kernel.trilinear` reads)."""
     channels: dict[str, int] = {}
     c = 0
     for name in sampler.variables:
         channels[name] = c
         c += 2 if name in DIRECTION_VARIABLES else 1
     g = sampler.grid
-    return SamplerArrays(sampler._data, sampler.times_s, float(g.lat0_deg), float(g.dlat_deg),
-                         float(g.lon0_deg), float(g.dlon_deg), bool(g.is_global_in_lon),
-                         channels, frozenset(DIRECTION_VARIABLES))
+    return SamplerArrays(sampler.kernel_data, sampler.times_s, float(g.lat0_deg),
+                         float(g.dlat_deg), float(g.lon0_deg), float(g.dlon_deg),
+                         bool(g.is_global_in_lon), channels, frozenset(DIRECTION_VARIABLES))
