@@ -2,20 +2,24 @@
 
 `nav_msgs/Path` poses are in the REP 105 ``earth`` frame (WGS 84 ECEF metres, see
 `path_frame`), stamped with the planned time at each node; `RpmProfile` holds one stage per leg;
-`RoutePlan` copies the frozen plan field by field.
+`RoutePlan` copies the frozen plan field by field. Forecast slices come in as `SliceFields`
+whose arrays are views on the message's buffers (no copy).
 """
 
 from __future__ import annotations
 
 import math
 
+import numpy as np
 from builtin_interfaces.msg import Time
 from geometry_msgs.msg import PoseStamped
 from nav_msgs.msg import Path
+from shiproute_weather.canonical import Grid
 
+from shiproute_msgs.msg import ForecastSlice, RouteWaypoint, RpmProfile, RpmStage, ShipState
 from shiproute_msgs.msg import RoutePlan as RoutePlanMsg
-from shiproute_msgs.msg import RouteWaypoint, RpmProfile, RpmStage, ShipState
 
+from .cycle_packer import SliceFields
 from .path_frame import track_to_ecef
 from .plan_types import RoutePlan
 
@@ -128,3 +132,12 @@ def ship_position(msg: ShipState) -> tuple[float, float, float] | None:
     if not (math.isfinite(lat) and math.isfinite(lon)) or abs(lat) > 90.0 or abs(lon) > 180.0:
         return None
     return lat, lon, posix_s(msg.header.stamp)
+
+
+def slice_fields(msg: ForecastSlice) -> SliceFields:
+    """ROS-free view of a ForecastSlice; the field arrays share the message's buffers."""
+    grid = Grid(float(msg.lat0_deg), float(msg.dlat_deg), int(msg.n_lat), float(msg.lon0_deg),
+                float(msg.dlon_deg), int(msg.n_lon))
+    fields = tuple((f.name, np.frombuffer(f.data, dtype=np.float32)) for f in msg.fields)
+    return SliceFields(msg.cycle_id, int(msg.slice_index), int(msg.slice_count),
+                       posix_s(msg.valid_time), grid, fields)

@@ -37,3 +37,7 @@ class PlanCancelledError(PlannerError):
 
 class OutputError(PlannerError):
     """A plan could not be written (RTZ, GeoJSON, JSON, PNG) or fails schema validation."""
+
+
+class ForecastCycleError(PlannerError, ValueError):
+    """A forecast cycle's slices are out of range or inconsistent (grid, fields, times)."""

@@ -4,11 +4,14 @@ and on request, and publishes the plan (Path, RpmProfile, RoutePlan) latched.
 Threads: the executor (MultiThreadedExecutor) serves subscriptions, services, the action and
 timers; planning runs on one worker thread, so the node stays responsive while it plans. A new
 complete cycle while planning supersedes the running plan (it is cancelled and discarded).
+Forecast slices are packed into the next cycle's sampler as they arrive, so a complete cycle
+is ready to plan on at once and no other copy of it is kept.
 """
 
 from __future__ import annotations
 
 import math
+import queue
 import sys
 import threading
 import time
@@ -30,8 +33,17 @@ from shiproute_msgs.msg import ForecastCycle, ForecastSlice, RpmProfile, ShipSta
 from shiproute_msgs.msg import RoutePlan as RoutePlanMsg
 from shiproute_msgs.srv import SetVoyage
 
-from .convert import plan_to_msg, plan_to_path, plan_to_rpm_profile, posix_s, ship_position
+from .convert import (
+    plan_to_msg,
+    plan_to_path,
+    plan_to_rpm_profile,
+    posix_s,
+    ship_position,
+    slice_fields,
+)
 from .cycle_assembler import CycleAssembler
+from .cycle_packer import CyclePacker, SliceFields, hs_field_at
+from .dds_profile import forget_profile, use_dynamic_slice_buffers
 from .plan_types import RoutePlan
 from .replan_policy import ReplanThresholds, track_deviation
 from .voyage_params import check_parameter, parse_utc
@@ -49,6 +61,8 @@ SLICES = QoSProfile(
     durability=DurabilityPolicy.TRANSIENT_LOCAL,
 )
 STATE = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE)
+SLICES_TOPIC = "/shiproute/forecast/slices"
+_ANNOUNCEMENT, _STOP_PACKER = -1, -2  # packer inbox entries that are not slice indices
 
 PARAMETERS: dict[str, tuple[object, str]] = {
     "origin": ("Busan", "departure port (name, UN/LOCODE or 'lat,lon'); seed-pool key"),
@@ -72,40 +86,50 @@ PARAMETERS: dict[str, tuple[object, str]] = {
 }
 
 
-def _return_freed_memory() -> None:
-    """Hand the freed copies of an assembled cycle back to the OS (glibc keeps large freed
-    blocks otherwise, and a cycle is ~200 MB)."""
+def _return_freed_memory(collect: bool = True) -> None:
+    """Hand freed heap memory back to the OS: glibc keeps freed blocks otherwise, and a cycle
+    leaves ~180 MB of freed slice buffers. malloc_trim runs without the GIL (ctypes), so it
+    may overlap planning; the garbage collection (optional) does not."""
     import contextlib
     import ctypes
     import gc
 
-    gc.collect()
+    if collect:
+        gc.collect()
     with contextlib.suppress(OSError, AttributeError):  # not glibc: nothing to do
         ctypes.CDLL("libc.so.6").malloc_trim(0)
 
 
-@dataclass(frozen=True)
-class _Forecast:
-    """A complete cycle as the planner keeps it: the sampler (one interleaved float32 copy of
-    the fields) and the total Hs field for plots; the assembled dataset itself is dropped."""
+def _return_large_blocks_at_once() -> None:
+    """Serve allocations from 1 MiB up (a slice message is 1.4 MB) by mmap, so their memory goes
+    back to the OS when freed instead of piling up in the heap while a cycle streams in."""
+    import contextlib
+    import ctypes
 
-    sampler: object
-    hs_field: object
+    m_mmap_threshold = -3  # glibc mallopt parameter
+    with contextlib.suppress(OSError, AttributeError):
+        ctypes.CDLL("libc.so.6").mallopt(m_mmap_threshold, 1 << 20)
 
-    @classmethod
-    def of(cls, ds) -> _Forecast:
-        from shiproute_weather.sampling import ForecastSampler
 
-        hs_name = "sea_surface_wave_significant_height"
-        hs = ds[[hs_name]].copy(deep=True) if hs_name in ds else None
-        return cls(ForecastSampler(ds), hs)
+def _memory_mb() -> tuple[float, float]:
+    """Resident memory of this process and its high-water mark [MiB] (Linux; NaN elsewhere)."""
+    values = {"VmRSS:": math.nan, "VmHWM:": math.nan}
+    try:
+        with open("/proc/self/status") as f:
+            for line in f:
+                key = line.split(":", 1)[0] + ":"
+                if key in values:
+                    values[key] = int(line.split()[1]) / 1024
+    except (OSError, ValueError, IndexError):
+        pass
+    return values["VmRSS:"], values["VmHWM:"]
 
 
 @dataclass
 class _Inputs:
     """What one planning run works on (a consistent snapshot)."""
 
-    forecast: _Forecast
+    forecast: object  # ForecastSampler of the cycle
     cycle_id: str
     position: tuple[float, float, float] | None
     previous: RoutePlan | None
@@ -123,7 +147,8 @@ class PlannerNode(Node):
 
         self._lock = threading.Lock()
         self._wake = threading.Condition(self._lock)
-        self._assembler: CycleAssembler[ForecastSlice] = CycleAssembler()
+        self._assembler: CycleAssembler[SliceFields] = CycleAssembler(
+            sink=lambda _cycle_id, first: CyclePacker(first, self._ship_time_s))
         self._forecast = None
         self._cycle_id = ""
         self._ship: ShipState | None = None
@@ -138,12 +163,18 @@ class PlannerNode(Node):
         self._plans_made = 0
         self._done_event = threading.Condition(threading.Lock())
         self._stop = False
+        self._cycle_timing: dict[str, list[float]] = {}  # first slice arrival, packing [s]
+        self._trim_memory = False
+        # (cycle id, slice index, slice count, SliceFields): packed on the packer thread while
+        # the executor takes the next slice (packing on executor threads only adds contention)
+        self._inbox: queue.SimpleQueue = queue.SimpleQueue()
 
         io_group = ReentrantCallbackGroup()
+        forecast_group = MutuallyExclusiveCallbackGroup()  # into the packer's inbox in order
         self.create_subscription(ForecastCycle, "/shiproute/forecast/cycle", self._on_cycle,
-                                 LATCHED, callback_group=io_group)
-        self.create_subscription(ForecastSlice, "/shiproute/forecast/slices", self._on_slice,
-                                 SLICES, callback_group=io_group)
+                                 LATCHED, callback_group=forecast_group)
+        self.create_subscription(ForecastSlice, SLICES_TOPIC, self._on_slice, SLICES,
+                                 callback_group=forecast_group)
         self.create_subscription(ShipState, "/shiproute/ship_state", self._on_ship_state, STATE,
                                  callback_group=io_group)
         self._pub_path = self.create_publisher(PathMsg, "/shiproute/plan/path", LATCHED)
@@ -161,6 +192,8 @@ class PlannerNode(Node):
         self.create_timer(1.0, self._tick, callback_group=MutuallyExclusiveCallbackGroup())
         self._worker = threading.Thread(target=self._work, name="planner", daemon=True)
         self._worker.start()
+        self._packer = threading.Thread(target=self._pack, name="forecast packer", daemon=True)
+        self._packer.start()
         self._log_seed_pool()
         self.get_logger().info("planner ready; waiting for a complete forecast cycle")
 
@@ -212,38 +245,64 @@ class PlannerNode(Node):
 
     # ----------------------------------------------------------------- inputs
     def _on_cycle(self, msg: ForecastCycle) -> None:
-        self._take(self._assembler.announce(msg.cycle_id, msg.slice_count), msg.cycle_id)
+        self._inbox.put((msg.cycle_id, _ANNOUNCEMENT, int(msg.slice_count), None))
 
     def _on_slice(self, msg: ForecastSlice) -> None:
-        try:
-            done = self._assembler.add_slice(msg.cycle_id, msg.slice_index, msg.slice_count, msg)
-        except ValueError as err:
-            self._last_error = str(err)
-            self.get_logger().warning(str(err))
-            return
-        if done is not None:
-            self._take(done, msg.cycle_id)
-            del done  # the cycle's messages: ~200 MB
-            _return_freed_memory()
+        # a zero-copy view only (it keeps the message's buffers alive until packed)
+        self._cycle_timing.setdefault(msg.cycle_id, [time.monotonic(), 0.0])
+        self._inbox.put((msg.cycle_id, int(msg.slice_index), int(msg.slice_count),
+                         slice_fields(msg)))
 
-    def _take(self, slices: list[ForecastSlice] | None, cycle_id: str) -> None:
-        if slices is None:
-            return
-        from shiproute_weather.convert import msgs_to_dataset
+    def _pack(self) -> None:
+        """Packer thread: feeds announcements and slices, in arrival order, to the assembler
+        (the only thread that touches it) and takes each cycle that becomes complete."""
+        while True:
+            cycle_id, index, count, item = self._inbox.get()
+            if index == _STOP_PACKER:
+                return
+            t0 = time.monotonic()
+            try:
+                if index == _ANNOUNCEMENT:
+                    sampler = self._assembler.announce(cycle_id, count)
+                else:
+                    sampler = self._assembler.add_slice(cycle_id, index, count, item)
+            except Exception as err:  # a bad slice or cycle must not stop the packer
+                self._reject_cycle(cycle_id, err)
+                continue
+            finally:
+                del item  # the slice's message buffers
+                timing = self._cycle_timing.get(cycle_id)
+                if timing is not None:
+                    timing[1] += time.monotonic() - t0
+            self._take(sampler, cycle_id)
 
-        try:
-            forecast = _Forecast.of(msgs_to_dataset(slices))
-        except Exception as err:  # a bad cycle must not kill the node
-            self._last_error = f"forecast cycle {cycle_id!r} unusable: {err}"
-            self.get_logger().error(self._last_error)
+    def _ship_time_s(self) -> float:
+        """Time of the last ship state (-inf before the first): older slices are not kept."""
+        pos = ship_position(self._ship) if self._ship is not None else None
+        return pos[2] if pos is not None else -math.inf
+
+    def _reject_cycle(self, cycle_id: str, err: Exception) -> None:
+        """A bad slice or cycle is reported; planning goes on with the last good cycle."""
+        self._cycle_timing.pop(cycle_id, None)
+        self._last_error = f"forecast cycle {cycle_id!r} unusable: {err}"
+        self.get_logger().error(self._last_error)
+
+    def _take(self, sampler, cycle_id: str) -> None:
+        """A complete cycle's sampler replaces the current one and triggers a re-plan."""
+        if sampler is None:
             return
-        n_slices = len(slices)
         with self._lock:
-            self._forecast, self._cycle_id = forecast, cycle_id
+            self._forecast, self._cycle_id = sampler, cycle_id
             if self._planning:
                 self._cancel.set()  # supersede the running plan
-        self.get_logger().info(f"forecast cycle {cycle_id} complete ({n_slices} slices)")
         self._request(f"new forecast cycle {cycle_id}")
+        first_s, pack_s = self._cycle_timing.pop(cycle_id, (time.monotonic(), 0.0))
+        self.get_logger().info(
+            f"forecast cycle {cycle_id} complete: {sampler.times_s.size} slices kept "
+            f"({sampler.nbytes / 2**20:.0f} MiB), received over {time.monotonic() - first_s:.2f} s"
+            f" ({pack_s:.2f} s unpacking)")
+        _return_freed_memory(collect=False)  # the slice buffers: freed, not yet returned
+        self._trim_memory = True
 
     def _on_ship_state(self, msg: ShipState) -> None:
         if ship_position(msg) is None:
@@ -331,7 +390,7 @@ class PlannerNode(Node):
         self.get_logger().info(f"planning ({inputs.reason}) on cycle {inputs.cycle_id}")
         plan = plan_voyage(
             origin, str(self._p("destination")), depart, parse_utc(str(self._p("rta"))),
-            str(self._p("ship")), inputs.forecast.sampler, cycle_id=inputs.cycle_id,
+            str(self._p("ship")), inputs.forecast, cycle_id=inputs.cycle_id,
             objective=str(self._p("objective")), method=str(self._p("method")),
             budget_s=float(self._p("budget_s")), seed=int(self._p("rng_seed")),
             stage_hours=float(self._p("stage_hours")), previous_plan=inputs.previous,
@@ -342,6 +401,13 @@ class PlannerNode(Node):
             self.get_logger().info(f"plan on {inputs.cycle_id} superseded by a newer cycle")
             return
         self._publish(plan, inputs)
+        # after publishing: files, then the freed buffers of a new cycle back to the OS
+        self._write_outputs(plan, inputs.forecast)
+        if self._trim_memory:
+            self._trim_memory = False
+            _return_freed_memory()
+            rss, peak = _memory_mb()
+            self.get_logger().info(f"planner memory: {rss:.0f} MiB resident, peak {peak:.0f} MiB")
 
     def _near_origin(self, origin: str, pos: tuple[float, float, float]) -> bool:
         """Whether the ship is still at the departure port (within departure_radius_nm)."""
@@ -377,16 +443,17 @@ class PlannerNode(Node):
             f"constant RPM, {plan.compute_time_s:.2f} s, feasible={plan.feasible} "
             f"({inputs.reason})"
         )
-        self._write_outputs(plan, inputs.forecast.hs_field)
 
-    def _write_outputs(self, plan: RoutePlan, forecast) -> None:
+    def _write_outputs(self, plan: RoutePlan, sampler) -> None:
         out = str(self._p("output_dir"))
         if not out:
             return
         try:
             from .io.files import write_plan_files
 
-            write_plan_files(plan, Path(out), forecast=forecast, png=bool(self._p("write_png")))
+            png = bool(self._p("write_png"))
+            hs = hs_field_at(sampler, plan.departure_s) if png else None
+            write_plan_files(plan, Path(out), forecast=hs, png=png)
         except Exception as err:  # file output must not stop planning
             self._last_error = f"writing plan files to {out} failed: {err}"
             self.get_logger().error(self._last_error)
@@ -463,12 +530,17 @@ class PlannerNode(Node):
             self._cancel.set()
             self._wake.notify()
         self._worker.join(timeout=5.0)
+        self._inbox.put(("", _STOP_PACKER, 0, None))
+        self._packer.join(timeout=5.0)
 
 
 def main(args: list[str] | None = None) -> int:
     """Console entry point `shiproute_planner_node [--ros-args ...]`."""
+    _return_large_blocks_at_once()
+    profile = use_dynamic_slice_buffers(SLICES_TOPIC)
     rclpy.init(args=sys.argv if args is None else args)
     node = PlannerNode()
+    forget_profile(profile)
     executor = MultiThreadedExecutor(num_threads=4)
     executor.add_node(node)
     try:
