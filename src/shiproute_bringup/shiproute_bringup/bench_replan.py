@@ -3,8 +3,12 @@
 The weather and planner nodes run as separate processes; this process plays the ship and the
 integrator. After the first plan, five new forecast cycles (the March storm's second cycle,
 each written with its own cycle id) are dropped into the watched directory one at a time; the
-latency is measured from the ForecastCycle announcement arriving here to the RoutePlan on that
-cycle arriving here.
+latency is measured from the ForecastCycle's publication (its header stamp: the weather node
+stamps it with the wall clock just before publishing, and all processes share this host's
+clock) to the RoutePlan on that cycle arriving here. `planner_rss_mb` is the planner's resident
+memory when the last plan arrives, `planner_peak_rss_mb` its high-water mark over the run (both
+cycles alive during a change included). `--log` prints the nodes' logs (with the planner's
+per-cycle reception and planning times) on stderr.
 """
 
 from __future__ import annotations
@@ -38,7 +42,7 @@ def _cycle_files(work: Path, n: int) -> list[Path]:
     return out
 
 
-def run(budget_s: float, repeats: int) -> dict:
+def run(budget_s: float, repeats: int, log: bool = False) -> dict:
     """Start the nodes, measure `repeats` re-plans, return the figures."""
     import rclpy
     from rclpy.context import Context
@@ -68,12 +72,12 @@ def run(budget_s: float, repeats: int) -> dict:
     ex.add_node(node)
     latched = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
                          durability=DurabilityPolicy.TRANSIENT_LOCAL)
-    cycles: dict[str, float] = {}
+    cycles: dict[str, float] = {}  # cycle id -> publication stamp [POSIX s]
     plans: dict[str, float] = {}
     node.create_subscription(ForecastCycle, "/shiproute/forecast/cycle",
-                             lambda m: cycles.setdefault(m.cycle_id, time.monotonic()), latched)
+                             lambda m: cycles.setdefault(m.cycle_id, _stamp_s(m)), latched)
     node.create_subscription(RoutePlan, "/shiproute/plan/route",
-                             lambda m: plans.setdefault(m.cycle_id, time.monotonic()), latched)
+                             lambda m: plans.setdefault(m.cycle_id, time.time()), latched)
     pub = node.create_publisher(ShipState, "/shiproute/ship_state", 10)
 
     def spin_until(pred, timeout_s: float, what: str) -> None:
@@ -100,7 +104,10 @@ def run(budget_s: float, repeats: int) -> dict:
                        f"plan on {cid}")
             latencies.append(plans[cid] - cycles[cid])
         rss = psutil.Process(planner.proc.pid).memory_info().rss / 2**20
+        peak = _peak_rss_mb(planner.proc.pid)
     finally:
+        if log:
+            _print_logs(weather, planner, cycles, plans)
         ex.shutdown()
         node.destroy_node()
         ctx.try_shutdown()
@@ -108,7 +115,38 @@ def run(budget_s: float, repeats: int) -> dict:
         weather.stop()
     return {"replan_latency_s": round(statistics.median(latencies), 3),
             "replan_latencies_s": [round(x, 3) for x in latencies],
-            "planner_budget_s": budget_s, "planner_rss_mb": round(rss, 1)}
+            "planner_budget_s": budget_s, "planner_rss_mb": round(rss, 1),
+            "planner_peak_rss_mb": round(peak, 1)}
+
+
+def _peak_rss_mb(pid: int) -> float:
+    """Highest resident memory of a process so far (Linux VmHWM) [MiB]; NaN elsewhere."""
+    try:
+        with open(f"/proc/{pid}/status") as f:
+            for line in f:
+                if line.startswith("VmHWM:"):
+                    return int(line.split()[1]) / 1024
+    except OSError:
+        pass
+    return float("nan")
+
+
+def _stamp_s(msg) -> float:
+    """Header stamp of a message as POSIX seconds."""
+    return msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
+
+
+def _print_logs(weather: RosProcess, planner: RosProcess, cycles: dict[str, float],
+                plans: dict[str, float]) -> None:
+    """The nodes' log lines, cycle stamps and plan arrival times (wall clock) on stderr."""
+    import sys
+
+    for name, proc in (("weather", weather), ("planner", planner)):
+        for line in proc.lines:
+            print(f"[{name}] {line}", file=sys.stderr)
+    for what, arrivals in (("cycle", cycles), ("plan", plans)):
+        for cid, t in arrivals.items():
+            print(f"[bench] {what} {cid} at {t:.3f}", file=sys.stderr)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -117,8 +155,9 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--budget", type=float, default=0.5, help="planner budget per plan [s]")
     p.add_argument("--repeats", type=int, default=5)
+    p.add_argument("--log", action="store_true", help="print the nodes' logs on stderr")
     args = p.parse_args(argv)
-    result = run(args.budget, args.repeats)
+    result = run(args.budget, args.repeats, args.log)
     if args.json:
         print(json.dumps(result))
     else:
