@@ -3,11 +3,14 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
-import xarray as xr
 
 from .errors import GridError, MissingVariableError
+
+if TYPE_CHECKING:  # annotations only: xarray + pandas are ~50 MB resident in the planner
+    import xarray as xr
 
 WIND_U = "eastward_wind"
 WIND_V = "northward_wind"

@@ -14,9 +14,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-import xarray as xr
 from scipy.interpolate import RegularGridInterpolator
 
 from .errors import ProfileError
@@ -25,6 +25,9 @@ from .physics import PhysicsModel, flatten_legs, flatten_sea, relative_wave_deg
 from .seastate import SeaState
 from .spec import ShipSpec
 from .validate import check_inputs, check_range, check_sea
+
+if TYPE_CHECKING:  # imported where a profile is read or written: ~50 MB resident with pandas
+    import xarray as xr
 
 KN_M_S = 0.514444
 WEATHER_DIMS = ("hs_m", "rel_wave_deg", "wind_speed_m_s", "rel_wind_deg")
@@ -68,6 +71,8 @@ def grid_sea(grid: ProfileGrid) -> tuple[np.ndarray, np.ndarray, SeaState]:
 
 def export_profile(model: PerformanceModel, path: str | Path, grid: ProfileGrid) -> xr.Dataset:
     """Evaluate ``model`` on ``grid`` and write the NetCDF profile to ``path``."""
+    import xarray as xr
+
     rpm, hdg, sea = grid_sea(grid)
     res = model.evaluate(rpm, hdg, sea)
     dims = ("rpm", *WEATHER_DIMS)
@@ -104,6 +109,8 @@ class ProfileModel:
         self.ship = ship
         self.physics = PhysicsModel(ship)
         try:
+            import xarray as xr
+
             ds = xr.load_dataset(path)
         except (OSError, ValueError) as exc:
             raise ProfileError(f"{path}: cannot read NetCDF profile: {exc}") from exc
