@@ -20,6 +20,7 @@ from .ga.seeds import _searoute_coords
 from .geo.geodesy import direct, inverse, unwrap_near, wrap_lon
 from .geo.landmask import LandMask
 from .geo.ports import Port
+from .geo.verify import densify_track
 from .route.environment import Environment
 from .route.evaluation import RouteEvaluation
 from .route.problem import RouteLimits, RouteProblem
@@ -89,10 +90,20 @@ def _coastal_ends(lon: np.ndarray, lat: np.ndarray, cum: np.ndarray, rule: Coast
     for _ in range(2):
         d_dep = _clear_sight_m(lon, lat, cum, end(r_lon, r_lat, r_cum, d_arr), rule, min_dep_m)
         d_arr = _clear_sight_m(r_lon, r_lat, r_cum, end(lon, lat, cum, d_dep), rule, min_m)
-    a, b = end(lon, lat, cum, d_dep), end(r_lon, r_lat, r_cum, d_arr)
-    hits = rule.land.segment_land_samples(np.array([a[0]]), np.array([a[1]]),
-                                          np.array([unwrap_near(b[0], a[0])]), np.array([b[1]]))
-    return (d_dep, d_arr) if hits[0] == 0 else (min_dep_m, min_m)
+    # the dense check (geodesic points every 500 m on the polygons) has the last word: the
+    # end nearer a point it finds on land moves on by a step, a few times at most
+    for _ in range(12):
+        a, b = end(lon, lat, cum, d_dep), end(r_lon, r_lat, r_cum, d_arr)
+        p_lon, p_lat = densify_track(np.array([a[0], unwrap_near(b[0], a[0])]),
+                                     np.array([a[1], b[1]]), 500.0)
+        hit = np.flatnonzero(rule.land.exact.contains(p_lon, p_lat))
+        if hit.size == 0:
+            return d_dep, d_arr
+        if hit.mean() < 0.5 * p_lon.size:
+            d_dep += rule.step_m
+        else:
+            d_arr += rule.step_m
+    return min_dep_m, min_m
 
 
 def lane_approaches(dep: Port, arr: Port, approach_m: float, with_dep: bool = True,

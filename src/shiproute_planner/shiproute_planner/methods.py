@@ -78,8 +78,10 @@ class MethodContext:
     stall_generations: int = 0  # 0 = no stall termination
     baseline: Baseline | None = None  # computed on demand when None
     gene_seeds: list[tuple[str, np.ndarray]] = field(default_factory=list)  # ready genes
+    max_evaluations: int = 0  # stop after this many route evaluations (0 = no limit)
     n_islands: int = 3  # seed GA: seed groups searched apart (by side of the great circle)
-    island_share: float = 0.5  # share of the search time (or generations) before the merge
+    island_share: float = 0.5  # share of the search (time, generations or evaluations)
+    # before the islands merge
 
 
 @dataclass(frozen=True)
@@ -213,13 +215,16 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
     while True:
         if isinstance(ga, IslandGA) and not ga.merged and (
                 time.perf_counter() - ctx.t_start >= merge_s
-                or ga.generation >= ctx.island_share * ctx.max_generations):
+                or ga.generation >= ctx.island_share * ctx.max_generations
+                or 0 < ctx.max_evaluations * ctx.island_share <= ga.evaluations):
             ga.merge()
         x = ga.ask()
         if ga.pop is not None:
             parts = ga.parts() if isinstance(ga, IslandGA) else [(slice(0, len(x)), ga)]
             for sl, isl in parts:
                 _rpm_scaled_best(x[sl], isl.best[0], n, lo, hi, ctx.rng)
+        if ctx.max_evaluations:  # an evaluation budget is exact
+            x = x[: max(ctx.max_evaluations - ga.evaluations, 1)]
         ev = evaluate(x)
         ga.tell(x, ev.violation, ev.objective)
         # archive of bests the exact evaluator confirms: the fallback when the final
@@ -237,6 +242,7 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
             ctx.progress(Progress(ctx.leg_index, ga.generation, ga.evaluations,
                                   f if v <= 0 else float("nan"), v, elapsed))
         if (elapsed >= deadline_s or ga.generation >= ctx.max_generations or ctx.cancelled()
+                or 0 < ctx.max_evaluations <= ga.evaluations
                 or (ctx.stall_generations and ga.stalled(ctx.stall_generations))):
             break
     pool_x = ga.pop if not confirmed else np.concatenate([ga.pop[:24], confirmed[::-1],

@@ -210,32 +210,14 @@ def plan_voyage(
     results, baselines, problems, sources, approaches = [], [], [], [], []
     gens = evals = 0
     leg_depart = depart_s
-    coastal = CoastalPassage(land) if coastal_passage else None
     for k, (a, b) in enumerate(itertools.pairwise(ports)):
-        # under way the ship finishes the coastal passage it is in, if any (from where it is)
         under_way = k == 0 and position is not None
-        rest = _rest_of_approach(previous_plan, position) if under_way else None
-        ap_dep, ap_arr = lane_approaches(
-            a, b, approach_nm * 1852.0,
-            with_dep=not under_way or (coastal is not None and previous_plan is None),
-            coastal=coastal, dep_min_m=0.0 if under_way else None)
-        if rest is not None:
-            ap_dep = rest
-        rpm_ap = approach_rpm or _lane_rpm(env, a, b, ap_dep, ap_arr, leg_depart,
-                                           leg_rtas[k], lim)
-        pre = sail_approach(env, ap_dep, rpm_ap, leg_depart, lim) if ap_dep else None
-        t_leg = float(pre.eta_s[0]) if pre is not None else leg_depart
-        rta_leg = leg_rtas[k]
-        if ap_arr is not None:
-            est = sail_approach(env, ap_arr, rpm_ap, rta_leg - 3600.0, lim)
-            rta_leg -= float(est.eta_s[0] - est.time_s[0, 0])
-        d_lon, d_lat = (ap_dep.lon_deg[-1], ap_dep.lat_deg[-1]) if ap_dep else (a.lon_deg,
-                                                                               a.lat_deg)
-        a_lon, a_lat = (ap_arr.lon_deg[0], ap_arr.lat_deg[0]) if ap_arr else (b.lon_deg,
-                                                                             b.lat_deg)
-        problem = RouteProblem(float(d_lon), float(d_lat), float(a_lon), float(a_lat), t_leg,
-                               rta_leg, lim, stage_s=stage_hours * 3600.0,
-                               objective=objective, dep_name=a.name, arr_name=b.name)
+        leg = leg_setup(a, b, env, lim, land, leg_depart, leg_rtas[k], approach_nm=approach_nm,
+                        approach_rpm=approach_rpm, coastal_passage=coastal_passage,
+                        stage_hours=stage_hours, objective=objective,
+                        under_way=under_way, previous_plan=previous_plan if under_way else None,
+                        position=position if under_way else None)
+        problem, pre, ap_arr, rpm_ap = leg.problem, leg.pre, leg.ap_arr, leg.rpm_ap
         seeds, gene_seeds = _seeds(problem, pool, a, b, month,
                                    previous_plan if k == 0 else None, position)
         used = time.perf_counter() - t0
@@ -270,6 +252,49 @@ def plan_voyage(
     return _assemble(ports, problems, results, baselines, sources, approaches, env, spec,
                      method, objective, depart_s, rta_s, leg_rtas, gens, evals,
                      time.perf_counter() - t0)
+
+
+@dataclasses.dataclass(frozen=True)
+class LegSetup:
+    """One leg as the methods see it: the problem between the approaches' sea ends, the
+    sailed departure approach, the arrival approach and the approach RPM."""
+
+    problem: RouteProblem
+    pre: RouteEvaluation | None
+    ap_arr: Approach | None
+    rpm_ap: float
+
+
+def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMask,
+              depart_s: float, rta_s: float, *, approach_nm: float = 25.0,
+              approach_rpm: float | None = None, coastal_passage: bool = True,
+              stage_hours: float = 12.0, objective: str = "fuel", under_way: bool = False,
+              previous_plan: RoutePlan | None = None,
+              position: tuple[float, float, float] | None = None) -> LegSetup:
+    """Approaches of a leg a -> b and the problem between their sea ends (see `plan_voyage`;
+    shared with the method comparison so every method solves the same problem). Under way
+    the ship finishes the coastal passage it is in, if any, from where it is."""
+    coastal = CoastalPassage(land) if coastal_passage else None
+    rest = _rest_of_approach(previous_plan, position) if under_way else None
+    ap_dep, ap_arr = lane_approaches(
+        a, b, approach_nm * 1852.0,
+        with_dep=not under_way or (coastal is not None and previous_plan is None),
+        coastal=coastal, dep_min_m=0.0 if under_way else None)
+    if rest is not None:
+        ap_dep = rest
+    rpm_ap = approach_rpm or _lane_rpm(env, a, b, ap_dep, ap_arr, depart_s, rta_s, lim)
+    pre = sail_approach(env, ap_dep, rpm_ap, depart_s, lim) if ap_dep else None
+    t_leg = float(pre.eta_s[0]) if pre is not None else depart_s
+    rta_leg = rta_s
+    if ap_arr is not None:
+        est = sail_approach(env, ap_arr, rpm_ap, rta_leg - 3600.0, lim)
+        rta_leg -= float(est.eta_s[0] - est.time_s[0, 0])
+    d_lon, d_lat = (ap_dep.lon_deg[-1], ap_dep.lat_deg[-1]) if ap_dep else (a.lon_deg, a.lat_deg)
+    a_lon, a_lat = (ap_arr.lon_deg[0], ap_arr.lat_deg[0]) if ap_arr else (b.lon_deg, b.lat_deg)
+    problem = RouteProblem(float(d_lon), float(d_lat), float(a_lon), float(a_lat), t_leg,
+                           rta_leg, lim, stage_s=stage_hours * 3600.0, objective=objective,
+                           dep_name=a.name, arr_name=b.name)
+    return LegSetup(problem, pre, ap_arr, float(rpm_ap))
 
 
 def _rest_of_approach(previous: RoutePlan | None,

@@ -11,7 +11,7 @@ import time
 
 import numpy as np
 
-from ..ga.loop import GAConfig, SeedGA
+from ..ga.loop import GAConfig
 from ..ga.seeds import TrackSeed, great_circle_track, sea_lane_track, track_to_genes
 from ..route.encoding import gene_bounds
 from ..route.generate import evaluate_genes
@@ -53,22 +53,17 @@ def _gene_evaluator(inp: BaselineInputs):
 
 
 def run_seed_ga(inp: BaselineInputs, n_evaluations: int, rng: np.random.Generator,
-                config: GAConfig | None = None, seeded: bool = True) -> BaselineResult:
-    """The planner's seed GA for (at least) `n_evaluations` route evaluations."""
+                config: GAConfig | None = None) -> BaselineResult:
+    """The planner's seed GA (`methods.seed_ga_method`: its seeds, islands and final exact
+    choice) stopped after `n_evaluations` route evaluations."""
+    from ..methods import MethodContext, seed_ga_method
+
     t0 = time.perf_counter()
-    p = inp.problem
-    lo, hi = gene_bounds(p)
-    seeds = seed_genes(inp) if seeded else None
-    ga = SeedGA(lo, hi, p.n_stages, config or GAConfig(), rng, seeds)
-    while ga.evaluations < n_evaluations:
-        x = ga.ask()
-        x = x[: max(n_evaluations - ga.evaluations, 1)]
-        ev = evaluate_genes(p, inp.env, inp.land, x)
-        ga.tell(x, ev.violation, ev.objective)
-    genes, _, _ = ga.best
-    final = evaluate_genes(p, inp.env, inp.land, genes[None])
-    return BaselineResult("seed_ga" if seeded else "ga", final, time.perf_counter() - t0, True,
-                          route_evaluations=ga.evaluations, genes=genes)
+    ctx = MethodContext(inp.problem, inp.env, inp.land, rng, budget_s=1e9, ga_config=config,
+                        max_evaluations=n_evaluations)
+    res = seed_ga_method(ctx)
+    return BaselineResult("seed_ga", res.evaluation, time.perf_counter() - t0, True,
+                          route_evaluations=res.evaluations, genes=res.genes)
 
 
 def run_pymoo_method(inp: BaselineInputs, algorithm: str, n_evaluations: int | None,

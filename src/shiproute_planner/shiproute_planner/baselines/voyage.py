@@ -14,8 +14,7 @@ import numpy as np
 
 from ..geo.landmask import LandMask, default_land_mask
 from ..geo.ports import Port, resolve_port
-from ..planning import TimeLike, _limits, make_environment, to_posix_s
-from ..route.problem import RouteProblem
+from ..planning import TimeLike, _limits, leg_setup, make_environment, to_posix_s
 from .inputs import BaselineInputs
 
 DEFAULT_DEPARTURE_AFTER_REFERENCE_H = 6.0  # the reference case sails 6 h after the 12Z run
@@ -53,7 +52,9 @@ def build_inputs(
     land: LandMask | None = None,
     limits: dict | None = None,
 ) -> BaselineInputs:
-    """One-leg voyage as the planner would set it up (no seed pool: every method starts cold)."""
+    """One-leg voyage as the planner sets it up: the problem between the approaches' sea
+    ends (`planning.leg_setup`; the approaches are common to every method), no seed pool:
+    every method starts cold."""
     land = land or default_land_mask()
     env, spec = make_environment(ship, forecast)
     lim = _limits(spec, limits)
@@ -61,6 +62,5 @@ def build_inputs(
     b = destination if isinstance(destination, Port) else resolve_port(destination, land)
     depart_s = to_posix_s(depart)
     rta_s = depart_s + rta.total_seconds() if isinstance(rta, timedelta) else to_posix_s(rta)
-    problem = RouteProblem(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg, depart_s, rta_s, lim,
-                           stage_s=stage_hours * 3600.0, dep_name=a.name, arr_name=b.name)
-    return BaselineInputs(problem, env, land)
+    leg = leg_setup(a, b, env, lim, land, depart_s, rta_s, stage_hours=stage_hours)
+    return BaselineInputs(leg.problem, env, land)

@@ -73,9 +73,12 @@ class IslandGA:
         return out
 
     def tell(self, x: np.ndarray, violation: np.ndarray, objective: np.ndarray) -> None:
-        """Give each island its evaluated offspring."""
+        """Give each island its evaluated offspring (the first rows of the last `ask` when
+        an evaluation budget cut it short)."""
         for sl, isl in self.parts():
-            isl.tell(x[sl], violation[sl], objective[sl])
+            sl = slice(min(sl.start, len(x)), min(sl.stop, len(x)))
+            if sl.stop > sl.start:
+                isl.tell(x[sl], violation[sl], objective[sl])
 
     def merge(self) -> None:
         """Join the islands: one population of the best of all (Deb order), same config."""
