@@ -44,12 +44,19 @@ def pack_fields(out: np.ndarray, variables: Sequence[str],
         else:
             columns.append(values)
     if out.dtype == np.float16:
-        bits = tuple(np.ascontiguousarray(v, dtype=np.float32).reshape(-1).view(np.uint32)
-                     for v in columns)
+        bits = tuple(_readonly_bits(v) for v in columns)
         interleave_half_bits(bits, out.reshape(-1, out.shape[-1]).view(np.uint16))
     else:
         for c, v in enumerate(columns):
             out[..., c] = v
+
+
+def _readonly_bits(values: np.ndarray) -> np.ndarray:
+    """float32 values as a flat read-only uint32 view: one array type for numba whether the
+    source is a message buffer (read-only bytes) or a computed array."""
+    bits = np.ascontiguousarray(values, dtype=np.float32).reshape(-1).view(np.uint32)
+    bits.flags.writeable = False
+    return bits
 
 
 class ForecastSampler:

@@ -84,3 +84,20 @@ def test_from_packed_wraps_the_array_and_checks_its_shape() -> None:
         ForecastSampler.from_packed(ref._data[:, :-1], ref.times_s, ref.grid, ref.variables)
     with pytest.raises(ValueError, match="float32 or float16"):
         ForecastSampler(ds, dtype=np.float64)
+
+
+def test_pack_fields_takes_read_only_buffers_next_to_computed_directions() -> None:
+    # message buffers arrive read-only (bytes) while sine/cosine columns are computed arrays
+    from shiproute_weather.sampling import pack_fields
+
+    rng = np.random.default_rng(5)
+    wind = rng.normal(0, 10, (4, 6)).astype(np.float32)
+    wave_dir = rng.uniform(0, 360, (4, 6)).astype(np.float32)
+    values = {cv.WIND_U: np.frombuffer(wind.tobytes(), dtype=np.float32).reshape(4, 6),
+              cv.WAVE_DIR: wave_dir}
+    names = [cv.WIND_U, cv.WAVE_DIR]
+    half = np.empty((4, 6, 3), dtype=np.float16)
+    full = np.empty((4, 6, 3), dtype=np.float32)
+    pack_fields(half, names, values.__getitem__)
+    pack_fields(full, names, values.__getitem__)
+    assert np.array_equal(half, full.astype(np.float16))
