@@ -52,7 +52,7 @@ def test_replan_under_way_finishes_the_coastal_passage_ahead_of_the_ship(land_ma
     # the next waypoint is the previous plan's next one: ahead, not back along the lane
     assert np.isclose(w[1].lat_deg, lat[k + 1]) and np.isclose(w[1].lon_deg % 360,
                                                                lon[k + 1] % 360)
-    a, b = again.optimised_spans[0]
+    a = again.optimised_spans[0][0]
     assert np.isclose(w[a].lat_deg, lat[start]) and np.isclose(w[a].lon_deg % 360,
                                                                lon[start] % 360)
 
