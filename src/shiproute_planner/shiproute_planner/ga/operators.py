@@ -2,8 +2,9 @@
 
 Heading genes are relative, so changing gene k turns the whole tail of the route. Mutation
 therefore mixes a *turn* (one gene, tail rotates), a *kink* (+d at k, -d at k + 1: the tail
-is shifted, not rotated) and smooth RPM perturbations over a window of stages, plus a common
-RPM scale that trades fuel against arrival time.
+is shifted, not rotated), a *bend* (a smooth sideways bulge over a window of nodes that
+rejoins the track) and smooth RPM perturbations over a window of stages, plus a common RPM
+scale that trades fuel against arrival time.
 """
 
 from __future__ import annotations
@@ -47,7 +48,7 @@ def mutate(x: np.ndarray, lo: np.ndarray, hi: np.ndarray, n_stages: int,
     rows = np.flatnonzero(rng.random(pop) < p_mutation)
     if rows.size == 0:
         return x
-    kind = rng.integers(0, 5, size=rows.size)
+    kind = rng.integers(0, 6, size=rows.size)
     k = rng.integers(0, n, size=rows.size)
     d_h = rng.normal(0.0, sigma_heading_deg, size=rows.size)
     # 0: turn (one relative heading); 1: kink (turn at k, turn back at k + 1)
@@ -75,4 +76,16 @@ def mutate(x: np.ndarray, lo: np.ndarray, hi: np.ndarray, n_stages: int,
         r = rows[sel]
         x[r, :n] += rng.normal(0.0, 0.25 * sigma_heading_deg, size=(r.size, n))
         x[r, n:] += rng.normal(0.0, 0.25 * sigma_rpm, size=(r.size, n + 1))
+    # 5: bend: a smooth sideways bulge of the track over a window of nodes that rejoins it,
+    # as absolute heading offsets (first difference of the bulge) turned into relative ones
+    sel = kind == 5
+    if sel.any() and n > 2:
+        r = rows[sel]
+        centre = rng.uniform(1.0, n - 1.0, size=r.size)[:, None]
+        width = rng.uniform(0.7, 4.0, size=r.size)[:, None]
+        nodes = np.arange(n + 1)[None, :]
+        bulge = np.exp(-0.5 * ((nodes - centre) / width) ** 2)
+        offset = rng.normal(0.0, 2.0 * sigma_heading_deg, size=(r.size, 1)) * np.diff(bulge)
+        x[r, 0] += offset[:, 0]
+        x[r, 1:n] += np.diff(offset, axis=1)
     return np.clip(x, lo, hi)
