@@ -1,5 +1,5 @@
 """PNG of a plan: route (and baseline) over the significant wave height at the ship's time,
-and profiles of RPM, speed over ground and fuel per leg along the voyage."""
+and profiles of RPM, speed over ground and fuel rate along the voyage."""
 
 from __future__ import annotations
 
@@ -70,7 +70,9 @@ def write_png(plan: RoutePlan, path: str | Path, forecast: Any = None,
     for row, (vals, label) in enumerate((
         ([x.shaft_rpm for x in w], "RPM"),
         ([x.sog_kn for x in w], "SOG [kn]"),
-        ([x.leg_fuel_t for x in w], "fuel per leg [t]"),
+        # a rate, not a per-leg total: approach legs along the lane last up to days
+        ([24.0 * 3600.0 * x.leg_fuel_t / max(x.leg_duration_s, 1.0) for x in w],
+         "fuel rate [t/day]"),
     )):
         a = fig.add_axes((0.07 + row * 0.31, 0.06, 0.25, 0.27))
         a.step(hours, vals, where="post")

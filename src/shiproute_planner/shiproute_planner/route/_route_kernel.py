@@ -34,7 +34,7 @@ def _serial_copy(fn: Any, name: str) -> Any:
 # the sampler's kernel compiled serially: populations run in chunks on Python threads, and
 # numba's parallel launcher must not be entered from two threads at once
 trilinear = njit(cache=True, nogil=True)(_serial_copy(_trilinear_parallel, "trilinear_serial"))
-_GRADE_STEP = 4 * _FINE  # samples per step once a leg is known to touch land
+_GRADE_STEP = 8 * _FINE  # samples per step once a leg is known to touch land
 MIN_SOG_M_S = 0.1  # same floor as route.legs: the final connection's speed along the course
 
 
