@@ -205,7 +205,7 @@ class PlannerNode(Node):
         from .ga.pool import POOL_FILE, SeedPool
 
         try:
-            n = len(SeedPool(directory)._read())
+            n = len(SeedPool(directory))
         except Exception as err:  # a damaged pool is reported; planning goes on without it
             self.get_logger().error(f"seed pool in {directory} unreadable: {err}")
             return

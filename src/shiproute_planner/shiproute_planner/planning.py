@@ -96,7 +96,8 @@ def _fast_model(spec: Any) -> Any:
     return fast_model(spec)
 
 
-def _limits(spec: Any, overrides: dict | None) -> RouteLimits:
+def route_limits(spec: Any, overrides: dict | None = None) -> RouteLimits:
+    """Route limits of a ship (engine RPM range, seakeeping criteria) with `overrides`."""
     kw: dict[str, Any] = {}
     if spec is not None:
         kw.update(rpm_min=spec.engine.rpm_min, rpm_max=spec.engine.rpm_max,
@@ -186,7 +187,7 @@ def plan_voyage(
     env, spec = make_environment(ship, forecast)
     if cycle_id:
         env = dataclasses.replace(env, cycle_id=cycle_id)
-    lim = _limits(spec, limits)
+    lim = route_limits(spec, limits)
     ports = [p if isinstance(p, Port) else resolve_port(p, land)
              for p in (origin, *via, destination)]
     depart_s = to_posix_s(depart)

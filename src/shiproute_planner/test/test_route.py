@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from shiproute_planner.geo.geodesy import inverse
-from shiproute_planner.planning import _limits
+from shiproute_planner.planning import route_limits
 from shiproute_planner.route.constraints import FLAG_LAND, FLAG_RTA
 from shiproute_planner.route.encoding import clip_genes, gene_bounds, join_genes, split_genes
 from shiproute_planner.route.generate import evaluate_genes
@@ -17,7 +17,7 @@ T0 = 1772560800.0  # 2026-03-03T18:00Z
 
 def _problem(env, dep=(-150.0, 20.0), arr=(-130.0, 25.0), days=5.0, **kw):
     return RouteProblem(dep[0], dep[1], arr[0], arr[1], T0, T0 + days * 86400.0,
-                        _limits(env[1], None), **kw)
+                        route_limits(env[1]), **kw)
 
 
 def test_gene_layout_round_trip(calm_env):

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from shiproute_planner.ga.seeds import great_circle_track
 from shiproute_planner.geo.geodesy import direct, inverse
-from shiproute_planner.planning import _limits, make_environment, to_posix_s
+from shiproute_planner.planning import make_environment, route_limits, to_posix_s
 from shiproute_planner.route import _fast_kernels as fk
 from shiproute_planner.route.encoding import gene_bounds, join_genes
 from shiproute_planner.route.fast_eval import fast_evaluator
@@ -46,7 +46,7 @@ def test_lambert_inverse_matches_pyproj():
 def storm_problem(storm_sampler):
     env, spec = make_environment("container_4600teu", storm_sampler)
     d = to_posix_s("2026-03-03T18:00Z")
-    return RouteProblem(129.5, 34.8, -118.5, 33.5, d, d + 13 * 86400.0, _limits(spec, None)), env
+    return RouteProblem(129.5, 34.8, -118.5, 33.5, d, d + 13 * 86400.0, route_limits(spec)), env
 
 
 def test_fast_and_exact_evaluations_agree_on_random_populations(storm_problem, land_mask):
@@ -103,7 +103,7 @@ def test_fill_sea_matches_seastate_from_forecast(storm_sampler):
     isdir = np.array([v in a.directions for v in fk.SEA_VARIABLES])
     sea = np.empty((10, n))
     env, _ = make_environment("container_4600teu", storm_sampler)
-    fk.fill_sea(wx, chan, isdir, sea, env.model._limits)
+    fk.fill_sea(wx, chan, isdir, sea, env.model.kernel_arrays()[2])
     names = ("wind_u_m_s", "wind_v_m_s", "wind_wave_hs_m", "wind_wave_from_deg",
              "wind_wave_period_s", "swell_hs_m", "swell_from_deg", "swell_period_s",
              "current_u_m_s", "current_v_m_s")

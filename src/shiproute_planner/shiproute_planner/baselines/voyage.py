@@ -14,7 +14,7 @@ import numpy as np
 
 from ..geo.landmask import LandMask, default_land_mask
 from ..geo.ports import Port, resolve_port
-from ..planning import TimeLike, _limits, leg_setup, make_environment, to_posix_s
+from ..planning import TimeLike, leg_setup, make_environment, route_limits, to_posix_s
 from .inputs import BaselineInputs
 
 DEFAULT_DEPARTURE_AFTER_REFERENCE_H = 6.0  # the reference case sails 6 h after the 12Z run
@@ -57,7 +57,7 @@ def build_inputs(
     every method starts cold."""
     land = land or default_land_mask()
     env, spec = make_environment(ship, forecast)
-    lim = _limits(spec, limits)
+    lim = route_limits(spec, limits)
     a = origin if isinstance(origin, Port) else resolve_port(origin, land)
     b = destination if isinstance(destination, Port) else resolve_port(destination, land)
     depart_s = to_posix_s(depart)

@@ -145,9 +145,9 @@ def run(budget_s: float, warm_budget_s: float, ref_factor: float, seed: int) -> 
 
 
 def _limits_of(plan, env):
-    from ..planning import _limits
+    from ..planning import route_limits
 
-    return _limits(getattr(env.model, "ship", None), None)
+    return route_limits(getattr(env.model, "ship", None))
 
 
 def main(argv: list[str]) -> int:

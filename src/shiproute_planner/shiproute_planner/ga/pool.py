@@ -59,6 +59,10 @@ class SeedPool:
             raise SeedPoolError(f"seed pool {self.path} has no 'seeds' object")
         return data.get("seeds", {})
 
+    def __len__(self) -> int:
+        """Number of stored seeds (port pairs x months)."""
+        return len(self._read())
+
     def get(self, key: str) -> Seed | None:
         """The stored seed for `key`, or None."""
         raw = self._read().get(key)

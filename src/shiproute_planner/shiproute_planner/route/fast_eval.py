@@ -60,9 +60,9 @@ class FastEvaluator:
     def __init__(self, problem: RouteProblem, env: Environment, land: LandMask | None) -> None:
         self.problem, self.env, self.land = problem, env, land
         m = env.model
-        self._ship = (m._par, *m._tables)
-        self._limits = m._limits
-        self._rpm_lo, self._rpm_hi = float(m._limits[0, 0]), float(m._limits[0, 1])
+        par, tables, self._limits = m.kernel_arrays()
+        self._ship = (par, *tables)
+        self._rpm_lo, self._rpm_hi = float(self._limits[0, 0]), float(self._limits[0, 1])
         if env.sampler is not None:
             from shiproute_weather.sampler_arrays import sampler_arrays
 

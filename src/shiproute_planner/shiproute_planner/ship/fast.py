@@ -168,6 +168,12 @@ class FastModel:
                     name, f"value at flat index {leg} is NaN or outside the valid range {lo}..{hi}"
                 )
 
+    def kernel_arrays(self) -> tuple[np.ndarray, tuple[np.ndarray, ...], np.ndarray]:
+        """(par, tables, limits): the arrays `fast_kernel.evaluate_kernel` takes after the leg
+        inputs, and the valid input ranges of `check_kernel`; for compiled callers that run
+        the kernel inside their own loops (the GA's population evaluator)."""
+        return self._par, self._tables, self._limits
+
     def rpm_for_speed(
         self, stw_m_s: np.ndarray, heading_deg: np.ndarray, sea: SeaState
     ) -> np.ndarray:
