@@ -67,7 +67,6 @@ def fill_sea(wx, chan, isdir, sea, limits):
         u = _nz(_var(wx, chan, isdir, 0, p), 0.0)
         v = _nz(_var(wx, chan, isdir, 1, p), 0.0)
         tot_hs = _nz(_var(wx, chan, isdir, 2, p), 0.0)
-        tot_dir = _nz(_var(wx, chan, isdir, 3, p), 0.0)
         tot_t = _var(wx, chan, isdir, 4, p)
         tot_t = _nz(_clip(tot_t, 0.5, 30.0) if tot_t == tot_t else tot_t, 8.0)
         ws = _var(wx, chan, isdir, 5, p)
@@ -82,7 +81,6 @@ def fill_sea(wx, chan, isdir, sea, limits):
             sw_t = _clip(sw_t, 0.5, 30.0)
         has_ws, has_sw = ws == ws, sw == sw
         speed = math.sqrt(u * u + v * v)
-        wind_from = math.degrees(math.atan2(-u, -v)) % 360.0
         pm_ws = min(tot_hs, 0.21 * speed * speed / G_M_S2)
         if has_ws:
             ws_hs = ws
@@ -91,19 +89,21 @@ def fill_sea(wx, chan, isdir, sea, limits):
         else:
             ws_hs = pm_ws
         sw_hs = sw if has_sw else math.sqrt(max(tot_hs * tot_hs - ws_hs * ws_hs, 0.0))
+        # the total-sea and wind directions (atan2 each) only where a fallback needs them
         if has_ws and ws_dir == ws_dir:
             ws_from = ws_dir
         elif has_sw or speed <= 0.5:
-            ws_from = tot_dir
+            ws_from = _nz(_var(wx, chan, isdir, 3, p), 0.0)
         else:
-            ws_from = wind_from
+            ws_from = math.degrees(math.atan2(-u, -v)) % 360.0
         sea[0, p] = u
         sea[1, p] = v
         sea[2, p] = _clip(_nz(ws_hs, 0.0), 0.0, hmax)
         sea[3, p] = _nz(ws_from, 0.0)
         sea[4, p] = _clip(_nz(ws_t if has_ws and ws_t == ws_t else tot_t, 8.0), pmin, pmax)
         sea[5, p] = _clip(_nz(sw_hs, 0.0), 0.0, hmax)
-        sea[6, p] = _nz(sw_dir if has_sw and sw_dir == sw_dir else tot_dir, 0.0)
+        sea[6, p] = _nz(sw_dir if has_sw and sw_dir == sw_dir else _var(wx, chan, isdir, 3, p),
+                        0.0)
         sea[7, p] = _clip(_nz(sw_t if has_sw and sw_t == sw_t else tot_t, 8.0), pmin, pmax)
         sea[8, p] = _nz(_var(wx, chan, isdir, 11, p), 0.0)
         sea[9, p] = _nz(_var(wx, chan, isdir, 12, p), 0.0)

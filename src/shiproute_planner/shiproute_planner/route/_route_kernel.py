@@ -153,12 +153,13 @@ def ga_land_hits(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, raster, 
         while k <= steps:
             la, lo = chord_sample(ax, ay, az, bx, by, bz, k / steps)
             ci = min(max(int((la + 90.0) * c_inv), 0), c_lat - 1)
-            cj = min(max(int(((lo + 180.0) % 360.0) * c_inv), 0), c_lon - 1)
+            # chord samples come back with lo in [-180, 180] (atan2): no wrapping needed
+            cj = min(max(int((lo + 180.0) * c_inv), 0), c_lon - 1)
             if not coarse[ci, cj] and clear_deg[ci, cj] > per_step:
                 k += 1 + int(clear_deg[ci, cj] / per_step)
                 continue
             y = (la + 90.0) * inv
-            x = ((lo + 180.0) % 360.0) * inv
+            x = (lo + 180.0) * inv
             i = min(max(int(y), 0), n_lat - 1)
             j = min(max(int(x), 0), n_lon - 1)
             v = raster[i, j]
