@@ -38,7 +38,8 @@ from .route.generate import evaluate_genes
 from .route.problem import RouteProblem
 from .route.rta import constant_rpm_for_rta
 
-EXACT_CHOICE_RESERVE_S = 0.25
+EXACT_CHOICE_RESERVE_S = 0.25  # wall time kept for the exact final choice and dense land check
+EXACT_CHOICE_SHARE = 0.36  # ... at most this share of a small budget (re-plans of 0.5 s)
 DENSE_CHECKS = 12  # feasible final candidates given the dense land check, best first
 EXACT_CHECK_EVERY = 15  # generations between exact confirmations of the GA's best
 # RPM ramps (relative change from the first to the last leg / 2) of timed seed variants
@@ -208,7 +209,7 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
         ga = SeedGA(lo, hi, p.n_stages, cfg, ctx.rng, x_seed)
     # keep time for the exact re-evaluation and dense land check of the final candidates
     confirmed: list[np.ndarray] = []
-    deadline_s = ctx.budget_s - min(0.3 * ctx.budget_s, EXACT_CHOICE_RESERVE_S)
+    deadline_s = ctx.budget_s - min(EXACT_CHOICE_SHARE * ctx.budget_s, EXACT_CHOICE_RESERVE_S)
     best_src = "none"
     n = p.n_stages
     merge_s = ctx.island_share * deadline_s

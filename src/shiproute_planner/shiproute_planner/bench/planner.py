@@ -55,7 +55,7 @@ def ga_like_population(problem: RouteProblem, pop: int, rng: np.random.Generator
     return clip_genes(problem, x)
 
 
-def evals_per_s(env, land, plan_problem: RouteProblem, pop: int = 200, reps: int = 5,
+def evals_per_s(env, land, plan_problem: RouteProblem, pop: int = 200, reps: int = 20,
                 exact: bool = False) -> float:
     """Route evaluations per second of the GA's evaluator (or the exact one), population
     `pop`: after three warm-up populations, fresh genes each repetition."""
