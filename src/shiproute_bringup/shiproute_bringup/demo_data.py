@@ -61,13 +61,25 @@ def _voyage_bag(path: Path, log) -> Path:
 
 def _warm_up(log) -> None:
     """Compile (numba caches on disk, so only the first time or after a code change is slow)
-    every kernel the nodes use, so a node's first plan is timed as a plan, not a compilation."""
+    every kernel the nodes use, for the half-precision forecast storage the planner node
+    keeps, and resolve the coastal cells of the voyage's region (kept in the data directory),
+    so a node's first plan is timed as a plan, not as compilation and polygon tests."""
+    import numpy as np
+    from shiproute_planner.geo.landmask import default_land_mask
+    from shiproute_planner.geo.ports import resolve_port
     from shiproute_planner.planning import plan_voyage
+    from shiproute_weather.sampling import ForecastSampler
     from shiproute_weather.scenarios import scenario_dataset
 
-    log("warming the planner's compiled kernels")
-    plan_voyage(ORIGIN, DESTINATION, DEPARTURE, RTA, SHIP, scenario_dataset(FIRST_CYCLE),
-                budget_s=1.0)
+    log("warming the planner's compiled kernels and the voyage region's coastline")
+    land = default_land_mask()
+    a, b = (resolve_port(p, land) for p in (ORIGIN, DESTINATION))
+    east = a.lon_deg + (b.lon_deg - a.lon_deg) % 360.0
+    lon0, lon1 = sorted((a.lon_deg, east))
+    land.fine_coast.resolve_box(lon0 - 10.0, lon1 + 10.0, min(a.lat_deg, b.lat_deg) - 10.0,
+                                max(a.lat_deg, b.lat_deg) + 25.0)
+    forecast = ForecastSampler(scenario_dataset(FIRST_CYCLE), dtype=np.float16)
+    plan_voyage(ORIGIN, DESTINATION, DEPARTURE, RTA, SHIP, forecast, budget_s=1.0, land=land)
 
 
 def prepare(log=print) -> DemoData:
