@@ -35,13 +35,6 @@ class Approach:
     lat_deg: np.ndarray
 
 
-def _cut(lon: np.ndarray, lat: np.ndarray, cum: np.ndarray, d: float) -> tuple[float, float]:
-    j = int(np.clip(np.searchsorted(cum, d, side="right") - 1, 0, lon.size - 2))
-    az, _ = inverse(lon[j], lat[j], lon[j + 1], lat[j + 1])
-    plon, plat = direct(lon[j], lat[j], az, d - cum[j])
-    return float(plon), float(plat)
-
-
 @dataclass(frozen=True)
 class CoastalPassage:
     """Where approaches end: at the first lane point (from the port outwards, within the
@@ -133,13 +126,13 @@ def lane_approaches(dep: Port, arr: Port, approach_m: float, with_dep: bool = Tr
         d_dep, d_arr = _coastal_ends(lon, lat, cum, coastal, d_dep, approach_m)
     out_dep = out_arr = None
     if with_dep and d_dep > 0:
-        e = _cut(lon, lat, cum, d_dep)
+        e_lon, e_lat = _points_at(lon, lat, cum, np.array([d_dep]))
         k = cum < d_dep
-        out_dep = Approach(np.append(lon[k], e[0]), np.append(lat[k], e[1]))
+        out_dep = Approach(np.append(lon[k], e_lon), np.append(lat[k], e_lat))
     if with_arr:
-        s = _cut(lon, lat, cum, cum[-1] - d_arr)
+        s_lon, s_lat = _points_at(lon, lat, cum, np.array([cum[-1] - d_arr]))
         k = cum > cum[-1] - d_arr
-        out_arr = Approach(np.insert(lon[k], 0, s[0]), np.insert(lat[k], 0, s[1]))
+        out_arr = Approach(np.concatenate([s_lon, lon[k]]), np.concatenate([s_lat, lat[k]]))
     return out_dep, out_arr
 
 

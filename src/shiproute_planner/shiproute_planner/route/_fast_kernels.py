@@ -1,5 +1,5 @@
 """Numba kernels of the population evaluator: sea state from sampled channels, ship model
-call, ellipsoidal geodesic steps and a coarse near-land filter of segments.
+call, ellipsoidal geodesic steps, and the coarse land raster with its clear distances.
 
 The ship model itself is `ship.fast_kernel.evaluate_kernel` (called, not copied); weather
 sampling is the weather package's `trilinear` kernel, called by `fast_eval` before these.
@@ -12,7 +12,6 @@ import math
 import numpy as np
 from numba import njit
 
-from ..geo._kernels import chord_sample, segment_ends
 from ..ship import fast_kernel as fk
 
 # canonical variables in the order of the `chan`/`isdir` arrays handed to `sea_and_perform`
@@ -191,35 +190,6 @@ def inverse_many(lon0, lat0, lon1, lat1, out_az, out_dist):
         s2 = math.sin(0.5 * sig) ** 2
         yy = (sig + math.sin(sig)) * math.cos(pp) ** 2 * math.sin(qq) ** 2 / max(s2, 1e-300)
         out_dist[p] = A_M * (sig - 0.5 * F * (xx + yy))
-
-
-@njit(cache=True, nogil=True)
-def near_land(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, spacing_deg, out):
-    """True per segment if it may touch land. Clear without sampling when both ends lie
-    farther from any land/coast cell (`clear_deg`, a lower bound of the arc distance) than
-    half the segment's arc; else clear if no great-circle sample (every `spacing_deg`, below
-    the coarse cell size) falls in a coarse cell flagged as land-or-coast-or-next-to-it."""
-    n_lat, n_lon = coarse.shape
-    inv = 1.0 / coarse_deg
-    for s in range(lon0.size):
-        ax, ay, az, bx, by, bz, arc = segment_ends(lat0[s], lon0[s], lat1[s], lon1[s])
-        i0 = min(max(int((lat0[s] + 90.0) * inv), 0), n_lat - 1)
-        j0 = min(max(int(((lon0[s] + 180.0) % 360.0) * inv), 0), n_lon - 1)
-        i1 = min(max(int((lat1[s] + 90.0) * inv), 0), n_lat - 1)
-        j1 = min(max(int(((lon1[s] + 180.0) % 360.0) * inv), 0), n_lon - 1)
-        if min(clear_deg[i0, j0], clear_deg[i1, j1]) > 0.5 * arc:
-            out[s] = False
-            continue
-        n = max(1, math.ceil(arc / spacing_deg))
-        hit = False
-        for k in range(n + 1):
-            lat, lon = chord_sample(ax, ay, az, bx, by, bz, k / n)
-            i = min(max(int((lat + 90.0) * inv), 0), n_lat - 1)
-            j = min(max(int((lon + 180.0) * inv), 0), n_lon - 1)
-            if coarse[i, j]:
-                hit = True
-                break
-        out[s] = hit
 
 
 def coarse_land_raster(raster: np.ndarray, factor: int) -> np.ndarray:

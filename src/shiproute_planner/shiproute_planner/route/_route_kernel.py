@@ -19,6 +19,7 @@ from shiproute_weather._interp_kernel import trilinear as _trilinear_parallel
 
 from ..geo._kernels import _FINE, chord_sample, segment_ends
 from . import _fast_kernels as fk
+from .legs import MIN_SOG_M_S  # the exact evaluator's floor of the final connection's speed
 
 
 def _serial_copy(fn: Any, name: str) -> Any:
@@ -35,7 +36,6 @@ def _serial_copy(fn: Any, name: str) -> Any:
 # numba's parallel launcher must not be entered from two threads at once
 trilinear = njit(cache=True, nogil=True)(_serial_copy(_trilinear_parallel, "trilinear_serial"))
 _GRADE_STEP = 8 * _FINE  # samples per step once a leg is known to touch land
-MIN_SOG_M_S = 0.1  # same floor as route.legs: the final connection's speed along the course
 
 
 @njit(cache=True, nogil=True)
