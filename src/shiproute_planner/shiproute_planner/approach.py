@@ -67,8 +67,31 @@ def _clear_sight_m(lon: np.ndarray, lat: np.ndarray, cum: np.ndarray, far: tuple
     return float(d[clear[0]]) if clear.size else min_m
 
 
+#: coastal ends found per (lane, rule, minimums): re-plans of a ship that has not moved (a new
+#: forecast cycle at the berth) meet the same lane again; the search costs ~50 ms
+_ENDS_MEMO: dict[tuple, tuple[float, float]] = {}
+_ENDS_MEMO_MAX = 64
+
+
 def _coastal_ends(lon: np.ndarray, lat: np.ndarray, cum: np.ndarray, rule: CoastalPassage,
                   min_dep_m: float, min_m: float) -> tuple[float, float]:
+    """Departure and arrival approach lengths [m] whose ends see each other over open sea
+    (`_search_coastal_ends`, memoised: the answer depends on the lane and the land only)."""
+    key = (lon.tobytes(), lat.tobytes(), rule.land.resolution, rule.land.cell_deg, rule.share,
+           rule.step_m,
+           float(min_dep_m), float(min_m))
+    ends = _ENDS_MEMO.get(key)
+    if ends is None:
+        ends = _search_coastal_ends(lon, lat, cum, rule, min_dep_m, min_m)
+        if len(_ENDS_MEMO) >= _ENDS_MEMO_MAX:
+            _ENDS_MEMO.clear()
+        _ENDS_MEMO[key] = ends
+    return ends
+
+
+def _search_coastal_ends(lon: np.ndarray, lat: np.ndarray, cum: np.ndarray,
+                         rule: CoastalPassage, min_dep_m: float, min_m: float
+                         ) -> tuple[float, float]:
     """Departure and arrival approach lengths [m] whose ends see each other over open sea:
     alternately the shortest one end can be with the other fixed, starting from the arrival
     end at its farthest; the minimums when no such pair exists."""
@@ -89,7 +112,7 @@ def _coastal_ends(lon: np.ndarray, lat: np.ndarray, cum: np.ndarray, rule: Coast
         a, b = end(lon, lat, cum, d_dep), end(r_lon, r_lat, r_cum, d_arr)
         p_lon, p_lat = densify_track(np.array([a[0], unwrap_near(b[0], a[0])]),
                                      np.array([a[1], b[1]]), 500.0)
-        hit = np.flatnonzero(rule.land.exact.contains(p_lon, p_lat))
+        hit = np.flatnonzero(rule.land.is_land(p_lon, p_lat))
         if hit.size == 0:
             return d_dep, d_arr
         if hit.mean() < 0.5 * p_lon.size:

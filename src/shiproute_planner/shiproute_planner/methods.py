@@ -312,7 +312,7 @@ def exact_choice(p: RouteProblem, env: Environment, land: LandMask, pop: np.ndar
         if ev.violation[k] > 0:
             break
         bad = land_crossings(ev.lon_deg[k], ev.lat_deg[k], port_clearance_m=0.0,
-                             exact=land.exact)
+                             contains=land.is_land)
         if not bad:
             return x[k].copy(), ev.take(int(k))
         first_bad = first_bad or (int(k), bad)

@@ -277,10 +277,14 @@ def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMa
     the ship finishes the coastal passage it is in, if any, from where it is."""
     coastal = CoastalPassage(land) if coastal_passage else None
     rest = _rest_of_approach(previous_plan, position) if under_way else None
-    ap_dep, ap_arr = lane_approaches(
-        a, b, approach_nm * 1852.0,
-        with_dep=not under_way or (coastal is not None and previous_plan is None),
-        coastal=coastal, dep_min_m=0.0 if under_way else None)
+    kept = _previous_arrival(previous_plan, b, position) if under_way else None
+    if kept is not None:  # under way to the same port: the arrival approach stays as planned
+        ap_dep, ap_arr = None, kept
+    else:
+        ap_dep, ap_arr = lane_approaches(
+            a, b, approach_nm * 1852.0,
+            with_dep=not under_way or (coastal is not None and previous_plan is None),
+            coastal=coastal, dep_min_m=0.0 if under_way else None)
     if rest is not None:
         ap_dep = rest
     rpm_ap = approach_rpm or _lane_rpm(env, a, b, ap_dep, ap_arr, depart_s, rta_s, lim)
@@ -313,6 +317,23 @@ def _rest_of_approach(previous: RoutePlan | None,
     p_lon = unwrap_near(position[1], float(lon[ahead[0]])) if ahead.size else position[1]
     return Approach(np.concatenate([[p_lon], lon[ahead]]),
                     np.concatenate([[position[0]], lat[ahead]]))
+
+
+def _previous_arrival(previous: RoutePlan | None, port: Port,
+                      position: tuple[float, float, float] | None) -> Approach | None:
+    """The previous plan's arrival approach when it ends at `port` and the ship (lat, lon,
+    time) has not reached it yet: re-plans under way keep it instead of searching the sea lane
+    and the coastal passage again from every new position (~0.2 s each)."""
+    if previous is None or position is None or not previous.optimised_spans:
+        return None
+    lon, lat, t = previous.track()
+    end = previous.optimised_spans[-1][1]
+    if end >= lon.size - 1 or position[2] >= t[end]:
+        return None
+    if abs(lat[-1] - port.lat_deg) > 1e-6 or abs(unwrap_near(port.lon_deg, lon[-1])
+                                                   - lon[-1]) > 1e-6:
+        return None
+    return Approach(lon[end:].copy(), lat[end:].copy())
 
 
 def _lane_rpm(env: Environment, a: Port, b: Port, ap_dep, ap_arr, depart_s: float,

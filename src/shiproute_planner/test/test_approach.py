@@ -9,7 +9,7 @@ from shiproute_planner.approach import CoastalPassage, approach_length_m, lane_a
 from shiproute_planner.geo.geodesy import inverse
 from shiproute_planner.geo.ports import resolve_port
 from shiproute_planner.geo.verify import land_crossings
-from shiproute_planner.planning import plan_voyage
+from shiproute_planner.planning import _previous_arrival, plan_voyage
 
 JUNE = "2026-06-10T00:00Z"
 
@@ -55,6 +55,18 @@ def test_replan_under_way_finishes_the_coastal_passage_ahead_of_the_ship(land_ma
     a = again.optimised_spans[0][0]
     assert np.isclose(w[a].lat_deg, lat[start]) and np.isclose(w[a].lon_deg % 360,
                                                                lon[start] % 360)
+    # the arrival approach (coastal passage to Long Beach) is the previous plan's, node for node
+    end, again_end = first.optimised_spans[-1][1], again.optimised_spans[-1][1]
+    a_lon, a_lat, _ = again.track()
+    assert len(w) - again_end == len(first.waypoints) - end
+    assert np.allclose(a_lat[again_end:], lat[end:], atol=1e-9)
+    assert np.allclose(a_lon[again_end:] % 360, lon[end:] % 360, atol=1e-9)
+    # ... but not once the ship is inside it, nor for another destination
+    busan, long_beach = (resolve_port(n, land_mask) for n in ("Busan", "Long Beach"))
+    inside = (lat[end + 1], lon[end + 1], t[end] + 1.0)
+    assert _previous_arrival(first, long_beach, pos) is not None
+    assert _previous_arrival(first, long_beach, inside) is None
+    assert _previous_arrival(first, busan, pos) is None
 
 
 def test_resolve_box_resolves_every_coastal_cell_once(land_mask):

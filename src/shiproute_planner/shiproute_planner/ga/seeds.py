@@ -93,7 +93,7 @@ def track_to_genes(problem: RouteProblem, env: Environment, seeds: list[TrackSee
         tgt = np.minimum(idx + np.ceil(step / spacing_m).astype(np.int64), k - 1)
         course, _ = inverse(node_lon, node_lat, lon[rows, tgt], lat[rows, tgt])
         cand = (course[:, None] + offsets[None, :]) % 360.0  # (S, C)
-        sea_c = env.sea_state(np.repeat(node_lon, c), np.repeat(node_lat, c), np.repeat(t, c))
+        sea_c = sea.take(np.repeat(rows, c))  # every candidate leaves from its seed's node
         r_c = np.clip(np.repeat(r, c) * np.tile(scale, s_count), problem.limits.rpm_min,
                       problem.limits.rpm_max)
         pc = perf_arrays(env.perform(r_c, cand.ravel(), sea_c), (s_count * c,))

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import hashlib
 from collections.abc import Mapping
 from importlib import resources
@@ -54,7 +55,14 @@ def load_ship(name_or_path: str | Path, condition: str | None = None) -> ShipSpe
         text = path.read_text(encoding="utf-8")
     except OSError as exc:
         raise ShipFileError(str(path), "", f"cannot read file: {exc}") from exc
-    return parse_ship(text, str(path), condition)
+    return _parse_cached(text, str(path), condition)
+
+
+@functools.lru_cache(maxsize=16)
+def _parse_cached(text: str, source: str, condition: str | None) -> ShipSpec:
+    """`parse_ship` memoised on the file's text: a re-planning node reads its ship file on
+    every plan (edits take effect) but parses it once (the specs are frozen)."""
+    return parse_ship(text, source, condition)
 
 
 def parse_ship(text: str, source: str, condition: str | None = None) -> ShipSpec:

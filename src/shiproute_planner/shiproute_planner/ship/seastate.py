@@ -103,6 +103,10 @@ class SeaState:
             current_v_m_s=_nz(get("northward_sea_water_velocity")),
         )
 
+    def take(self, index: np.ndarray) -> SeaState:
+        """The sea states at `index` of the (flattened) points, e.g. each point repeated."""
+        return SeaState(*(np.ravel(getattr(self, f.name))[index] for f in fields(self)))
+
     @property
     def wind_speed_m_s(self) -> np.ndarray:
         """True wind speed."""
