@@ -39,7 +39,7 @@ from .route.problem import RouteProblem
 from .route.rta import constant_rpm_for_rta
 
 EXACT_CHOICE_RESERVE_S = 0.25  # wall time kept for the exact final choice and dense land check
-EXACT_CHOICE_SHARE = 0.36  # ... at most this share of a small budget (re-plans of 0.5 s)
+EXACT_CHOICE_SHARE = 0.28  # ... at most this share of a small budget (re-plans of 0.5 s)
 DENSE_CHECKS = 12  # feasible final candidates given the dense land check, best first
 EXACT_CHECK_EVERY = 15  # generations between exact confirmations of the GA's best
 # RPM ramps (relative change from the first to the last leg / 2) of timed seed variants
@@ -187,7 +187,8 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
         """GA-loop evaluator: the compiled one when the environment allows it."""
         return fast.evaluate(x) if fast is not None else evaluate_genes(p, env, ctx.land, x)
 
-    x_seed = track_to_genes(p, env, seeds, ctx.land) if seeds else np.empty((0, p.n_var))
+    x_seed = (track_to_genes(p, env, seeds, ctx.land, fast=fast) if seeds
+              else np.empty((0, p.n_var)))
     sources = [s.source for s in seeds]
     for name, genes in ctx.gene_seeds:
         if genes.size == p.n_var and np.all(np.isfinite(genes)):

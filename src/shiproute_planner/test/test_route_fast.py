@@ -179,3 +179,28 @@ def test_ga_land_verdict_is_the_brute_force_one_and_agrees_with_the_exact_test(l
     exact = land_mask.segment_land_samples(lon0, lat0, lon1, lat1, 0.05) > 0
     # the ~1 km grid differs from the exact test only for legs grazing a coast
     assert np.mean(exact == brute) > 0.97
+
+
+def test_compiled_stage_and_polyline_eta_agree_with_the_exact_legs(storm_problem):
+    from shiproute_planner.route.sail import sail_tracks
+
+    problem, env = storm_problem
+    fast = fast_evaluator(problem, env, None)
+    lon, lat = great_circle_track(problem, 24)
+    rpms = np.array([55.0, 65.0, 75.0, 85.0])
+    exact = sail_tracks(problem, env, None, np.broadcast_to(lon, (4, lon.size)),
+                        np.broadcast_to(lat, (4, lat.size)), rpms[:, None]).eta_s
+    # the same legs with Lambert distances (< 100 m per leg, see above): 23 legs at >= 5 m/s
+    # cannot differ by more than 23 * 100 m / 5 m/s = 460 s over the 13-day crossing
+    assert np.max(np.abs(fast.polyline_eta(lon, lat, rpms) - exact)) < 460.0
+    # one stage from every vertex: speed and course over ground of the exact model, and the
+    # leg's end within the RK4 step's metres of pyproj's
+    t = np.full(lon.size, problem.depart_s + 86400.0)
+    hdg = np.linspace(0.0, 345.0, lon.size)
+    rpm = np.full(lon.size, 70.0)
+    sog, cog, e_lon, e_lat = fast.sail_stage(lon, lat, t, rpm, hdg, problem.stage_s)
+    perf = env.perform(rpm, hdg, env.sea_state(lon, lat, t))
+    assert np.allclose(sog, perf.sog_m_s, rtol=1e-3, atol=1e-3)
+    assert np.max(np.abs((cog - perf.cog_deg + 180) % 360 - 180)) < 0.05
+    ref_lon, ref_lat = direct(lon, lat, cog, np.maximum(sog, 0.0) * problem.stage_s)
+    assert inverse(e_lon, e_lat, ref_lon, ref_lat)[1].max() < 5.0

@@ -11,7 +11,9 @@ from __future__ import annotations
 
 import functools
 import itertools
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -58,15 +60,38 @@ def _densify(seeds: list[TrackSeed], spacing_m: float
     return out[0], out[1], out[2], out[3]
 
 
+StageSailor = Callable[[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray],
+                      tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]
+
+
+def stage_sailor(problem: RouteProblem, env: Environment, fast: Any = None) -> StageSailor:
+    """(lon, lat, t, rpm, heading) -> (sog, cog, end lon, end lat) of one stage-long leg:
+    compiled with a `FastEvaluator` (one call per stage for all seeds and candidates), else
+    the environment's sea state, ship model and pyproj geodesic."""
+    if fast is not None:
+        return lambda lon, lat, t, rpm, hdg: fast.sail_stage(lon, lat, t, rpm, hdg,
+                                                             problem.stage_s)
+
+    def sail(lon, lat, t, rpm, hdg):
+        n = np.size(lon)
+        perf = perf_arrays(env.perform(rpm, hdg, env.sea_state(lon, lat, t)), (n,))
+        sog, cog = perf["sog_m_s"], perf["cog_deg"]
+        end_lon, end_lat = direct(lon, lat, cog, np.maximum(sog, 0.0) * problem.stage_s)
+        return sog, cog, end_lon, end_lat
+
+    return sail
+
+
 def track_to_genes(problem: RouteProblem, env: Environment, seeds: list[TrackSeed],
                    land: LandMask | None = None, fan_deg: float = 60.0, fan_n: int = 13,
-                   spacing_m: float = 10_000.0) -> np.ndarray:
+                   spacing_m: float = 10_000.0, fast: Any = None) -> np.ndarray:
     """Genes (len(seeds), 2n + 1) that follow each seed's polyline in the forecast.
 
     Per stage, candidate headings fan out around the course to the polyline point one stage
     of speed over ground ahead; the candidate whose leg stays off land and ends nearest that
     point wins (so 12-hour legs do not cut coasts where the polyline bends). Progress along
-    the polyline is the nearest polyline point to the new node.
+    the polyline is the nearest polyline point to the new node. `fast` (the GA's
+    `FastEvaluator`) sails the candidates in compiled code.
     """
     lon, lat, _, rpm_at = _densify(seeds, spacing_m)
     rpm_at = sane_rpm(rpm_at, problem.limits.rpm_min, problem.limits.rpm_max)
@@ -85,39 +110,39 @@ def track_to_genes(problem: RouteProblem, env: Environment, seeds: list[TrackSee
     node_lat = np.full(s_count, problem.dep_lat_deg)
     t = np.full(s_count, problem.depart_s)
     idx = np.zeros(s_count, dtype=np.int64)
+    sail = stage_sailor(problem, env, fast)
+    # the GA's own land verdict when it has one (seeds it will not call land-crossing)
+    land_hits = (None if land is None
+                 else fast.segment_land_samples if fast is not None and fast.land is land
+                 else lambda *e: land.segment_land_samples(*e, problem.land_spacing_deg))
     for i in range(n):
         r = rpm_at[rows, idx]
-        sea = env.sea_state(node_lon, node_lat, t)
-        perf = perf_arrays(env.perform(r, np.zeros(s_count), sea), (s_count,))
-        step = np.maximum(perf["sog_m_s"], 0.1) * problem.stage_s
+        sog, _, _, _ = sail(node_lon, node_lat, t, r, np.zeros(s_count))
+        step = np.maximum(sog, 0.1) * problem.stage_s
         tgt = np.minimum(idx + np.ceil(step / spacing_m).astype(np.int64), k - 1)
         course, _ = inverse(node_lon, node_lat, lon[rows, tgt], lat[rows, tgt])
         cand = (course[:, None] + offsets[None, :]) % 360.0  # (S, C)
-        sea_c = sea.take(np.repeat(rows, c))  # every candidate leaves from its seed's node
         r_c = np.clip(np.repeat(r, c) * np.tile(scale, s_count), problem.limits.rpm_min,
                       problem.limits.rpm_max)
-        pc = perf_arrays(env.perform(r_c, cand.ravel(), sea_c), (s_count * c,))
-        dist = np.maximum(pc["sog_m_s"], 0.0) * problem.stage_s
-        end_lon, end_lat = direct(np.repeat(node_lon, c), np.repeat(node_lat, c), pc["cog_deg"],
-                                  dist)
+        sog_c, cog_c, end_lon, end_lat = sail(np.repeat(node_lon, c), np.repeat(node_lat, c),
+                                              np.repeat(t, c), r_c, cand.ravel())
+        dist = np.maximum(sog_c, 0.0) * problem.stage_s
         _, miss = inverse(end_lon, end_lat, np.repeat(lon[rows, tgt], c),
                           np.repeat(lat[rows, tgt], c))
         score = miss.reshape(s_count, c) + 2e6 * (1.0 - scale)[None, :]
-        if land is not None:
+        if land_hits is not None:
             s_lon, s_lat = np.repeat(node_lon, c), np.repeat(node_lat, c)
             if i == 0:  # same port clearance as the evaluator
-                s_lon, s_lat = direct(s_lon, s_lat, pc["cog_deg"],
+                s_lon, s_lat = direct(s_lon, s_lat, cog_c,
                                       np.minimum(problem.port_clearance_m, dist))
-            hits = land.segment_land_samples(s_lon, s_lat, end_lon, end_lat,
-                                             problem.land_spacing_deg)
+            hits = land_hits(s_lon, s_lat, end_lon, end_lat)
             if i == n - 1:  # the final connection must reach the port too
                 fin_lon = np.full(s_count * c, problem.arr_lon_deg)
                 fin_lat = np.full(s_count * c, problem.arr_lat_deg)
                 _, fd = inverse(end_lon, end_lat, fin_lon, fin_lat)
                 f = np.clip(problem.port_clearance_m / np.maximum(fd, 1.0), 0.0, 1.0)
-                hits = hits + land.segment_land_samples(
-                    end_lon, end_lat, fin_lon - f * (fin_lon - end_lon),
-                    fin_lat - f * (fin_lat - end_lat), problem.land_spacing_deg)
+                hits = hits + land_hits(end_lon, end_lat, fin_lon - f * (fin_lon - end_lon),
+                                        fin_lat - f * (fin_lat - end_lat))
             score = score + 1e9 * hits.reshape(s_count, c)
         if i > 0:  # the heading-change limit binds the genes: respect it here
             turn = (cand - headings[:, i - 1:i] + 180.0) % 360.0 - 180.0

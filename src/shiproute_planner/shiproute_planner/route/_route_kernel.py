@@ -123,6 +123,61 @@ def generate_routes(headings, rpm, dep_lon, dep_lat, depart_s, stage_s, arr_lon,
 
 
 @njit(cache=True, nogil=True)
+def sail_stage(lon, lat, t, rpm, hdg, duration_s, has_wx, data, times_s, lat0, dlat, lon0, dlon,
+               periodic, chan, isdir, limits, par, r_calm, wake, u_ws, u_sw, m0_ws, m0_sw, caa,
+               sfoc_x, sfoc_y, sog, cog, end_lon, end_lat):
+    """One leg from each point at `rpm` / heading `hdg` [deg going to] for `duration_s`: speed
+    and course over ground and where the leg ends (the seeds' stage-by-stage search)."""
+    n = lon.size
+    wx = np.empty((data.shape[3], n))
+    sea = np.empty((10, n))
+    f = np.empty((11, n))
+    b = np.empty((5, n), dtype=np.bool_)
+    _stage(lon, lat, t, rpm, hdg, has_wx, data, times_s, lat0, dlat, lon0, dlon, periodic,
+           chan, isdir, limits, par, r_calm, wake, u_ws, u_sw, m0_ws, m0_sw, caa, sfoc_x,
+           sfoc_y, wx, sea, f, b)
+    dist = np.empty(n)
+    for p in range(n):
+        sog[p], cog[p] = f[1, p], f[2, p]
+        dist[p] = max(f[1, p], 0.0) * duration_s
+    fk.direct_many(lon, lat, cog, dist, end_lon, end_lat)
+
+
+@njit(cache=True, nogil=True)
+def polyline_eta(track_lon, track_lat, rpm, depart_s, has_wx, data, times_s, lat0, dlat, lon0,
+                 dlon, periodic, chan, isdir, limits, par, r_calm, wake, u_ws, u_sw, m0_ws,
+                 m0_sw, caa, sfoc_x, sfoc_y, eta):
+    """Arrival time along a polyline at each constant `rpm`, every leg steered (current set
+    corrected once) so its course over ground points at the next vertex in the weather met at
+    its start: `route.legs.sail_to` leg by leg, for the constant-RPM search."""
+    n = rpm.size
+    wx = np.empty((data.shape[3], n))
+    sea = np.empty((10, n))
+    f = np.empty((11, n))
+    b = np.empty((5, n), dtype=np.bool_)
+    lo, la, lo1, la1 = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
+    course, dist, hdg = np.empty(n), np.empty(n), np.empty(n)
+    t = np.full(n, depart_s)
+    for k in range(track_lon.size - 1):
+        lo[:], la[:] = track_lon[k], track_lat[k]
+        lo1[:], la1[:] = track_lon[k + 1], track_lat[k + 1]
+        fk.inverse_many(lo, la, lo1, la1, course, dist)
+        if dist[0] <= 0.0:
+            continue
+        _stage(lo, la, t, rpm, course, has_wx, data, times_s, lat0, dlat, lon0, dlon, periodic,
+               chan, isdir, limits, par, r_calm, wake, u_ws, u_sw, m0_ws, m0_sw, caa, sfoc_x,
+               sfoc_y, wx, sea, f, b)
+        for p in range(n):
+            hdg[p] = (course[p] - ((f[2, p] - course[p] + 180.0) % 360.0 - 180.0)) % 360.0
+        fk.perform(rpm, hdg, sea, par, r_calm, wake, u_ws, u_sw, m0_ws, m0_sw, caa, sfoc_x,
+                   sfoc_y, f, b)
+        for p in range(n):
+            along = f[1, p] * math.cos(math.radians(f[2, p] - course[p]))
+            t[p] += dist[p] / max(along, MIN_SOG_M_S)
+    eta[:] = t
+
+
+@njit(cache=True, nogil=True)
 def ga_land_hits(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, raster, sea_dist,
                  cell_deg, spacing_deg, fine_keys, fine, missing, out):
     """Land samples per segment for the GA loop. A segment found clear so far that met a

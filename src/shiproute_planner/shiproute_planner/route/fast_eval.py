@@ -122,13 +122,40 @@ class FastEvaluator:
         legs["turn_deg"] = np.zeros((pop, m))
         return finish(p, self.land, lon, lat, t, legs, self._land_samples(lon, lat, distance))
 
+    def sail_stage(self, lon: np.ndarray, lat: np.ndarray, t: np.ndarray, rpm: np.ndarray,
+                   heading_deg: np.ndarray, duration_s: float
+                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Speed [m/s] and course [deg] over ground of one leg from each point (time `t`)
+        at `rpm` and `heading_deg` for `duration_s`, and its end (lon, lat) [deg]."""
+        args = [np.ascontiguousarray(a, dtype=float) for a in (lon, lat, t, rpm, heading_deg)]
+        out = [np.empty(args[0].size) for _ in range(4)]
+        rk.sail_stage(*args, float(duration_s), *self._weather, self._limits, *self._ship, *out)
+        return out[0], out[1], out[2], out[3]
+
+    def polyline_eta(self, lon: np.ndarray, lat: np.ndarray, rpm: np.ndarray) -> np.ndarray:
+        """Arrival times [POSIX s] of the polyline (lon, lat) [deg] sailed from the problem's
+        departure at each constant `rpm` (legs steered as `route.legs.sail_to` does)."""
+        track = [np.ascontiguousarray(np.unwrap(np.asarray(lon, dtype=float), period=360.0)),
+                 np.ascontiguousarray(lat, dtype=float)]
+        eta = np.empty(np.size(rpm))
+        rk.polyline_eta(*track, np.ascontiguousarray(rpm, dtype=float).ravel(),
+                        self.problem.depart_s, *self._weather, self._limits, *self._ship, eta)
+        return eta
+
     def _land_samples(self, lon, lat, distance) -> np.ndarray | None:
         """Land samples per leg from the compiled scan (`ga_land_hits`); coastal cells it
         meets for the first time are resolved exactly and their legs scanned again."""
         if self.land is None:
             return None
-        ends = [np.ascontiguousarray(e).ravel()
-                for e in clear_ports(self.problem, lon, lat, distance)]
+        ends = clear_ports(self.problem, lon, lat, distance)
+        return self.segment_land_samples(*ends).reshape(distance.shape)
+
+    def segment_land_samples(self, lon0: np.ndarray, lat0: np.ndarray, lon1: np.ndarray,
+                             lat1: np.ndarray) -> np.ndarray:
+        """The GA's land verdict (samples on land, 0 = clear) of great-circle segments
+        (flattened); needs a land mask."""
+        assert self.land is not None, "FastEvaluator built without a land mask"
+        ends = [np.ascontiguousarray(e, dtype=float).ravel() for e in (lon0, lat0, lon1, lat1)]
         out = np.empty(ends[0].size, dtype=np.int64)
         fine = self.land.fine_coast
         todo = np.arange(out.size)
@@ -150,7 +177,7 @@ class FastEvaluator:
             if any(m.size for m in misses):
                 fine.add(np.concatenate(misses))
             todo = todo[got < 0]
-        return out.reshape(distance.shape)
+        return out
 
 
 def fast_evaluator(problem: RouteProblem, env: Environment,
