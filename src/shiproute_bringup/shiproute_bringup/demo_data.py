@@ -74,10 +74,8 @@ def _warm_up(log) -> None:
     log("warming the planner's compiled kernels and the voyage region's coastline")
     land = default_land_mask()
     a, b = (resolve_port(p, land) for p in (ORIGIN, DESTINATION))
-    east = a.lon_deg + (b.lon_deg - a.lon_deg) % 360.0
-    lon0, lon1 = sorted((a.lon_deg, east))
-    land.fine_coast.resolve_box(lon0 - 10.0, lon1 + 10.0, min(a.lat_deg, b.lat_deg) - 10.0,
-                                max(a.lat_deg, b.lat_deg) + 25.0)
+    land.fine_coast.resolve_voyage((a.lon_deg, a.lat_deg), (b.lon_deg, b.lat_deg),
+                                   (10.0, 10.0, 10.0, 25.0))
     forecast = ForecastSampler(scenario_dataset(FIRST_CYCLE), dtype=np.float16)
     plan_voyage(ORIGIN, DESTINATION, DEPARTURE, RTA, SHIP, forecast, budget_s=1.0, land=land)
 

@@ -78,3 +78,18 @@ def test_resolve_box_resolves_every_coastal_cell_once(land_mask):
     ii, jj = np.nonzero(raster[i0:i0 + 20, j0:j0 + 20] == 2)
     keys = (ii + i0) * raster.shape[1] + jj + j0
     assert keys.size > 50 and np.all(np.isin(keys, fine.keys))
+
+
+def test_resolve_voyage_spans_the_antimeridian_eastward(land_mask):
+    fine = land_mask.fine_coast
+    # Near Islands -> Andreanof Islands (Aleutians): 175 E eastward to 175 W, 0.5-deg margins
+    fine.resolve_voyage((175.0, 51.0), (-175.0, 52.5), (0.5, 0.5, 0.5, 0.5))
+    assert fine.resolve_voyage((175.0, 51.0), (-175.0, 52.5), (0.5, 0.5, 0.5, 0.5)) == 0
+    raster = np.asarray(land_mask.raster)
+    i0, i1 = int((50.5 + 90.0) / 0.05), int((53.0 + 90.0) / 0.05)
+    cols = (np.arange(int(174.5 / 0.05), int(185.5 / 0.05)) + int(180.0 / 0.05)) % raster.shape[1]
+    ii, jj = np.nonzero(raster[i0:i1][:, cols] == 2)
+    keys = (ii + i0) * raster.shape[1] + cols[jj]
+    assert keys.size > 50 and np.all(np.isin(keys, fine.keys))
+    # both sides of 180 deg hold coast here (Attu ~173 E.. 187 E = Adak ~176.6 W)
+    assert (cols[jj] < raster.shape[1] // 2).any() and (cols[jj] > raster.shape[1] // 2).any()

@@ -114,9 +114,8 @@ def run(budget_s: float, warm_budget_s: float, ref_factor: float, seed: int) -> 
     # coastal cells of the voyage's region resolved as a running planner has them (once
     # per machine: they are saved in the data directory); the region is wide because the
     # random RPMs of `ga_like_population` overshoot the arrival by up to ~60 deg
-    lon0, lon1 = sorted((w0.lon_deg, w0.lon_deg + (w1.lon_deg - w0.lon_deg) % 360.0))
-    land.fine_coast.resolve_box(lon0 - 40.0, lon1 + 60.0, min(w0.lat_deg, w1.lat_deg) - 25.0,
-                                min(max(w0.lat_deg, w1.lat_deg) + 30.0, 72.0))
+    land.fine_coast.resolve_voyage((w0.lon_deg, w0.lat_deg), (w1.lon_deg, w1.lat_deg),
+                                   (40.0, 60.0, 25.0, 30.0))
     land.fine_coast.save()
     return {
         "setup_s": round(setup_s, 3),

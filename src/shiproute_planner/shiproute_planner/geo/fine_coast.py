@@ -106,6 +106,18 @@ class FineCoast:
         ii, jj = np.nonzero(raster[i0:i1][:, np.unique(cols)] == COAST)
         return self.add((ii + i0) * self.n_lon + np.unique(cols)[jj])
 
+    def resolve_voyage(self, a: tuple[float, float], b: tuple[float, float],
+                       margins_deg: tuple[float, float, float, float]) -> int:
+        """Resolve the coastal cells of a voyage's region: the box from point `a` eastward
+        to point `b` ((lon, lat) [deg]) widened by (west, east, south, north) margins [deg]
+        (latitudes capped at +-85). Returns how many cells were new."""
+        east = a[0] + (b[0] - a[0]) % 360.0
+        lon0, lon1 = sorted((a[0], east))
+        west_m, east_m, south_m, north_m = margins_deg
+        return self.resolve_box(lon0 - west_m, lon1 + east_m,
+                                max(min(a[1], b[1]) - south_m, -85.0),
+                                min(max(a[1], b[1]) + north_m, 85.0))
+
     def contains(self, lon_deg: np.ndarray, lat_deg: np.ndarray) -> np.ndarray:
         """Verdict of the fine cell holding each point (coastal cells only; resolves them)."""
         inv = 1.0 / self.cell_deg
