@@ -17,7 +17,7 @@ import numpy as np
 
 from .errors import UnknownMethodError
 from .ga.islands import IslandGA, cross_track_rad
-from .ga.loop import GAConfig, SeedGA
+from .ga.loop import AskTellGA, GAConfig, SeedGA
 from .ga.ranking import deb_order, is_better
 from .ga.seeds import (
     TrackSeed,
@@ -203,7 +203,7 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
         x_seed, sources = x_seed[order], [sources[i] for i in order]
         offsets = cross_track_rad(sev.lon_deg[order], sev.lat_deg[order],
                                   (p.dep_lon_deg, p.dep_lat_deg), (p.arr_lon_deg, p.arr_lat_deg))
-    ga: SeedGA | IslandGA
+    ga: AskTellGA
     if len(x_seed) >= 2 * ctx.n_islands and ctx.n_islands > 1:
         ga = IslandGA(lo, hi, p.n_stages, cfg, ctx.rng, x_seed, offsets, ctx.n_islands)
     else:

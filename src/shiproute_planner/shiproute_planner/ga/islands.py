@@ -39,7 +39,8 @@ class IslandGA:
     Seeds arrive best first with their cross-track offsets; they are split into `n_islands`
     groups by offset (south to north of the great circle, or right to left), each group
     keeping its quality order. Until `merge`, `ask` concatenates the islands' offspring and
-    `tell` hands each island its share; afterwards it is a single `SeedGA`."""
+    `tell` hands each island its share; afterwards it is a single `SeedGA`. Both are
+    `loop.AskTellGA`s to the planning loop."""
 
     def __init__(self, lower: np.ndarray, upper: np.ndarray, n_stages: int, config: GAConfig,
                  rng: np.random.Generator, seeds: np.ndarray, offsets: np.ndarray,

@@ -9,6 +9,7 @@ replacement. The caller evaluates what `ask` returns and passes the results to `
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Protocol
 
 import numpy as np
 
@@ -31,6 +32,28 @@ class GAConfig:
     jitter_heading_deg: float = 2.0
     jitter_rpm: float = 1.0
     init_spread_heading_deg: float = 6.0
+
+
+class AskTellGA(Protocol):
+    """What the planning loop needs of a GA: `SeedGA` and the `islands.IslandGA` of several."""
+
+    @property
+    def pop(self) -> np.ndarray | None: ...  # current population, best first; None at first
+
+    @property
+    def best(self) -> tuple[np.ndarray, float, float]: ...  # genes, violation, objective
+
+    @property
+    def generation(self) -> int: ...
+
+    @property
+    def evaluations(self) -> int: ...
+
+    def ask(self) -> np.ndarray: ...
+
+    def tell(self, x: np.ndarray, violation: np.ndarray, objective: np.ndarray) -> None: ...
+
+    def stalled(self, generations: int, rel_tol: float = 1e-4) -> bool: ...
 
 
 class SeedGA:
