@@ -1,8 +1,9 @@
 """Numba kernels for the sampler's half-precision storage: float32 -> IEEE 754 binary16 bits.
 
 numba has no float16 type on the CPU, so half-precision fields are held as uint16 bit patterns:
-written here (rounded to nearest, ties to even, exactly as numpy's ``astype(np.float16)``, at
-about twice its speed) and read back through `HALF_TO_FLOAT32`.
+written (rounded to nearest, ties to even, exactly as numpy's ``astype(np.float16)``) by the
+packing kernel (`_pack_kernel`: by the CPU's conversion instruction, or by `half_bits` here
+where there is none) and read back through `HALF_TO_FLOAT32`.
 """
 
 from __future__ import annotations
@@ -45,14 +46,3 @@ def float32_to_half_bits(src_bits: np.ndarray, dst: np.ndarray) -> None:
     """dst[i] = binary16 bits of the float32 with bits src_bits[i] (`values.view(np.uint32)`)."""
     for i in range(src_bits.shape[0]):
         dst[i] = half_bits(np.uint32(src_bits[i]))
-
-
-@njit(cache=True, nogil=True)
-def interleave_half_bits(columns: tuple, dst: np.ndarray) -> None:
-    """dst[p, c] = binary16 bits of columns[c][p]: channel-last packing in one call (columns:
-    a tuple of equally long float32 arrays viewed as uint32; dst: (n, channels) uint16)."""
-    n, n_ch = dst.shape
-    for c in range(n_ch):
-        col = columns[c]  # one tuple lookup per channel: per element it doubles the time
-        for p in range(n):
-            dst[p, c] = half_bits(np.uint32(col[p]))

@@ -60,3 +60,11 @@ class ScenarioError(WeatherError):
 
 class SliceError(WeatherError):
     """A forecast slice (message or dict) is inconsistent (sizes, grid, cycle)."""
+
+
+class PackingError(WeatherError):
+    """A field cannot be put into (or read back from) the 16-bit simple packing of the wire."""
+
+    def __init__(self, field: str, reason: str) -> None:
+        super().__init__(f"field {field!r}: {reason}")
+        self.field = field

@@ -7,16 +7,27 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ._half_kernel import interleave_half_bits
 from ._interp_kernel import MIN_VALID_WEIGHT, trilinear
+from ._pack_kernel import (
+    CODES_DIRECTION,
+    CODES_SCALAR,
+    F32_DIRECTION,
+    F32_SCALAR,
+    address,
+    pack_half_channels,
+)
 from .canonical import DIRECTION_VARIABLES, Grid, grid_of, present_variables, times_posix_s
 from .errors import MissingVariableError
+from .wire_packing import PackedField, unpack_field
 
 if TYPE_CHECKING:  # xarray is only needed by whoever passes a Dataset
     import xarray as xr
 
-__all__ = ["MIN_VALID_WEIGHT", "STORAGE_DTYPES", "ForecastSampler", "channel_count",
-           "pack_fields"]
+__all__ = ["MIN_VALID_WEIGHT", "STORAGE_DTYPES", "FieldValues", "ForecastSampler",
+           "channel_count", "pack_fields"]
+
+#: one field as `pack_fields` takes it: float32 values, or 16-bit wire codes with their scaling
+FieldValues = np.ndarray | PackedField
 
 #: dtypes the sampler can keep its fields in: float32 (default) or IEEE half precision, whose
 #: relative rounding (2^-11) is below the packing precision of the forecast sources themselves
@@ -29,34 +40,66 @@ def channel_count(variables: Iterable[str]) -> int:
 
 
 def pack_fields(out: np.ndarray, variables: Sequence[str],
-                values_of: Callable[[str], np.ndarray]) -> None:
-    """Fill `out` (..., channel) with the fields `values_of(name)` (shape out.shape[:-1]):
-    scalars as they are, directions [deg] as the sine and cosine of the angle. A float16
-    `out` is written in one sequential pass by `interleave_half_bits` (numpy's float16
-    conversion through strided channel columns is ~4x slower, and this runs for every slice
-    of every cycle the planner receives)."""
-    columns: list[np.ndarray] = []
+                values_of: Callable[[str], FieldValues]) -> None:
+    """Fill `out` (..., channel) with the fields `values_of(name)`: float32 values or a
+    `PackedField` of 16-bit wire codes, out.shape[:-1] values each (in C order, any shape);
+    scalars as they are, directions [deg] as the sine and cosine of the angle.
+
+    A float16 `out` is written by one fused numba kernel (`_pack_kernel.pack_half_channels`:
+    decode, sine/cosine and half rounding in a single blocked pass; the planner runs this for
+    every slice of every cycle it receives); float32 `out` through numpy."""
+    if out.dtype == np.float16:
+        if not out.flags.c_contiguous:  # reshape would copy and the writes would be lost
+            raise ValueError("pack_fields needs a C-contiguous float16 output array")
+        _pack_half(out.reshape(-1, out.shape[-1]).view(np.uint16), variables, values_of)
+        return
+    c = 0
     for n in variables:
         values = values_of(n)
+        values = (unpack_field(values) if isinstance(values, PackedField)
+                  else np.asarray(values)).reshape(out.shape[:-1])
         if n in DIRECTION_VARIABLES:
             rad = np.deg2rad(np.asarray(values, dtype=np.float32))
-            columns += [np.sin(rad), np.cos(rad)]
+            out[..., c], out[..., c + 1] = np.sin(rad), np.cos(rad)
+            c += 2
         else:
-            columns.append(values)
-    if out.dtype == np.float16:
-        bits = tuple(_readonly_bits(v) for v in columns)
-        interleave_half_bits(bits, out.reshape(-1, out.shape[-1]).view(np.uint16))
-    else:
-        for c, v in enumerate(columns):
-            out[..., c] = v
+            out[..., c] = values
+            c += 1
 
 
-def _readonly_bits(values: np.ndarray) -> np.ndarray:
-    """float32 values as a flat read-only uint32 view: one array type for numba whether the
-    source is a message buffer (read-only bytes) or a computed array."""
-    bits = np.ascontiguousarray(values, dtype=np.float32).reshape(-1).view(np.uint32)
-    bits.flags.writeable = False
-    return bits
+def _pack_half(dst: np.ndarray, variables: Sequence[str],
+               values_of: Callable[[str], FieldValues]) -> None:
+    """Hand every field to `pack_half_channels` without copying (float32 values and wire
+    codes are read in place; `keep` holds them alive while the kernel reads their memory)."""
+    n_fields = len(variables)
+    keep: list[np.ndarray] = []
+    addresses = np.empty(n_fields, dtype=np.int64)
+    kinds = np.empty(n_fields, dtype=np.int64)
+    offsets = np.zeros(n_fields)
+    scales = np.zeros(n_fields)
+    for k, name in enumerate(variables):
+        v = values_of(name)
+        direction = name in DIRECTION_VARIABLES
+        if isinstance(v, PackedField):
+            flat = _flat(v.codes, np.uint16, dst.shape[0], name)
+            offsets[k], scales[k] = v.add_offset, v.scale_factor
+            kinds[k] = CODES_DIRECTION if direction else CODES_SCALAR
+        else:
+            flat = _flat(v, np.float32, dst.shape[0], name)
+            kinds[k] = F32_DIRECTION if direction else F32_SCALAR
+        keep.append(flat)
+        addresses[k] = address(flat)
+    if dst.shape[0]:
+        pack_half_channels(addresses, kinds, offsets, scales, dst)
+    del keep
+
+
+def _flat(a: np.ndarray, dtype: type, size: int, name: str) -> np.ndarray:
+    """C-contiguous flat array of `dtype` (a view when it already is one) of `size` values."""
+    flat = np.ascontiguousarray(a, dtype=dtype).reshape(-1)
+    if flat.size != size:
+        raise ValueError(f"field {name!r} has {flat.size} values, expected {size}")
+    return flat
 
 
 class ForecastSampler:

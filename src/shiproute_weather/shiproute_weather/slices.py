@@ -17,6 +17,7 @@ import xarray as xr
 from . import canonical as cv
 from .errors import SliceError
 from .timefmt import iso_to_ns, ns_to_iso
+from .wire_packing import PackedField, unpack_field
 
 
 @dataclass(frozen=True)
@@ -33,12 +34,13 @@ class SliceGrid:
 
 @dataclass(frozen=True)
 class FieldData:
-    """One named field: float32 values, row-major (latitude rows), n_lat * n_lon long."""
+    """One named field: n_lat * n_lon values, row-major (latitude rows): float32, or 16-bit
+    wire codes (`PackedField`, only as read in place from a message)."""
 
     name: str
     units: str
     direction_convention: str
-    data: np.ndarray
+    data: np.ndarray | PackedField
 
 
 @dataclass(frozen=True)
@@ -56,7 +58,7 @@ class SliceData:
 
     @property
     def nbytes(self) -> int:
-        """Bytes of field data carried by the slice."""
+        """Bytes of field data carried by the slice (as held: float32 or 16-bit codes)."""
         return sum(f.data.nbytes for f in self.fields)
 
 
@@ -152,7 +154,10 @@ def slices_to_dataset(slices: Sequence[SliceData]) -> xr.Dataset:
             if f.data.size != g.n_lat * g.n_lon:
                 raise SliceError(f"slice {s.slice_index} field {f.name}: {f.data.size} values, "
                                  f"expected {g.n_lat} x {g.n_lon}")
-            data[f.name][s.slice_index] = f.data.reshape(g.n_lat, g.n_lon)
+            if isinstance(f.data, PackedField):  # decoded straight into the dataset
+                unpack_field(f.data, out=data[f.name][s.slice_index].reshape(-1))
+            else:
+                data[f.name][s.slice_index] = f.data.reshape(g.n_lat, g.n_lon)
     times = np.array([s.valid_time_ns for s in ordered], dtype=np.int64).astype("datetime64[ns]")
     ds = xr.Dataset(
         {n: (("time", "latitude", "longitude"), data[n]) for n in names},

@@ -4,8 +4,9 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from shiproute_weather._half_kernel import float32_to_half_bits, interleave_half_bits
+from shiproute_weather._half_kernel import float32_to_half_bits
 from shiproute_weather._interp_kernel import trilinear
+from shiproute_weather._pack_kernel import BLOCK, F32_SCALAR, pack_half_channels
 from shiproute_weather.sampler_arrays import sampler_arrays
 from shiproute_weather.sampling import ForecastSampler
 from weather_fixtures import small_canonical
@@ -33,11 +34,27 @@ def test_half_bits_equal_numpy_float16_rounding() -> None:
     assert np.all(np.isnan(got[nan].view(np.float16)))
 
 
-def test_interleave_writes_channel_last() -> None:
-    cols = [np.arange(5, dtype=np.float32) + 10 * c for c in range(3)]
-    dst = np.empty((5, 3), np.uint16)
-    interleave_half_bits(tuple(c.view(np.uint32) for c in cols), dst)
-    assert np.array_equal(dst.view(np.float16).astype(np.float32), np.stack(cols, axis=1))
+def _random_float32_bits(n: int, seed: int) -> np.ndarray:
+    """float32 values of random bit patterns (every exponent: NaN, inf, subnormal, overflow)."""
+    rng = np.random.default_rng(seed)
+    return rng.integers(0, 2**32, n, dtype=np.uint64).astype(np.uint32).view(np.float32)
+
+
+@pytest.mark.parametrize("n_ch", [16, 3])  # 64-bit interleave and the 16-bit fallback
+def test_pack_kernel_rounds_like_numpy_bit_for_bit(n_ch: int) -> None:
+    # the kernel's float32 -> binary16 conversion (CPU instruction) on random bit patterns,
+    # across block boundaries (n not a multiple of BLOCK), written channel-last
+    n = 5 * BLOCK + 37
+    cols = [_random_float32_bits(n, seed=c) for c in range(n_ch)]
+    dst = np.empty((n, n_ch), np.uint16)
+    pack_half_channels(np.array([c.ctypes.data for c in cols], dtype=np.int64),
+                       np.full(n_ch, F32_SCALAR), np.zeros(n_ch), np.zeros(n_ch), dst)
+    x = np.stack(cols, axis=1)
+    with np.errstate(over="ignore"):
+        ref = x.astype(np.float16).view(np.uint16)
+    nan = np.isnan(x)
+    assert np.array_equal(dst[~nan], ref[~nan])
+    assert np.all(np.isnan(dst[nan].view(np.float16)))
 
 
 def test_half_storage_error_is_within_the_rounding_bound() -> None:
@@ -87,7 +104,7 @@ def test_from_packed_wraps_the_array_and_checks_its_shape() -> None:
 
 
 def test_pack_fields_takes_read_only_buffers_next_to_computed_directions() -> None:
-    # message buffers arrive read-only (bytes) while sine/cosine columns are computed arrays
+    # message buffers arrive read-only (bytes) while other fields are computed arrays
     from shiproute_weather.sampling import pack_fields
 
     rng = np.random.default_rng(5)
@@ -100,4 +117,60 @@ def test_pack_fields_takes_read_only_buffers_next_to_computed_directions() -> No
     full = np.empty((4, 6, 3), dtype=np.float32)
     pack_fields(half, names, values.__getitem__)
     pack_fields(full, names, values.__getitem__)
-    assert np.array_equal(half, full.astype(np.float16))
+    assert np.array_equal(half[..., 0], full[..., 0].astype(np.float16))  # scalars: exact
+    assert np.all(np.abs(half[..., 1:].astype(np.float64) - full[..., 1:])
+                  <= HALF_EPS * np.abs(full[..., 1:]) + 2.0**-21)
+
+
+def test_directions_are_sine_and_cosine_within_half_precision() -> None:
+    """The kernel's own float32 sine/cosine, rounded to half, against float64 truth (bound:
+    half rounding 2^-11 |v| plus a few float32 ulps, 2^-21 |v|, plus half the smallest
+    subnormal step 2^-25) and against numpy's float32 path (which also rounds the radians
+    to float32: up to 3.7e-7 off at 360 deg, within 2^-21)."""
+    from shiproute_weather.sampling import pack_fields
+
+    rng = np.random.default_rng(9)
+    deg = np.concatenate([rng.uniform(0, 360, 200_000), np.arange(0, 361, 0.5),
+                          rng.uniform(-720, 1080, 20_000)]).astype(np.float32)
+    deg[::1000] = np.nan
+    half = np.empty((deg.size, 2), dtype=np.float16)
+    pack_fields(half, [cv.WAVE_DIR], {cv.WAVE_DIR: deg}.__getitem__)
+    got = half.astype(np.float64)
+    rad = np.radians(deg.astype(np.float64))
+    truth = np.stack([np.sin(rad), np.cos(rad)], axis=1)
+    nan = np.isnan(deg)
+    assert np.all(np.isnan(got[nan])) and not np.any(np.isnan(got[~nan]))
+    err = np.abs(got[~nan] - truth[~nan])
+    assert np.all(err <= (HALF_EPS + 2.0**-21) * np.abs(truth[~nan]) + 2.0**-25)
+    # exact zeros and ones at multiples of 90 deg (reduction in degrees is exact)
+    right = np.isin(deg, np.float32([0, 90, 180, 270, 360]))
+    assert np.all(np.abs(got[right]) % 1.0 == 0.0)
+    inside = ~nan & (deg >= 0) & (deg <= 360)
+    rad32 = np.deg2rad(deg[inside])
+    ref32 = np.stack([np.sin(rad32), np.cos(rad32)], axis=1).astype(np.float64)
+    assert np.all(np.abs(got[inside] - ref32) <= HALF_EPS * np.abs(ref32) + 2.0**-21)
+    # and the half-precision results differ from numpy's in a small minority only
+    ref16 = ref32.astype(np.float16)
+    assert np.mean(half[inside] != ref16) < 2e-3
+
+
+def test_packed_codes_pack_like_their_decoded_values() -> None:
+    """Wire codes go through the same kernel as float32: bit-equal to packing the decoded
+    float32 values, scalars and directions, in half and in float32 storage."""
+    from shiproute_weather.sampling import pack_fields
+    from shiproute_weather.wire_packing import pack_field, unpack_field
+
+    ds = small_canonical(n_time=1)
+    names = list(cv.CANONICAL_ORDER)
+    raw = {n: ds[n].values[0] for n in names}
+    packed = {n: pack_field(v) for n, v in raw.items()}
+    decoded = {n: unpack_field(p) for n, p in packed.items()}
+    shape = (*raw[names[0]].shape, 16)
+    mixed = {n: (packed[n] if k % 2 else decoded[n]) for k, n in enumerate(names)}
+    for dtype in (np.float16, np.float32):
+        a, b, c = (np.empty(shape, dtype) for _ in range(3))
+        pack_fields(a, names, packed.__getitem__)
+        pack_fields(b, names, decoded.__getitem__)
+        pack_fields(c, names, mixed.__getitem__)
+        assert np.array_equal(a.view(np.uint8), b.view(np.uint8)), dtype
+        assert np.array_equal(a.view(np.uint8), c.view(np.uint8)), dtype
