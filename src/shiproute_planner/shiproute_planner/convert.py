@@ -3,7 +3,7 @@
 `nav_msgs/Path` poses are in the REP 105 ``earth`` frame (WGS 84 ECEF metres, see
 `path_frame`), stamped with the planned time at each node; `RpmProfile` holds one stage per leg;
 `RoutePlan` copies the frozen plan field by field. Forecast slices come in as `SliceFields`
-whose arrays are views on the message's buffers (no copy).
+whose arrays are views on the message's buffers (no copy; float32 or 16-bit packed fields).
 """
 
 from __future__ import annotations
@@ -15,6 +15,7 @@ from builtin_interfaces.msg import Time
 from geometry_msgs.msg import PoseStamped
 from nav_msgs.msg import Path
 from shiproute_weather.canonical import Grid
+from shiproute_weather.wire_packing import PackedField
 
 from shiproute_msgs.msg import ForecastSlice, RouteWaypoint, RpmProfile, RpmStage, ShipState
 from shiproute_msgs.msg import RoutePlan as RoutePlanMsg
@@ -135,9 +136,23 @@ def ship_position(msg: ShipState) -> tuple[float, float, float] | None:
 
 
 def slice_fields(msg: ForecastSlice) -> SliceFields:
-    """ROS-free view of a ForecastSlice; the field arrays share the message's buffers."""
+    """ROS-free view of a ForecastSlice; the field arrays share the message's buffers: float32
+    `data`, or the 16-bit `packed` codes with their scaling (decoded when packed into the
+    sampler). A field with both or neither is passed on as a problem for the packer to
+    reject (this runs in a subscription callback: it must not raise)."""
     grid = Grid(float(msg.lat0_deg), float(msg.dlat_deg), int(msg.n_lat), float(msg.lon0_deg),
                 float(msg.dlon_deg), int(msg.n_lon))
-    fields = tuple((f.name, np.frombuffer(f.data, dtype=np.float32)) for f in msg.fields)
+    fields = []
+    problems = []
+    for f in msg.fields:
+        n_data, n_packed = len(f.data), len(f.packed)
+        if n_packed and n_data:
+            problems.append(f"field {f.name}: both data ({n_data} values) and packed "
+                            f"({n_packed}) are set, exactly one may be")
+        if n_packed:
+            fields.append((f.name, PackedField(np.frombuffer(f.packed, dtype=np.uint16),
+                                               float(f.add_offset), float(f.scale_factor))))
+        else:
+            fields.append((f.name, np.frombuffer(f.data, dtype=np.float32)))
     return SliceFields(msg.cycle_id, int(msg.slice_index), int(msg.slice_count),
-                       posix_s(msg.valid_time), grid, fields)
+                       posix_s(msg.valid_time), grid, tuple(fields), tuple(problems))

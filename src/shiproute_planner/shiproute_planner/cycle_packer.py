@@ -5,7 +5,9 @@ The planner node keeps no copy of a cycle besides its sampler: each slice is wri
 so the sampler is ready when the last slice lands. Slices valid more than `KEEP_BEHIND_S`
 before the ship's time are received but not stored: re-plans start at the ship's time, and the
 pages of an array that are never written cost no memory. Storage is half precision by
-default (see `shiproute_weather.sampling.STORAGE_DTYPES`).
+default (see `shiproute_weather.sampling.STORAGE_DTYPES`); fields arrive as float32 or 16-bit
+packed codes and are decoded, turned into sine/cosine (directions) and rounded to half in one
+numba pass per slice (`shiproute_weather.sampling.pack_fields`), without the GIL.
 """
 
 from __future__ import annotations
@@ -17,7 +19,7 @@ from typing import Any
 
 import numpy as np
 from shiproute_weather.canonical import CANONICAL_ORDER, Grid
-from shiproute_weather.sampling import ForecastSampler, channel_count, pack_fields
+from shiproute_weather.sampling import FieldValues, ForecastSampler, channel_count, pack_fields
 
 from .errors import ForecastCycleError
 
@@ -36,7 +38,9 @@ class SliceFields:
     count: int
     valid_time_s: float  # POSIX seconds, UTC
     grid: Grid
-    fields: tuple[tuple[str, np.ndarray], ...]  # (CF name, n_lat * n_lon float32 values)
+    # (CF name, n_lat * n_lon values: float32, or 16-bit wire codes with their scaling)
+    fields: tuple[tuple[str, FieldValues], ...]
+    problems: tuple[str, ...] = ()  # malformed fields found while reading the message
 
 
 class CyclePacker:
@@ -68,6 +72,8 @@ class CyclePacker:
         if s.cycle_id != self.cycle_id or s.count != self.count:
             raise ForecastCycleError(f"{where}: belongs to {s.cycle_id!r} of {s.count} slices, "
                                      f"expected {self.count}")
+        if s.problems:
+            raise ForecastCycleError(f"{where}: {'; '.join(s.problems)}")
         if s.grid != self.grid:
             raise ForecastCycleError(f"{where}: grid {s.grid} differs from {self.grid}")
         if [name for name, _ in s.fields] != self._names:
@@ -82,9 +88,7 @@ class CyclePacker:
             raise ForecastCycleError(f"{where}: valid time {s.valid_time_s} is not finite")
         self._times_s[index] = s.valid_time_s
         if index == self.count - 1 or s.valid_time_s >= self._keep_from_s() - KEEP_BEHIND_S:
-            by_name = dict(s.fields)
-            pack_fields(self._data[index], self.variables,
-                        lambda n: by_name[n].reshape(g.n_lat, g.n_lon))
+            pack_fields(self._data[index], self.variables, dict(s.fields).__getitem__)
             self._stored[index] = True
 
     def result(self) -> ForecastSampler:

@@ -1,5 +1,6 @@
-"""The planner node's forecast intake (ROS-free parts): slices packed into the sampler as they
-arrive, the time window kept behind the ship, bad cycles rejected, the slice-buffer DDS profile."""
+"""The planner node's forecast intake (ROS-free parts): slices (float32 or 16-bit packed fields)
+packed into the sampler as they arrive, the time window kept behind the ship, bad cycles
+rejected, the slice-buffer DDS profile."""
 
 from __future__ import annotations
 
@@ -13,26 +14,28 @@ from shiproute_planner.cycle_packer import KEEP_BEHIND_S, CyclePacker, SliceFiel
 from shiproute_planner.errors import ForecastCycleError
 
 
-@functools.lru_cache(maxsize=1)
-def _cycle():
+@functools.lru_cache(maxsize=2)
+def _cycle(encoding: str = "packed16"):
     """Eight valid times (3-hourly) of the bundled storm forecast and their slice messages."""
     from shiproute_weather.convert import dataset_to_msgs
     from shiproute_weather.scenarios import scenario_dataset
 
     ds = scenario_dataset("storm_march").isel(time=slice(0, 8)).load()
     ds.attrs["cycle_id"] = "packer-test"
-    return ds, dataset_to_msgs(ds)[1]
+    return ds, dataset_to_msgs(ds, encoding=encoding)[1]
 
 
-def _fields():
+def _fields(encoding: str = "packed16"):
     from shiproute_planner.convert import slice_fields
 
-    return [slice_fields(m) for m in _cycle()[1]]
+    return [slice_fields(m) for m in _cycle(encoding)[1]]
 
 
 def test_slice_fields_are_views_on_the_message_buffers():
-    ds, msgs = _cycle()
-    s = _fields()[3]
+    from shiproute_weather.wire_packing import PackedField, unpack_field
+
+    ds, msgs = _cycle("float32")
+    s = _fields("float32")[3]
     assert (s.cycle_id, s.index, s.count) == ("packer-test", 3, 8)
     name, values = s.fields[0]
     assert np.shares_memory(values, np.frombuffer(msgs[3].fields[0].data, dtype=np.float32))
@@ -40,22 +43,52 @@ def test_slice_fields_are_views_on_the_message_buffers():
                           equal_nan=True)
     t = ds.time.values[3].astype("datetime64[ns]").astype(np.int64) / 1e9
     assert s.valid_time_s == t
+    _, packed_msgs = _cycle("packed16")
+    p = _fields("packed16")[3]
+    name, codes = p.fields[0]
+    f = packed_msgs[3].fields[0]
+    assert isinstance(codes, PackedField) and not p.problems
+    assert np.shares_memory(codes.codes, np.frombuffer(f.packed, dtype=np.uint16))
+    assert (codes.add_offset, codes.scale_factor) == (f.add_offset, f.scale_factor)
+    ref = ds[name].values[3].reshape(-1)
+    assert np.nanmax(np.abs(unpack_field(codes) - ref)) <= f.scale_factor  # packing bound
 
 
-def test_packed_in_any_order_equals_the_sampler_of_the_dataset():
+@pytest.mark.parametrize("encoding", ["float32", "packed16"])
+def test_packed_in_any_order_equals_the_sampler_of_the_dataset(encoding):
+    """Either encoding: the same bits as a sampler built from the values the messages decode
+    to (the dataset itself for float32)."""
+    from shiproute_weather.convert import msgs_to_dataset
     from shiproute_weather.sampling import ForecastSampler
 
-    ds, _ = _cycle()
-    fields = _fields()
+    ds, msgs = _cycle(encoding)
+    fields = _fields(encoding)
     asm: CycleAssembler[SliceFields] = CycleAssembler(sink=lambda _c, s: CyclePacker(s))
     asm.announce("packer-test", 8)
     results = [asm.add_slice(s.cycle_id, s.index, s.count, s) for s in fields[::-1]]
     assert all(r is None for r in results[:-1])
     sampler = results[-1]
-    ref = ForecastSampler(ds, dtype=np.float16)
+    decoded = msgs_to_dataset(msgs)
+    if encoding == "float32":
+        assert decoded.identical(ds)
+    ref = ForecastSampler(decoded, dtype=np.float16)
     assert sampler.variables == ref.variables and sampler.grid == ref.grid
     assert np.array_equal(sampler.times_s, ref.times_s)
     assert np.array_equal(sampler.kernel_data, ref.kernel_data)  # same bits, NaN included
+
+
+def test_a_field_with_both_encodings_fails_its_cycle():
+    import copy
+
+    from shiproute_planner.convert import slice_fields
+
+    msg = copy.deepcopy(_cycle()[1][1])
+    msg.fields[2].data = [1.0] * len(msg.fields[2].packed)
+    bad = slice_fields(msg)  # never raises (it runs in the subscription callback)
+    assert len(bad.problems) == 1 and msg.fields[2].name in bad.problems[0]
+    packer = CyclePacker(_fields()[0])
+    with pytest.raises(ForecastCycleError, match=f"slice 1: field {msg.fields[2].name}: both"):
+        packer.add(1, bad)
 
 
 def test_slices_older_than_the_ship_are_not_kept():
