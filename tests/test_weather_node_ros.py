@@ -1,4 +1,5 @@
-"""Cross-process tests of the weather node: late joiners, watched directory, corrupt files."""
+"""Cross-process tests of the weather node: late joiners, watched directory, corrupt files,
+slice encoding (16-bit packed by default, float32 on request; bad values rejected)."""
 
 from __future__ import annotations
 
@@ -16,6 +17,7 @@ pytestmark = pytest.mark.ros
 rclpy = pytest.importorskip("rclpy")
 pytest.importorskip("shiproute_msgs.msg")
 
+import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus  # noqa: E402
 from rclpy.executors import SingleThreadedExecutor  # noqa: E402
@@ -84,9 +86,79 @@ def test_late_joiner_gets_whole_cycle(tmp_path: Path) -> None:
                 msgs = lis.wait_cycle("test-2026030312", 7)
                 assert lis.cycles[-1].slice_count == 7
                 assert lis.cycles[-1].source_files == [str(src)]
-                xr.testing.assert_identical(msgs_to_dataset(msgs), expected)
+                _assert_packed_equivalent(msgs, expected)
             finally:
                 lis.close()
+
+
+def _assert_packed_equivalent(msgs: list[ForecastSlice], expected: xr.Dataset) -> None:
+    """Default encoding: every field packed, the decoded cycle equal to `expected` in grid,
+    times, attrs and NaN pattern, values within each field's scale_factor / 2 (+ float32)."""
+    got = msgs_to_dataset(msgs)
+    assert got.attrs == expected.attrs
+    xr.testing.assert_identical(got.coords.to_dataset(), expected.coords.to_dataset())
+    for m in msgs:
+        for f in m.fields:
+            assert len(f.data) == 0 and len(f.packed) == m.n_lat * m.n_lon
+            a = got[f.name].values[m.slice_index].astype(np.float64)
+            b = expected[f.name].values[m.slice_index].astype(np.float64)
+            assert np.array_equal(np.isnan(a), np.isnan(b))
+            ok = ~np.isnan(b)
+            assert np.all(np.abs(a[ok] - b[ok]) <= f.scale_factor / 2 * (1 + 1e-9)
+                          + np.spacing(np.abs(b[ok]).astype(np.float32))), f.name
+
+
+def _set_encoding(lis: Listener, value: str) -> tuple[bool, str]:
+    from rcl_interfaces.srv import SetParameters
+    from rclpy.parameter import Parameter
+
+    cli = lis.node.create_client(SetParameters, "/shiproute_weather/set_parameters")
+    assert cli.wait_for_service(timeout_sec=10)
+    req = SetParameters.Request(parameters=[Parameter("slice_encoding",
+                                                      value=value).to_parameter_msg()])
+    fut = cli.call_async(req)
+    spin_until(lis.executor, fut.done, 15, "set_parameters reply")
+    res = fut.result().results[0]
+    return res.successful, res.reason
+
+
+def test_slice_encoding_parameter(tmp_path: Path) -> None:
+    """A bad launch value is rejected (default used); at run time float32 is accepted and the
+    next cycle is exact, a bad value is refused with the reason and the node keeps going."""
+    (tmp_path / "watch").mkdir()
+    src = write_nc(small_canonical(n_time=3), tmp_path / "first.nc")
+    expected = open_forecast([src])
+    dom = random_domain_id()
+    with _node(tmp_path, dom, f"forecast_files:=['{src}']", "slice_encoding:=float16") as proc, \
+            ros_context(dom) as ctx:
+        proc.wait_for_line(r"rejected parameter: slice_encoding must be one of packed16, "
+                           r"float32, got 'float16'; using packed16", timeout_s=60)
+        lis = Listener(ctx)
+        try:
+            _assert_packed_equivalent(lis.wait_cycle("test-2026030312", 3, timeout_s=60),
+                                      expected)
+            spin_until(lis.executor, lambda: any(
+                {kv.key: kv.value for kv in d.values}.get("slice_encoding") == "packed16"
+                for d in lis.diags), 15, "diagnostics naming the encoding")
+            ok, reason = _set_encoding(lis, "bogus")
+            assert not ok and "slice_encoding must be one of packed16, float32" in reason
+            assert _set_encoding(lis, "float32") == (True, "")
+            again = small_canonical(n_time=2, seed=3, cycle_id="exact-2026030318")
+            path = write_nc(again, tmp_path / "exact.nc")
+            cli = lis.node.create_client(LoadForecast, LOAD_SERVICE)
+            assert cli.wait_for_service(timeout_sec=10)
+            fut = cli.call_async(LoadForecast.Request(paths=[str(path)]))
+            spin_until(lis.executor, fut.done, 60, "load reply")
+            assert fut.result().accepted, fut.result().message
+            msgs = lis.wait_cycle("exact-2026030318", 2)
+            assert all(len(f.packed) == 0 for m in msgs for f in m.fields)
+            xr.testing.assert_identical(msgs_to_dataset(msgs), open_forecast([path]))
+            spin_until(lis.executor, lambda: any(
+                {kv.key: kv.value for kv in d.values}.get("bytes_per_slice")
+                == str(13 * 21 * 51 * 4) for d in lis.diags), 15, "float32 bytes in diagnostics")
+            assert proc.running
+        finally:
+            lis.close()
 
 
 def test_new_file_and_corrupt_file(tmp_path: Path) -> None:

@@ -49,6 +49,8 @@ def _parse(argv: list[str]) -> argparse.Namespace:
     ap.add_argument("--scenario", default="storm_march", help="bundled scenario to publish")
     ap.add_argument("--file", default="", help="forecast file instead of a scenario")
     ap.add_argument("--timeout-s", type=float, default=120.0)
+    ap.add_argument("--encoding", default="", help="slice field encoding (default: the weather "
+                    "node's default)")
     return ap.parse_args(argv)
 
 
@@ -69,7 +71,7 @@ def main(argv: list[str] | None = None) -> int:
         assert sub.stdout is not None
         if "ready" not in sub.stdout.readline():
             raise RuntimeError("benchmark subscriber did not start")
-        result = _run(path, topic, sub, args.timeout_s)
+        result = _run(path, topic, sub, args.timeout_s, args.encoding)
     finally:
         if sub.poll() is None:
             sub.terminate()
@@ -82,12 +84,13 @@ def main(argv: list[str] | None = None) -> int:
     return 0
 
 
-def _run(path: str, topic: str, sub: subprocess.Popen[str], timeout_s: float) -> dict:
+def _run(path: str, topic: str, sub: subprocess.Popen[str], timeout_s: float,
+         encoding: str) -> dict:
     import rclpy
 
     from shiproute_msgs.msg import ForecastCycle, ForecastSlice
 
-    from .convert import cycle_to_msg, slice_to_msg
+    from .convert import DEFAULT_SLICE_ENCODING, cycle_to_msg, slice_to_msg, wire_bytes
     from .cycle_builder import CycleConfig, build_cycle
     from .node import latched
     from .stream import load_slices, streamable
@@ -100,6 +103,7 @@ def _run(path: str, topic: str, sub: subprocess.Popen[str], timeout_s: float) ->
     while sl_pub.get_subscription_count() == 0 and time.monotonic() < deadline:
         time.sleep(0.05)
     cfg = CycleConfig()
+    encoding = encoding or DEFAULT_SLICE_ENCODING
     c0 = _cpu_s()
     t0 = time.perf_counter()
     if streamable([path], cfg):  # what the node does for one NetCDF file
@@ -113,9 +117,10 @@ def _run(path: str, topic: str, sub: subprocess.Popen[str], timeout_s: float) ->
     cyc_pub.publish(cycle_to_msg(info))
     for k in range(len(slices)):
         s, slices[k] = slices[k], None  # type: ignore[call-overload]  # free as we go
-        sl_pub.publish(slice_to_msg(s))
-        sent_bytes = s.nbytes
+        m = slice_to_msg(s, encoding=encoding)
         del s
+        sl_pub.publish(m)
+        sent_bytes = max(sent_bytes, wire_bytes(m))
         n += 1
     t2 = time.perf_counter()
     c2 = _cpu_s()
@@ -130,5 +135,6 @@ def _run(path: str, topic: str, sub: subprocess.Popen[str], timeout_s: float) ->
     return {"file": os.path.basename(path), "load_s": round(t1 - t0, 3),
             "publish_s": round(t2 - t1, 3), "delivered_s": round(delivered_s, 3),
             "total_s": round(t2 - t0, 3), "load_cpu_s": round(c1 - c0, 3),
-            "publish_cpu_s": round(c2 - c1, 3), "slices": n, "bytes_per_slice": sent_bytes,
+            "publish_cpu_s": round(c2 - c1, 3), "slices": n, "encoding": encoding,
+            "bytes_per_slice": sent_bytes,
             "fields": len(info.fields), "peak_rss_mb": round(rss_mb, 1)}

@@ -16,16 +16,25 @@ from pathlib import Path
 
 import rclpy
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
+from rcl_interfaces.msg import ParameterDescriptor, SetParametersResult
 from rclpy.callback_groups import MutuallyExclusiveCallbackGroup, ReentrantCallbackGroup
 from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor
 from rclpy.node import Node
+from rclpy.parameter import Parameter
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 
 from shiproute_msgs.msg import ForecastCycle, ForecastSlice
 from shiproute_msgs.srv import LoadForecast
 
 from .combine import Box
-from .convert import cycle_to_msg, slice_to_msg
+from .convert import (
+    DEFAULT_SLICE_ENCODING,
+    SLICE_ENCODINGS,
+    check_encoding,
+    cycle_to_msg,
+    slice_to_msg,
+    wire_bytes,
+)
 from .cycle_builder import MAX_SLICE_BYTES, MAX_SLICES, CycleConfig, build_cycle, corridor_box
 from .errors import WeatherError
 from .scenarios import scenario_path
@@ -78,6 +87,15 @@ class WeatherNode(Node):
             max_slice_bytes=int(p("max_slice_bytes", MAX_SLICE_BYTES).value),
             required=tuple(required), cycle_id=str(p("cycle_id", "").value))
         diag_period_s = float(p("diagnostics_period_s", 1.0).value)
+        encoding = str(p("slice_encoding", DEFAULT_SLICE_ENCODING, ParameterDescriptor(
+            description="field encoding of published slices: " + ", ".join(SLICE_ENCODINGS)
+            + " (16-bit simple packing, half the bytes; or exact float32)")).value)
+        reason = check_encoding(encoding)
+        if reason is not None:  # a bad launch value: say so, serve with the default
+            self.get_logger().error(f"rejected parameter: {reason}; using "
+                                    f"{DEFAULT_SLICE_ENCODING}")
+            self.set_parameters([Parameter("slice_encoding", value=DEFAULT_SLICE_ENCODING)])
+        self.add_on_set_parameters_callback(self._on_set_parameters)
         self.publish_period_s = float(p("publish_period_s", 0.0).value)
 
         self.cycle_pub = self.create_publisher(ForecastCycle, CYCLE_TOPIC, latched(1))
@@ -93,7 +111,8 @@ class WeatherNode(Node):
             self.create_timer(self.publish_period_s, self._republish, callback_group=timers)
 
         self.lock = threading.Lock()
-        self.state: dict[str, str] = {"cycle_id": "", "slices": "0", "bytes_per_slice": "0",
+        self.state: dict[str, str] = {"cycle_id": "", "slices": "0", "slice_encoding": "",
+                                      "bytes_per_slice": "0",
                                       "source_files": "", "load_s": "", "last_error": "",
                                       "notes": "", "cycles_published": "0"}
         self.level = DiagnosticStatus.WARN
@@ -124,6 +143,16 @@ class WeatherNode(Node):
         if len(corridor) >= 4 and len(corridor) % 2 == 0:
             return corridor_box(corridor[0::2], corridor[1::2], margin)
         return None
+
+    def _on_set_parameters(self, params: list[Parameter]) -> SetParametersResult:
+        """Reject a bad slice_encoding with the reason (the node keeps its current one)."""
+        for prm in params:
+            if prm.name == "slice_encoding":
+                reason = check_encoding(str(prm.value))
+                if reason is not None:
+                    self.get_logger().warning(f"rejected parameter: {reason}")
+                    return SetParametersResult(successful=False, reason=reason)
+        return SetParametersResult(successful=True)
 
     def _poll_watch(self) -> None:
         assert self.watcher is not None
@@ -164,15 +193,16 @@ class WeatherNode(Node):
             cycle = cycle_to_msg(info, self.get_clock().now().to_msg())
         except Exception as exc:  # a bad file must never stop the node
             return self._failed(req, exc)
+        encoding = str(self.get_parameter("slice_encoding").value)
         self.cycle_pub.publish(cycle)
         stamp = self.get_clock().now().to_msg()
         kept: list[ForecastSlice] = []
         nbytes = 0
         for k in range(len(slices)):
             s, slices[k] = slices[k], None  # type: ignore[call-overload]  # free as we go
-            m = slice_to_msg(s, stamp)
-            nbytes = s.nbytes
+            m = slice_to_msg(s, stamp, encoding)
             del s
+            nbytes = max(nbytes, wire_bytes(m))
             self.slice_pub.publish(m)
             if self.publish_period_s > 0:
                 kept.append(m)
@@ -181,13 +211,15 @@ class WeatherNode(Node):
             self.current = (cycle, kept) if self.publish_period_s > 0 else None
             n = int(self.state["cycles_published"]) + 1
             self.state.update(cycle_id=info.cycle_id, slices=str(info.slice_count),
-                              bytes_per_slice=str(nbytes), source_files=", ".join(req.paths),
+                              slice_encoding=encoding, bytes_per_slice=str(nbytes),
+                              source_files=", ".join(req.paths),
                               load_s=f"{dt:.3f}", last_error="", notes="; ".join(notes),
                               cycles_published=str(n))
             self.level = DiagnosticStatus.WARN if notes else DiagnosticStatus.OK
             self.message = f"serving cycle {info.cycle_id} ({info.slice_count} slices)"
         self.get_logger().info(f"published cycle {info.cycle_id}: {info.slice_count} slices "
-                               f"in {dt:.2f} s from {req.paths}")
+                               f"({encoding}, {nbytes} B of field values each) in {dt:.2f} s "
+                               f"from {req.paths}")
         self._publish_diagnostics()
         return True, info.cycle_id, "; ".join(notes)
 
