@@ -2,7 +2,8 @@
 
 The test process publishes fully populated messages; ``roundtrip_echo.py`` (a separate process
 on a random domain) republishes them unchanged, and the copies received back must equal the
-originals field by field (NaN == NaN, float32 arrays bit-exact). Services and the action are
+originals field by field (NaN == NaN, float32 arrays bit-exact, 16-bit packed fields with their
+scale constants exact and decoding to the same values). Services and the action are
 called across the same process boundary. Also checks the wrapper's usage errors and `env --json`.
 """
 
@@ -51,6 +52,22 @@ def _field(name: str, units: str, convention: str, n: int, seed: int) -> Any:
                          data=data.tolist())
 
 
+def _packed_field(name: str, units: str, convention: str, n: int, seed: int) -> Any:
+    """A field in 16-bit simple packing (ForecastField.msg): codes 0 (the minimum), 65534 (the
+    maximum) and 65535 (missing) included; float32 `data` left empty."""
+    from shiproute_weather.wire_packing import pack_field
+
+    from shiproute_msgs.msg import ForecastField
+
+    values = np.random.default_rng(seed).uniform(0.0, 360.0, n).astype(np.float32)
+    values[::11] = np.nan
+    packed = pack_field(values, name)
+    assert {0, 65534, 65535} <= set(np.unique(packed.codes).tolist())
+    return ForecastField(name=name, units=units, direction_convention=convention,
+                         packed=packed.codes.tolist(), add_offset=packed.add_offset,
+                         scale_factor=packed.scale_factor)
+
+
 def _waypoint(i: int, last: bool) -> Any:
     from shiproute_msgs.msg import RoutePlan, RouteWaypoint
 
@@ -75,6 +92,8 @@ def build_messages() -> dict[str, Any]:
         _field("eastward_wind", "m s-1", "", n_lat * n_lon, 1),
         _field("sea_surface_wave_from_direction", "degree", "coming_from", n_lat * n_lon, 2),
         _field("eastward_sea_water_velocity", "m s-1", "going_to", n_lat * n_lon, 3),
+        _packed_field("sea_surface_swell_wave_from_direction", "degree", "coming_from",
+                      n_lat * n_lon, 4),
     ]
     forecast_slice = m.ForecastSlice(
         header=_header(1_772_524_900), cycle_id="storm-2026030312",
@@ -106,7 +125,7 @@ def build_messages() -> dict[str, Any]:
         infeasible_reasons=["leg 3: slamming probability 0.031 > 0.03", "RTA missed by 0 s"],
         total_fuel_t=812.75, total_distance_nm=5_120.4, total_time_s=935_200.0,
         baseline_fuel_t=math.nan, compute_time_s=0.842, waypoints=waypoints)
-    return {"ForecastField": fields[1], "ForecastSlice": forecast_slice, "ForecastCycle": cycle,
+    return {"ForecastField": fields[3], "ForecastSlice": forecast_slice, "ForecastCycle": cycle,
             "ShipState": ship, "RpmStage": stages[5], "RpmProfile": profile,
             "RouteWaypoint": waypoints[0], "RoutePlan": route}
 
@@ -170,6 +189,19 @@ def test_every_message_type_round_trips_across_processes(ros_peer: Any) -> None:
     assert data_out.shape == (61 * 121,)
     assert np.isnan(data_out[::7]).all() and np.isfinite(data_out[1:7]).all()
     assert np.array_equal(data_in.view(np.uint32), data_out.view(np.uint32))  # bit-exact, -0.0
+    from shiproute_weather.convert import field_values
+    from shiproute_weather.wire_packing import unpack_field
+
+    for packed_in, packed_out in ((sent["ForecastSlice"].fields[3],
+                                   received["ForecastSlice"].fields[3]),
+                                  (sent["ForecastField"], received["ForecastField"])):
+        codes_out = np.asarray(packed_out.packed, dtype=np.uint16)
+        assert codes_out.shape == (61 * 121,) and len(packed_out.data) == 0
+        assert np.array_equal(np.asarray(packed_in.packed, dtype=np.uint16), codes_out)
+        assert (packed_out.add_offset, packed_out.scale_factor) == (packed_in.add_offset,
+                                                                    packed_in.scale_factor)
+        assert np.array_equal(unpack_field(field_values(packed_out)),
+                              unpack_field(field_values(packed_in)), equal_nan=True)
     assert math.isnan(received["ShipState"].stw_kn)
     assert math.isinf(received["ShipState"].fuel_rate_t_per_h)
     assert received["ShipState"].mmsi == 4_294_967_295
