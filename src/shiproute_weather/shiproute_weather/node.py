@@ -40,6 +40,7 @@ from .errors import WeatherError
 from .scenarios import scenario_path
 from .stream import load_slices, streamable
 from .watch import DirectoryWatcher
+from .wire_packing import warm_up
 
 CYCLE_TOPIC = "/shiproute/forecast/cycle"
 SLICES_TOPIC = "/shiproute/forecast/slices"
@@ -173,6 +174,7 @@ class WeatherNode(Node):
         return response
 
     def _work(self) -> None:
+        warm_up()  # the packing kernels' first call (~0.5 s), before the first cycle
         while True:
             req = self.requests.get()
             if req is None:

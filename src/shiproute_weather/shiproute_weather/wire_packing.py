@@ -125,3 +125,9 @@ def unpack_field(packed: PackedField, out: np.ndarray | None = None) -> np.ndarr
     _dequantise(codes, float(packed.add_offset), float(packed.scale_factor), out)
     return out
 
+
+
+def warm_up() -> None:
+    """Load the compiled kernels (numba's first call in a process takes ~0.5 s even from its
+    disk cache): the weather node does this at start, not on its first cycle."""
+    unpack_field(pack_field(np.array([0.0, 1.0, np.nan], dtype=np.float32)))
