@@ -114,9 +114,11 @@ else:  # pragma: no cover - x86-64 CPUs have F16C since 2012
         return np.uint16(half_bits(_bits(x)))
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True)
 def address(a: np.ndarray) -> int:
-    """Memory address of an array's first element (a quarter of ``a.ctypes.data``'s cost)."""
+    """Memory address of an array's first element (a quarter of ``a.ctypes.data``'s cost).
+    Keeps the GIL: releasing it for a few nanoseconds of work would cost a wait for it back
+    (up to the 5 ms switch interval) while a ROS executor thread runs Python."""
     return a.ctypes.data
 
 
