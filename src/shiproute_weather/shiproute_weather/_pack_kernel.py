@@ -28,7 +28,6 @@ from numba import carray, njit, types
 from numba.extending import intrinsic
 
 from ._half_kernel import half_bits
-from .wire_packing import decode
 
 #: points per block
 BLOCK = 256
@@ -100,6 +99,14 @@ def _hardware_half() -> bool:
     if triple.startswith(("x86_64", "i686", "i386")):
         return bool(binding.get_host_cpu_features().get("f16c", False))
     return triple.startswith(("aarch64", "arm64"))
+
+
+@njit(cache=True, nogil=True, inline="always")
+def decode(code: np.uint16, offset: float, scale: float) -> np.float32:
+    """float32 value of a wire code (`wire_packing`): float32(offset + scale * code) computed
+    in float64; 65535 -> NaN."""
+    v = np.float32(offset + scale * np.float64(code))
+    return np.float32(np.nan) if code == 65535 else v
 
 
 if _hardware_half():

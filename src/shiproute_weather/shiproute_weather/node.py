@@ -40,7 +40,6 @@ from .errors import WeatherError
 from .scenarios import scenario_path
 from .stream import load_slices, streamable
 from .watch import DirectoryWatcher
-from .wire_packing import warm_up
 
 CYCLE_TOPIC = "/shiproute/forecast/cycle"
 SLICES_TOPIC = "/shiproute/forecast/slices"
@@ -174,7 +173,6 @@ class WeatherNode(Node):
         return response
 
     def _work(self) -> None:
-        warm_up()  # the packing kernels' first call (~0.5 s), before the first cycle
         while True:
             req = self.requests.get()
             if req is None:
@@ -192,22 +190,27 @@ class WeatherNode(Node):
                 info, slices, notes = load_slices(req.paths[0], self.cfg_base)  # block-wise
             else:
                 info, slices, notes = build_cycle(req.paths, self.cfg_base)
-            cycle = cycle_to_msg(info, self.get_clock().now().to_msg())
+            # the whole cycle is encoded before it is announced: an encoding failure leaves
+            # the last good cycle in force, and the announcement is followed by slices at
+            # the transport's pace (~1 ms per slice of encoding no longer sits in between)
+            encoding = str(self.get_parameter("slice_encoding").value)
+            kept: list[ForecastSlice] = []
+            for k in range(len(slices)):
+                s, slices[k] = slices[k], None  # type: ignore[call-overload]  # free as we go
+                kept.append(slice_to_msg(s, None, encoding))
+                del s
+            nbytes = max((wire_bytes(m) for m in kept), default=0)
+            cycle = cycle_to_msg(info)
         except Exception as exc:  # a bad file must never stop the node
             return self._failed(req, exc)
-        encoding = str(self.get_parameter("slice_encoding").value)
+        cycle.header.stamp = self.get_clock().now().to_msg()  # publication time
         self.cycle_pub.publish(cycle)
         stamp = self.get_clock().now().to_msg()
-        kept: list[ForecastSlice] = []
-        nbytes = 0
-        for k in range(len(slices)):
-            s, slices[k] = slices[k], None  # type: ignore[call-overload]  # free as we go
-            m = slice_to_msg(s, stamp, encoding)
-            del s
-            nbytes = max(nbytes, wire_bytes(m))
+        for m in kept:
+            m.header.stamp = stamp
             self.slice_pub.publish(m)
-            if self.publish_period_s > 0:
-                kept.append(m)
+        if self.publish_period_s <= 0:
+            kept = []
         dt = time.monotonic() - t0
         with self.lock:
             self.current = (cycle, kept) if self.publish_period_s > 0 else None
