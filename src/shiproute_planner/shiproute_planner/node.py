@@ -10,8 +10,8 @@ is ready to plan on at once and no other copy of it is kept.
 
 from __future__ import annotations
 
+import contextlib
 import math
-import queue
 import sys
 import threading
 import time
@@ -24,7 +24,11 @@ from nav_msgs.msg import Path as PathMsg
 from rcl_interfaces.msg import ParameterDescriptor, SetParametersResult
 from rclpy.action import ActionServer, CancelResponse, GoalResponse
 from rclpy.callback_groups import MutuallyExclusiveCallbackGroup, ReentrantCallbackGroup
-from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor
+from rclpy.executors import (
+    ExternalShutdownException,
+    MultiThreadedExecutor,
+    SingleThreadedExecutor,
+)
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 
@@ -62,7 +66,7 @@ SLICES = QoSProfile(
 )
 STATE = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE)
 SLICES_TOPIC = "/shiproute/forecast/slices"
-_ANNOUNCEMENT, _STOP_PACKER = -1, -2  # packer inbox entries that are not slice indices
+_ANNOUNCEMENT = -1  # the slice index `_feed` takes for a cycle announcement
 
 PARAMETERS: dict[str, tuple[object, str]] = {
     "origin": ("Busan", "departure port (name, UN/LOCODE or 'lat,lon'); seed-pool key"),
@@ -166,16 +170,19 @@ class PlannerNode(Node):
         self._stop = False
         self._cycle_timing: dict[str, list[float]] = {}  # first slice arrival, packing [s]
         self._trim_memory = False
-        # (cycle id, slice index, slice count, SliceFields): packed on the packer thread while
-        # the executor takes the next slice (packing on executor threads only adds contention)
-        self._inbox: queue.SimpleQueue = queue.SimpleQueue()
 
         io_group = ReentrantCallbackGroup()
-        forecast_group = MutuallyExclusiveCallbackGroup()  # into the packer's inbox in order
-        self.create_subscription(ForecastCycle, "/shiproute/forecast/cycle", self._on_cycle,
-                                 LATCHED, callback_group=forecast_group)
-        self.create_subscription(ForecastSlice, SLICES_TOPIC, self._on_slice, SLICES,
-                                 callback_group=forecast_group)
+        # the forecast arrives on a node of its own, spun by a single-threaded executor (see
+        # `main`): packed in arrival order as they come, and ~2x faster per slice than through the
+        # multi-threaded executor's thread pool (0.20 vs 0.27-0.59 s for a 129-slice cycle)
+        self.intake = rclpy.create_node(
+            f"{self.get_name()}_forecast_intake", namespace=self.get_namespace(),
+            context=self.context, use_global_arguments=False)  # not renamed like this node
+        self.intake.create_subscription(
+            ForecastCycle, self.resolve_topic_name("/shiproute/forecast/cycle"), self._on_cycle,
+            LATCHED)
+        self.intake.create_subscription(ForecastSlice, self.resolve_topic_name(SLICES_TOPIC),
+                                        self._on_slice, SLICES)
         self.create_subscription(ShipState, "/shiproute/ship_state", self._on_ship_state, STATE,
                                  callback_group=io_group)
         self._pub_path = self.create_publisher(PathMsg, "/shiproute/plan/path", LATCHED)
@@ -193,8 +200,6 @@ class PlannerNode(Node):
         self.create_timer(1.0, self._tick, callback_group=MutuallyExclusiveCallbackGroup())
         self._worker = threading.Thread(target=self._work, name="planner", daemon=True)
         self._worker.start()
-        self._packer = threading.Thread(target=self._pack, name="forecast packer", daemon=True)
-        self._packer.start()
         self._log_seed_pool()
         self.get_logger().info("planner ready; waiting for a complete forecast cycle")
 
@@ -246,36 +251,33 @@ class PlannerNode(Node):
 
     # ----------------------------------------------------------------- inputs
     def _on_cycle(self, msg: ForecastCycle) -> None:
-        self._inbox.put((msg.cycle_id, _ANNOUNCEMENT, int(msg.slice_count), None))
+        self._feed(msg.cycle_id, _ANNOUNCEMENT, int(msg.slice_count), None)
 
     def _on_slice(self, msg: ForecastSlice) -> None:
-        # a zero-copy view only (it keeps the message's buffers alive until packed)
+        # a zero-copy view: packed straight from the message's buffers
         self._cycle_timing.setdefault(msg.cycle_id, [time.monotonic(), 0.0])
-        self._inbox.put((msg.cycle_id, int(msg.slice_index), int(msg.slice_count),
-                         slice_fields(msg)))
+        self._feed(msg.cycle_id, int(msg.slice_index), int(msg.slice_count), slice_fields(msg))
 
-    def _pack(self) -> None:
-        """Packer thread: feeds announcements and slices, in arrival order, to the assembler
-        (the only thread that touches it) and takes each cycle that becomes complete."""
-        while True:
-            cycle_id, index, count, item = self._inbox.get()
-            if index == _STOP_PACKER:
-                return
-            t0 = time.monotonic()
-            try:
-                if index == _ANNOUNCEMENT:
-                    sampler = self._assembler.announce(cycle_id, count)
-                else:
-                    sampler = self._assembler.add_slice(cycle_id, index, count, item)
-            except Exception as err:  # a bad slice or cycle must not stop the packer
-                self._reject_cycle(cycle_id, err)
-                continue
-            finally:
-                del item  # the slice's message buffers
-                timing = self._cycle_timing.get(cycle_id)
-                if timing is not None:
-                    timing[1] += time.monotonic() - t0
-            self._take(sampler, cycle_id)
+    def _feed(self, cycle_id: str, index: int, count: int, item: SliceFields | None) -> None:
+        """An announcement or a slice into the assembler, on the forecast intake's one thread
+        (the only one that touches it; the packing kernel runs without the GIL), and the
+        cycle it completes, if any, into planning. Packing here, not on a thread of its own,
+        spares a GIL hand-over per slice (a packer thread took 2.5-3.6 ms per slice against
+        0.9 ms of work)."""
+        t0 = time.monotonic()
+        try:
+            if index == _ANNOUNCEMENT:
+                sampler = self._assembler.announce(cycle_id, count)
+            else:
+                sampler = self._assembler.add_slice(cycle_id, index, count, item)
+        except Exception as err:  # a bad slice or cycle must not stop the intake
+            self._reject_cycle(cycle_id, err)
+            return
+        finally:
+            timing = self._cycle_timing.get(cycle_id)
+            if timing is not None:
+                timing[1] += time.monotonic() - t0
+        self._take(sampler, cycle_id)
 
     def _ship_time_s(self) -> float:
         """Time of the last ship state (-inf before the first): older slices are not kept."""
@@ -531,16 +533,20 @@ class PlannerNode(Node):
             self._cancel.set()
             self._wake.notify()
         self._worker.join(timeout=5.0)
-        self._inbox.put(("", _STOP_PACKER, 0, None))
-        self._packer.join(timeout=5.0)
+
+
+def _spin_quietly(executor: SingleThreadedExecutor) -> None:
+    """Spin until the context shuts down (Ctrl-C and SIGTERM end the main executor)."""
+    with contextlib.suppress(KeyboardInterrupt, ExternalShutdownException):
+        executor.spin()
 
 
 def main(args: list[str] | None = None) -> int:
     """Console entry point `shiproute_planner_node [--ros-args ...]`."""
     _return_large_blocks_at_once()
-    # hand the GIL over every 1 ms instead of 5: the forecast packer thread (compiled, GIL
-    # released) otherwise waits up to 5 ms per slice behind the executor thread taking the
-    # next one; the planner's other threads spend their time in compiled code too
+    # hand the GIL over every 1 ms instead of 5: the forecast intake thread otherwise waits
+    # up to 5 ms per slice behind the executor threads; the planner's other threads spend
+    # their time in compiled code without the GIL
     sys.setswitchinterval(0.001)
     profile = use_dynamic_slice_buffers(SLICES_TOPIC)
     rclpy.init(args=sys.argv if args is None else args)
@@ -548,13 +554,19 @@ def main(args: list[str] | None = None) -> int:
     forget_profile(profile)
     executor = MultiThreadedExecutor(num_threads=4)
     executor.add_node(node)
+    intake = SingleThreadedExecutor()
+    intake.add_node(node.intake)
+    threading.Thread(target=_spin_quietly, args=(intake,), name="forecast intake",
+                     daemon=True).start()
     try:
         executor.spin()
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     finally:
         node.shutdown()
+        intake.shutdown()
         executor.shutdown()
+        node.intake.destroy_node()
         node.destroy_node()
         if rclpy.ok():
             rclpy.try_shutdown()
