@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import shutil
 import statistics
 import tempfile
 import time
@@ -113,6 +114,7 @@ def run(budget_s: float, repeats: int, log: bool = False) -> dict:
         ctx.try_shutdown()
         planner.stop()
         weather.stop()
+        shutil.rmtree(work, ignore_errors=True)  # the cycle copies: ~180 MB each
     return {"replan_latency_s": round(statistics.median(latencies), 3),
             "replan_latencies_s": [round(x, 3) for x in latencies],
             "planner_budget_s": budget_s, "planner_rss_mb": round(rss, 1),
