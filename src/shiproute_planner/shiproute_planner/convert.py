@@ -15,7 +15,8 @@ from builtin_interfaces.msg import Time
 from geometry_msgs.msg import PoseStamped
 from nav_msgs.msg import Path
 from shiproute_weather.canonical import Grid
-from shiproute_weather.wire_packing import PackedField
+from shiproute_weather.errors import SliceError
+from shiproute_weather.wire_packing import field_values
 
 from shiproute_msgs.msg import ForecastSlice, RouteWaypoint, RpmProfile, RpmStage, ShipState
 from shiproute_msgs.msg import RoutePlan as RoutePlanMsg
@@ -145,14 +146,10 @@ def slice_fields(msg: ForecastSlice) -> SliceFields:
     fields = []
     problems = []
     for f in msg.fields:
-        n_data, n_packed = len(f.data), len(f.packed)
-        if n_packed and n_data:
-            problems.append(f"field {f.name}: both data ({n_data} values) and packed "
-                            f"({n_packed}) are set, exactly one may be")
-        if n_packed:
-            fields.append((f.name, PackedField(np.frombuffer(f.packed, dtype=np.uint16),
-                                               float(f.add_offset), float(f.scale_factor))))
-        else:
+        try:
+            fields.append((f.name, field_values(f)))
+        except SliceError as err:
+            problems.append(str(err))
             fields.append((f.name, np.frombuffer(f.data, dtype=np.float32)))
     return SliceFields(msg.cycle_id, int(msg.slice_index), int(msg.slice_count),
                        posix_s(msg.valid_time), grid, tuple(fields), tuple(problems))

@@ -108,7 +108,6 @@ def _return_large_blocks_at_once() -> None:
     """Serve allocations from 512 KiB up (a packed slice's fields are 0.7 MB, float32 ones
     1.4 MB) by mmap, so their memory goes back to the OS when freed instead of piling up in
     the heap while a cycle streams in."""
-    import contextlib
     import ctypes
 
     m_mmap_threshold = -3  # glibc mallopt parameter

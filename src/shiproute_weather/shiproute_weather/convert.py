@@ -18,7 +18,7 @@ from builtin_interfaces.msg import Time
 
 from shiproute_msgs.msg import ForecastCycle, ForecastField, ForecastSlice
 
-from .errors import PackingError, SliceError
+from .errors import PackingError
 from .slices import (
     CycleInfo,
     FieldData,
@@ -28,7 +28,7 @@ from .slices import (
     dataset_to_slices,
     slices_to_dataset,
 )
-from .wire_packing import PackedField, pack_field, unpack_field
+from .wire_packing import PackedField, field_values, pack_field, unpack_field
 
 FRAME_ID = "wgs84"
 #: field encodings of a ForecastSlice: 16-bit simple packing, or exact float32
@@ -108,19 +108,6 @@ def slice_to_msg(s: SliceData, stamp: Time | None = None,
 def wire_bytes(msg: ForecastSlice) -> int:
     """Bytes of field values a slice message carries (float32 data and packed codes)."""
     return sum(4 * len(f.data) + 2 * len(f.packed) for f in msg.fields)
-
-
-def field_values(f: ForecastField) -> np.ndarray | PackedField:
-    """The values of a ForecastField without copying: a float32 view of `data`, or the packed
-    codes (a uint16 view of `packed`) with their scaling; raises SliceError when both or
-    neither hold values."""
-    if len(f.packed) and len(f.data):
-        raise SliceError(f"field {f.name}: both data ({len(f.data)}) and packed "
-                         f"({len(f.packed)}) hold values; exactly one may")
-    if len(f.packed):
-        return PackedField(np.frombuffer(f.packed, dtype=np.uint16), float(f.add_offset),
-                           float(f.scale_factor))
-    return np.frombuffer(f.data, dtype=np.float32)
 
 
 def msg_to_slice(msg: ForecastSlice) -> SliceData:

@@ -15,10 +15,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
-from .errors import PackingError
+from .errors import PackingError, SliceError
 
 MISSING_CODE = 65535  #: packed value of a missing (NaN) value
 MAX_CODE = 65534  #: largest packed value of a real value: codes 0..65534 span min..max
@@ -81,3 +82,18 @@ def unpack_field(packed: PackedField, out: np.ndarray | None = None) -> np.ndarr
     out[...] = values  # float64 -> float32: one rounding, as `_pack_kernel.decode`
     out[codes == MISSING_CODE] = np.nan
     return out
+
+
+def field_values(f: Any) -> np.ndarray | PackedField:
+    """The values of a ForecastField message (or any object with its `name`, `data`, `packed`,
+    `add_offset`, `scale_factor`) without copying: a float32 view of `data`, or the packed codes
+    (a uint16 view of `packed`) with their scaling. ROS-free and light, so the planner node
+    reads slices without importing the weather package's xarray side. Raises SliceError when
+    both hold values."""
+    if len(f.packed) and len(f.data):
+        raise SliceError(f"field {f.name}: both data ({len(f.data)}) and packed "
+                         f"({len(f.packed)}) hold values; exactly one may")
+    if len(f.packed):
+        return PackedField(np.frombuffer(f.packed, dtype=np.uint16), float(f.add_offset),
+                           float(f.scale_factor))
+    return np.frombuffer(f.data, dtype=np.float32)
