@@ -192,7 +192,7 @@ class WeatherNode(Node):
                 info, slices, notes = build_cycle(req.paths, self.cfg_base)
             # the whole cycle is encoded before it is announced: an encoding failure leaves
             # the last good cycle in force, and the announcement is followed by slices at
-            # the transport's pace (~1 ms per slice of encoding no longer sits in between)
+            # the transport's pace (~2 ms per slice of encoding no longer sits in between)
             encoding = str(self.get_parameter("slice_encoding").value)
             kept: list[ForecastSlice] = []
             for k in range(len(slices)):
