@@ -40,16 +40,20 @@ def _densify(seeds: list[TrackSeed], spacing_m: float
     """Seeds resampled every ~`spacing_m` along their polylines, padded to one length:
     lon, lat, along-track distance (S, K) and RPM of the polyline leg at each point."""
     rows = []
+    # timed versions of a seed share its polyline (the same arrays): resampled once
+    resampled: dict[tuple[int, int], tuple] = {}
     for s in seeds:
-        lon = np.unwrap(s.lon_deg, period=360.0)
-        _, seg = inverse(lon[:-1], s.lat_deg[:-1], lon[1:], s.lat_deg[1:])
-        total = float(seg.sum())
-        n = max(2, int(np.ceil(total / spacing_m)) + 1)
-        plon, plat = resample_track(lon, s.lat_deg, n)
-        cum = np.concatenate([[0.0], np.cumsum(seg)])
-        d = np.linspace(0.0, total, n)
+        key = (id(s.lon_deg), id(s.lat_deg))
+        if key not in resampled:
+            lon = np.unwrap(s.lon_deg, period=360.0)
+            _, seg = inverse(lon[:-1], s.lat_deg[:-1], lon[1:], s.lat_deg[1:])
+            total = float(seg.sum())
+            n = max(2, int(np.ceil(total / spacing_m)) + 1)
+            resampled[key] = (*resample_track(lon, s.lat_deg, n),
+                              np.concatenate([[0.0], np.cumsum(seg)]), np.linspace(0.0, total, n))
+        plon, plat, cum, d = resampled[key]
         leg = np.clip(np.searchsorted(cum, d, side="right") - 1, 0, max(s.rpm.size - 1, 0))
-        rows.append((plon, plat, d, s.rpm[leg] if s.rpm.size else np.zeros(n)))
+        rows.append((plon, plat, d, s.rpm[leg] if s.rpm.size else np.zeros(d.size)))
     k = max(r[0].size for r in rows)
     out = [np.empty((len(rows), k)) for _ in range(4)]
     for i, r in enumerate(rows):
