@@ -108,10 +108,9 @@ def _freeze_long_lived() -> None:
     """Leave what the process holds now (modules, compiled kernels, coastline, tables: ~1e6
     objects) out of all later garbage collections: a full collection walked them in 45-95 ms
     with the GIL held, stalling slice intake and planning whenever one fell into a re-plan.
-    Garbage is collected first, so none is kept (Python docs, `gc.freeze`)."""
+    Call it right after a full collection, so no garbage is kept (Python docs, `gc.freeze`)."""
     import gc
 
-    gc.collect()
     gc.freeze()
 
 
@@ -419,7 +418,7 @@ class PlannerNode(Node):
         self._write_outputs(plan, inputs.forecast)
         if self._trim_memory:
             self._trim_memory = False
-            _return_freed_memory()
+            _return_freed_memory()  # a full collection first
             if not self._gc_frozen:  # the first plan has loaded everything planning needs
                 self._gc_frozen = True
                 _freeze_long_lived()
