@@ -108,10 +108,12 @@ def _freeze_long_lived() -> None:
     """Leave what the process holds now (modules, compiled kernels, coastline, tables: ~1e6
     objects) out of all later garbage collections: a full collection walked them in 45-95 ms
     with the GIL held, stalling slice intake and planning whenever one fell into a re-plan.
-    Call it right after a full collection, so no garbage is kept (Python docs, `gc.freeze`)."""
+    Call it right after a full collection, so no garbage is kept (Python docs, `gc.freeze`);
+    only the first call freezes."""
     import gc
 
-    gc.freeze()
+    if gc.get_freeze_count() == 0:
+        gc.freeze()
 
 
 def _return_large_blocks_at_once() -> None:
@@ -179,7 +181,6 @@ class PlannerNode(Node):
         self._stop = False
         self._cycle_timing: dict[str, list[float]] = {}  # first slice arrival, packing [s]
         self._trim_memory = False
-        self._gc_frozen = False
 
         io_group = ReentrantCallbackGroup()
         # the forecast arrives on a node of its own, spun by a single-threaded executor (see
@@ -419,9 +420,7 @@ class PlannerNode(Node):
         if self._trim_memory:
             self._trim_memory = False
             _return_freed_memory()  # a full collection first
-            if not self._gc_frozen:  # the first plan has loaded everything planning needs
-                self._gc_frozen = True
-                _freeze_long_lived()
+            _freeze_long_lived()  # after the first plan, which loaded all planning needs
             rss, peak = _memory_mb()
             self.get_logger().info(f"planner memory: {rss:.0f} MiB resident, peak {peak:.0f} MiB")
 
