@@ -57,6 +57,7 @@ def plan_to_msg(plan: RoutePlan, stamp: Time) -> RoutePlanMsg:
     msg.eta = time_msg(plan.eta_s)
     msg.feasible = bool(plan.feasible)
     msg.infeasible_reasons = list(plan.infeasible_reasons)
+    msg.warnings = list(plan.warnings)
     msg.total_fuel_t = float(plan.total_fuel_t)
     msg.total_distance_nm = float(plan.total_distance_nm)
     msg.total_time_s = float(plan.total_time_s)

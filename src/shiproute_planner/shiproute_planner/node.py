@@ -531,6 +531,7 @@ class PlannerNode(Node):
                 "compute_time_s": f"{plan.compute_time_s:.3f}",
                 "feasible": str(plan.feasible),
                 "constraints": ", ".join(plan.infeasible_reasons) or "all met",
+                "warnings": "; ".join(plan.warnings) or "none",
                 "fuel_t": f"{plan.total_fuel_t:.2f}",
                 "eta_minus_rta_h": f"{(plan.eta_s - plan.rta_s) / 3600:.2f}",
             })

@@ -79,6 +79,8 @@ class RoutePlan:
     leg_rtas_s: tuple[float, ...] = ()
     # waypoint index ranges (first, last) planned by the method; the rest are port approaches
     optimised_spans: tuple[tuple[int, int], ...] = ()
+    # what the plan was made without, estimated or did not check, in words (never silent)
+    warnings: tuple[str, ...] = ()
     extra: dict = field(default_factory=dict, compare=False)
 
     @property

@@ -139,4 +139,5 @@ def format_summary(plan) -> str:
         f"compute    {plan.compute_time_s:.2f} s, {plan.generations} generations, "
         f"{plan.evaluations} route evaluations",
     ]
+    lines += [f"warning    {w}" for w in plan.warnings]
     return "\n".join(lines)
