@@ -9,6 +9,7 @@ whose arrays are views on the message's buffers (no copy; float32 or 16-bit pack
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 from builtin_interfaces.msg import Time
@@ -154,3 +155,13 @@ def slice_fields(msg: ForecastSlice) -> SliceFields:
             fields.append((f.name, np.frombuffer(f.data, dtype=np.float32)))
     return SliceFields(msg.cycle_id, int(msg.slice_index), int(msg.slice_count),
                        posix_s(msg.valid_time), grid, tuple(fields), tuple(problems))
+
+
+def cycle_record(msg: Any) -> dict:
+    """The forecast record of a ForecastCycle announcement (files, field sources, load notes)
+    that a plan states (`forecast_statement`)."""
+    sources = list(getattr(msg, "field_sources", []) or [])
+    fields = {str(n): {"source_file": str(sources[k]) if k < len(sources) else ""}
+              for k, n in enumerate(msg.fields)}
+    return {"cycle_id": str(msg.cycle_id), "source_files": [str(f) for f in msg.source_files],
+            "fields": fields, "notes": [str(n) for n in getattr(msg, "notes", []) or []]}

@@ -38,6 +38,7 @@ from shiproute_msgs.msg import RoutePlan as RoutePlanMsg
 from shiproute_msgs.srv import SetVoyage
 
 from .convert import (
+    cycle_record,
     plan_to_msg,
     plan_to_path,
     plan_to_rpm_profile,
@@ -262,6 +263,8 @@ class PlannerNode(Node):
 
     # ----------------------------------------------------------------- inputs
     def _on_cycle(self, msg: ForecastCycle) -> None:
+        # what the cycle holds and where from: stated by every plan made on it
+        self._cycle_records = {msg.cycle_id: cycle_record(msg)}
         self._feed(msg.cycle_id, _ANNOUNCEMENT, int(msg.slice_count), None)
 
     def _on_slice(self, msg: ForecastSlice) -> None:
@@ -305,6 +308,7 @@ class PlannerNode(Node):
         """A complete cycle's sampler replaces the current one and triggers a re-plan."""
         if sampler is None:
             return
+        sampler.record = getattr(self, "_cycle_records", {}).get(cycle_id)
         with self._lock:
             self._forecast, self._cycle_id = sampler, cycle_id
             if self._planning:

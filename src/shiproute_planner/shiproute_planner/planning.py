@@ -21,6 +21,7 @@ import numpy as np
 
 from .approach import Approach, CoastalPassage, approach_length_m, lane_approaches, sail_approach
 from .errors import InvalidVoyageError, PlanCancelledError
+from .forecast_statement import forecast_statement, prepare_forecast
 from .ga.loop import GAConfig
 from .ga.pool import Seed, SeedPool, pool_key
 from .ga.seeds import TrackSeed, shift_track
@@ -47,20 +48,27 @@ def to_posix_s(value: TimeLike) -> float:
     return value.timestamp()
 
 
-def load_forecast(name_or_path: str) -> Any:
-    """Canonical forecast dataset from a file path or a bundled scenario name."""
+def load_forecast(name_or_path: str | Sequence[str], waves_from_wind: bool = True) -> Any:
+    """Canonical forecast dataset from file paths (one cycle: wind, waves and currents may
+    come from different files) or a bundled scenario name. A file that cannot be used is
+    refused with InvalidVoyageError naming it and the reason."""
+    from shiproute_weather.errors import WeatherError
     from shiproute_weather.scenarios import scenario_dataset, scenario_names
 
-    if Path(name_or_path).exists():
-        from shiproute_weather.loaders import open_forecast
+    names = [name_or_path] if isinstance(name_or_path, str | Path) else list(name_or_path)
+    if len(names) == 1 and not Path(names[0]).exists() and names[0] in scenario_names():
+        return scenario_dataset(str(names[0]))
+    for n in names:
+        if not Path(n).exists():
+            raise InvalidVoyageError(
+                f"forecast {str(n)!r} is neither a file nor a bundled scenario "
+                f"({', '.join(scenario_names())})")
+    from shiproute_weather.loaders import open_forecast
 
-        return open_forecast([name_or_path])
-    if name_or_path in scenario_names():
-        return scenario_dataset(name_or_path)
-    raise InvalidVoyageError(
-        f"forecast {name_or_path!r} is neither a file nor a bundled scenario "
-        f"({', '.join(scenario_names())})"
-    )
+    try:
+        return open_forecast([str(n) for n in names], waves_from_wind=waves_from_wind)
+    except WeatherError as exc:
+        raise InvalidVoyageError(f"forecast refused: {exc}") from exc
 
 
 def make_environment(ship: Any, forecast: Any = None) -> tuple[Environment, Any]:
@@ -166,6 +174,7 @@ def plan_voyage(
     approach_rpm: float | None = None,
     coastal_passage: bool = True,
     cycle_id: str = "",
+    persistence_h: float = 24.0,
 ) -> RoutePlan:
     """Plan a voyage and return a frozen RoutePlan.
 
@@ -180,7 +189,9 @@ def plan_voyage(
     `coastal_passage` on through the straits and past the capes next to each port until the
     great circle between the approaches' ends is clear of land (each within the first/last
     sixth of the lane; off lets the method choose between straits); the method optimises
-    between the approaches' sea ends.
+    between the approaches' sea ends. A forecast whose valid times miss the voyage is refused;
+    beyond its ends its edge fields are held for `persistence_h`, then calm water is assumed,
+    and the plan states all of it (`forecast_statement`: warnings and `extra["forecast"]`).
     """
     t0 = time.perf_counter()
     land = land or default_land_mask()
@@ -201,6 +212,8 @@ def plan_voyage(
     if not rta_s > depart_s:
         raise InvalidVoyageError("the RTA must be after the departure time")
     leg_rtas = _leg_rtas(ports, depart_s, rta_s, via_rta)
+    env = dataclasses.replace(env, sampler=prepare_forecast(env.sampler, depart_s, rta_s,
+                                                            persistence_h))
     is_cancelled = _cancel_fn(cancel)
     rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
     pool = SeedPool(seed_pool_dir) if seed_pool_dir is not None else None
@@ -250,9 +263,12 @@ def plan_voyage(
             leg_depart = float(post.eta_s[0])
         approaches.append((pre, post))
     land.fine_coast.save()  # coastal cells this plan resolved: later processes start with them
-    return _assemble(ports, problems, results, baselines, sources, approaches, env, spec,
+    plan = _assemble(ports, problems, results, baselines, sources, approaches, env, spec,
                      method, objective, depart_s, rta_s, leg_rtas, gens, evals,
                      time.perf_counter() - t0)
+    block, said = forecast_statement(env.sampler, plan, persistence_h)
+    return dataclasses.replace(plan, warnings=(*plan.warnings, *said),
+                               extra={**plan.extra, "forecast": block})
 
 
 @dataclasses.dataclass(frozen=True)

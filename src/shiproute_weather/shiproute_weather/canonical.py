@@ -38,8 +38,8 @@ class VariableSpec:
     long_name: str
 
 
-_HS = (0.0, 25.0)
-_T = (0.0, 30.0)
+_HS = (0.0, 30.0)  # impossible values beyond: see outliers.py
+_T = (0.0, 40.0)
 _DIR = (0.0, 360.0)
 
 VARIABLES: dict[str, VariableSpec] = {

@@ -150,6 +150,8 @@ def cycle_to_msg(c: CycleInfo, stamp: Time | None = None) -> ForecastCycle:
     msg.lon_min_deg, msg.lon_max_deg = c.lon_min_deg, c.lon_max_deg
     msg.fields = list(c.fields)
     msg.source_files = list(c.source_files)
+    msg.field_sources = list(c.field_sources)
+    msg.notes = list(c.notes)
     return msg
 
 
@@ -159,7 +161,8 @@ def msg_to_cycle(msg: ForecastCycle) -> CycleInfo:
                      time_to_ns(msg.first_valid_time), time_to_ns(msg.last_valid_time),
                      float(msg.step_s), int(msg.slice_count), msg.source,
                      float(msg.lat_min_deg), float(msg.lat_max_deg), float(msg.lon_min_deg),
-                     float(msg.lon_max_deg), tuple(msg.fields), tuple(msg.source_files))
+                     float(msg.lon_max_deg), tuple(msg.fields), tuple(msg.source_files),
+                     tuple(msg.field_sources), tuple(msg.notes))
 
 
 def dataset_to_msgs(ds: xr.Dataset, source_files: Sequence[str] = (),

@@ -79,10 +79,32 @@ def make_regular_lonlat(ds: xr.Dataset, where: str) -> xr.Dataset:
     if ds["latitude"].ndim == 1 and ds["latitude"].dims == ds["longitude"].dims and \
             ds["latitude"].dims[0] not in ("latitude",):
         return regrid_reduced(ds, ds["latitude"].dims[0])
+    if ds["latitude"].ndim == 2 and ds["longitude"].dims == ds["latitude"].dims:
+        from .projected import regrid_projected  # pyproj only for projected grids
+
+        return regrid_projected(ds, where, _grid_relative_pairs(ds))
     if ds["latitude"].ndim != 1 or ds["longitude"].ndim != 1:
-        raise GridError(where, "curvilinear (2-D) latitude/longitude grids are not supported; "
-                               "expected a regular latitude/longitude grid")
+        raise GridError(where, "latitude/longitude coordinates of different shapes; expected "
+                               "a regular or projected grid")
     return ds
+
+
+def _grid_relative_pairs(ds: xr.Dataset) -> tuple[tuple[str, str], ...]:
+    """(u, v) variable names whose components are along the grid's axes, not east/north:
+    CF x_wind/y_wind, GRIB messages flagged uvRelativeToGrid."""
+    from . import canonical as cv
+    from .namemap import lookup
+
+    u = v = None
+    for n, da in ds.data_vars.items():
+        std = str(da.attrs.get("standard_name", ""))
+        rel = std in ("x_wind", "y_wind") or int(da.attrs.get("GRIB_uvRelativeToGrid", 0)) == 1
+        m = lookup(str(n), std)
+        if rel and m is not None and m.canonical == cv.WIND_U:
+            u = str(n)
+        if rel and m is not None and m.canonical == cv.WIND_V:
+            v = str(n)
+    return ((u, v),) if u and v else ()
 
 
 def normalise_longitude(ds: xr.Dataset, where: str) -> xr.Dataset:
@@ -130,3 +152,25 @@ def utc_naive_times(ds: xr.Dataset, where: str) -> xr.Dataset:
         _, idx = np.unique(t, return_index=True)  # sorts and drops repeated times
         ds = ds.isel(time=idx)
     return ds
+
+
+def require_monotonic(ds: xr.Dataset, where: str) -> None:
+    """Refuse coordinates that are not a grid axis: latitudes and valid times must be strictly
+    monotonic; longitudes too, except for one wrap (e.g. 180..359 then 0..179)."""
+    for name in ("latitude", "time"):
+        v = ds[name].values
+        if v.ndim != 1 or v.size < 2:
+            continue
+        d = np.diff(v.astype("datetime64[ns]").astype(np.int64) if name == "time"
+                    else v.astype(np.float64))
+        if not (np.all(d > 0) or (name == "latitude" and np.all(d < 0))):
+            what = "valid times" if name == "time" else "latitudes"
+            raise GridError(where, f"{what} are not monotonic (coordinate {name!r}); "
+                                   "expected an ordered grid axis")
+    lon = ds["longitude"].values
+    if lon.ndim == 1 and lon.size > 2:
+        d = np.diff(lon.astype(np.float64))
+        up, down = int(np.sum(d > 0)), int(np.sum(d < 0))
+        if np.any(d == 0) or min(up, down) > 1:
+            raise GridError(where, "longitudes are not monotonic (coordinate 'longitude'); "
+                                   "expected an ordered grid axis")

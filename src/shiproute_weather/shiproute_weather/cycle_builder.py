@@ -3,14 +3,16 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import xarray as xr
 
+from . import canonical as cv
 from .combine import Box, subset
 from .errors import SliceError
 from .loaders import open_forecast
+from .record import load_notes
 from .slices import CycleInfo, SliceData, cycle_info, dataset_to_slices, snap_grid
 
 #: Default bound on one ForecastSlice message (field bytes). A 0.5 deg North Pacific grid
@@ -32,6 +34,7 @@ class CycleConfig:
     required: tuple[str, ...] = ()
     cycle_id: str = ""
     notes: list[str] = field(default_factory=list)
+    waves_from_wind: bool = True  # estimate waves of a wind-only cycle (else refuse it)
 
 
 def corridor_box(lat_deg: Sequence[float], lon_deg: Sequence[float], margin_deg: float) -> Box:
@@ -55,7 +58,7 @@ def thin(ds: xr.Dataset, cfg: CycleConfig) -> tuple[xr.Dataset, list[str]]:
             if t[i] - t[keep[-1]] >= cfg.slice_interval_s - 1e-6:
                 keep.append(i)
         ds = ds.isel(time=keep)
-    n_fields = len([v for v in ds.data_vars])
+    n_fields = len(cv.present_variables(ds))
     while True:
         ny = -(-ds.sizes["latitude"] // stride)
         nx = -(-ds.sizes["longitude"] // stride)
@@ -76,8 +79,11 @@ def thin(ds: xr.Dataset, cfg: CycleConfig) -> tuple[xr.Dataset, list[str]]:
 def build_cycle(paths: Sequence[str], cfg: CycleConfig
                 ) -> tuple[CycleInfo, list[SliceData], list[str]]:
     """Load + validate + thin files into the cycle announcement and its slices."""
-    ds = open_forecast(list(paths), required=cfg.required, cycle_id=cfg.cycle_id or None)
+    ds = open_forecast(list(paths), required=cfg.required, cycle_id=cfg.cycle_id or None,
+                       waves_from_wind=cfg.waves_from_wind)
+    report = load_notes(ds)
     ds, notes = thin(ds, cfg)
     if ds.sizes["time"] == 0:
         raise SliceError(f"{', '.join(paths)}: no valid time left after thinning")
-    return cycle_info(ds, paths), list(dataset_to_slices(ds)), notes
+    info = replace(cycle_info(ds, paths), notes=tuple(report))
+    return info, list(dataset_to_slices(ds)), report + notes

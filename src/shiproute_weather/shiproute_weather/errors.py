@@ -68,3 +68,7 @@ class PackingError(WeatherError):
     def __init__(self, field: str, reason: str) -> None:
         super().__init__(f"field {field!r}: {reason}")
         self.field = field
+
+
+class ForecastCoverageError(WeatherError):
+    """A forecast does not cover the time (or place) it is asked for at all."""

@@ -26,9 +26,10 @@ _SPECIAL: dict[str, tuple[tuple[str, int | None], ...]] = {
 _RENAME = {"u": "u10", "v": "v10", "10u": "u10", "10v": "v10", "10si": "ws", "10wdir": "wdir"}
 
 
-def scan(path: Path) -> tuple[list[tuple[str, str, int]], list[bytes], str]:
+def scan(path: Path) -> tuple[list[tuple[str, str, int]], list[bytes], str, set[str]]:
     """Every field's (shortName, typeOfLevel, level), the wanted fields as standalone GRIB
-    messages, and the originating centre.
+    messages, the originating centre, and the shortNames whose vector components are
+    relative to the grid's axes (projected grids; flag uvRelativeToGrid).
 
     Multi-field messages (older NCEP files pack u and v in one message) are split into
     single-field messages. Raises ForecastFileError for a corrupt or truncated file.
@@ -38,6 +39,7 @@ def scan(path: Path) -> tuple[list[tuple[str, str, int]], list[bytes], str]:
     fields: list[tuple[str, str, int]] = []
     wanted: list[bytes] = []
     centre = ""
+    grid_relative: set[str] = set()
     eccodes.codes_grib_multi_support_on()
     try:
         with path.open("rb") as f:
@@ -53,6 +55,10 @@ def scan(path: Path) -> tuple[list[tuple[str, str, int]], list[bytes], str]:
                     if _wanted(*key):
                         wanted.append(bytes(eccodes.codes_get_message(h)))
                         centre = centre or str(eccodes.codes_get(h, "centre"))
+                        if (eccodes.codes_is_defined(h, "uvRelativeToGrid")
+                                and int(eccodes.codes_get(h, "uvRelativeToGrid")) == 1
+                                and str(eccodes.codes_get(h, "gridType")) != "regular_ll"):
+                            grid_relative.add(key[0])
                 finally:
                     eccodes.codes_release(h)
     except Exception as exc:
@@ -61,7 +67,7 @@ def scan(path: Path) -> tuple[list[tuple[str, str, int]], list[bytes], str]:
         eccodes.codes_grib_multi_support_off()
     if not fields:
         raise ForecastFileError(str(path), "no GRIB messages found")
-    return fields, wanted, centre
+    return fields, wanted, centre, grid_relative
 
 
 def _wanted(short: str, tol: str, level: int) -> bool:
@@ -85,7 +91,7 @@ def open_grib(path: Path) -> xr.Dataset:
     """
     import cfgrib
 
-    fields, wanted, centre = scan(path)
+    fields, wanted, centre, grid_relative = scan(path)
     if not wanted:
         found = sorted({m[0] for m in fields})
         raise ForecastFileError(str(path), "no forecast variable found; GRIB shortNames "
@@ -101,7 +107,7 @@ def open_grib(path: Path) -> xr.Dataset:
             except Exception as exc:
                 raise ForecastFileError(str(path), f"cfgrib cannot decode it ({exc})") from exc
             for ds in dss:
-                parts.extend(_variables(ds))
+                parts.extend(_variables(ds, grid_relative))
     if not parts:
         raise ForecastFileError(str(path), "no 10 m wind, wave or current field decoded")
     merged = _merge(parts, path)
@@ -109,23 +115,25 @@ def open_grib(path: Path) -> xr.Dataset:
     return merged
 
 
-def _variables(ds: xr.Dataset) -> list[xr.Dataset]:
+def _variables(ds: xr.Dataset, grid_relative: set[str] = frozenset()) -> list[xr.Dataset]:
     """Each wanted variable of one cfgrib hypercube, level dims reduced, names harmonised."""
     out = []
     for name in list(ds.data_vars):
         da = ds[name].load()
         short = str(da.attrs.get("GRIB_shortName", name))
+        if short in grid_relative:
+            da.attrs["GRIB_uvRelativeToGrid"] = 1
         tol = str(da.attrs.get("GRIB_typeOfLevel", ""))
         if not (_wanted(short, tol, 10 if tol == "heightAboveGround" else 1)
                 or _wanted(str(name), tol, 10 if tol == "heightAboveGround" else 1)):
             continue
-        if "number" in da.dims:
-            da = da.isel(number=0, drop=True)
+        # an ensemble's `number` dim is kept: the canonical dataset carries the members
         if tol in da.dims:
             levels = da[tol].values
             pick = int(np.argmin(np.abs(levels - (10 if tol == "heightAboveGround" else 1))))
             da = da.isel({tol: pick}, drop=True)
-        da = da.drop_vars([c for c in da.coords if c in (tol, "number")], errors="ignore")
+        da = da.drop_vars([c for c in da.coords if c == tol
+                           or (c == "number" and "number" not in da.dims)], errors="ignore")
         out.append(da.rename(_RENAME.get(short, str(name))).to_dataset())
     return out
 

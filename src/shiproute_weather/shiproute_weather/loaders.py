@@ -8,11 +8,13 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from . import canonical as cv
 from .combine import combine
-from .errors import ForecastFileError, WeatherError
+from .errors import ForecastFileError, MissingVariableError, WeatherError
 from .grib import open_grib
 from .normalise import to_canonical
 from .validate import validate
+from .wind_waves import estimate_waves, has_waves
 
 
 def detect_format(path: Path) -> str:
@@ -121,11 +123,14 @@ def open_file(path: str | Path) -> xr.Dataset:
 
 
 def open_forecast(paths: Sequence[str | Path], required: Sequence[str] = (),
-                  cycle_id: str | None = None) -> xr.Dataset:
-    """Load, combine and validate forecast files into one canonical dataset.
+                  cycle_id: str | None = None, waves_from_wind: bool = True) -> xr.Dataset:
+    """Load, combine and validate forecast files into one canonical dataset (one cycle).
 
     Several files are combined onto the grid/times of the first one holding wind (see
-    `combine.combine`). `required` canonical variables must be present after combining.
+    `combine.combine`); every field keeps its source file. A cycle with wind but no waves gets
+    a wind sea estimated from the wind (`wind_waves`, stated in the dataset's
+    `waves_estimated` attribute), or is refused with `waves_from_wind=False`. `required`
+    canonical variables must be present after combining.
     """
     if not paths:
         raise ForecastFileError("(no files)", "no forecast files given")
@@ -133,4 +138,10 @@ def open_forecast(paths: Sequence[str | Path], required: Sequence[str] = (),
     ds = combine(datasets)
     if cycle_id:
         ds.attrs["cycle_id"] = cycle_id
-    return validate(ds, ", ".join(str(p) for p in paths), required)
+    where = ", ".join(str(p) for p in paths)
+    if cv.WIND_U in ds and not has_waves(ds):
+        if not waves_from_wind:
+            raise MissingVariableError(where, cv.WAVE_HS, "wave fields (the forecast has wind "
+                                       "only; allow estimating waves from wind to use it)")
+        ds = estimate_waves(ds)
+    return validate(ds, where, required)

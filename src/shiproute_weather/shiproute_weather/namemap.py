@@ -5,6 +5,10 @@ Conventions (documented per entry, converted in `normalise`):
   mpts (total swell), mp1/mp2. ECMWF mean periods mwp/mpww/mpts are Tm-1,0 (energy period)
   and are converted to Tm01; pp1d is the peak period. Directions are "coming from".
 - NOAA GFS: u10/v10 at heightAboveGround 10 (GRIB) or UGRD/VGRD, ugrd10m/vgrd10m (NOMADS).
+- NOAA WAVEWATCH III model output (ww3_ounf NetCDF): hs, dir, t01/t02/t0m1, fp (peak
+  frequency, Hz: Tp = 1/fp), uwnd/vwnd, ucur/vcur.
+- THREDDS/NCSS NetCDF of GFS/WW3: long names with the level type, e.g.
+  u-component_of_wind_height_above_ground (its height dimension: the 10 m level is taken).
 - NOAA WAVEWATCH III (NOMADS GRIB/NetCDF): HTSGW, DIRPW (peak direction), PERPW (peak
   period), WVHGT WVDIR WVPER (wind sea), SWELL SWDIR SWPER (first partition = primary swell),
   WIND/WDIR or UGRD/VGRD. NOMADS NetCDF appends the level, e.g. htsgwsfc, swell_1.
@@ -28,7 +32,7 @@ class Mapping:
 
     canonical: str
     priority: int = 0  # lower wins when several sources give the same canonical variable
-    period_kind: str = "tm01"  # for periods: tm01 | tp | tm02 | tm_10
+    period_kind: str = "tm01"  # for periods: tm01 | tp | tm02 | tm_10 | fp (peak frequency)
     going_to: bool = False  # direction given as "going to" (add 180 deg)
 
 
@@ -46,6 +50,21 @@ NAMES: dict[str, Mapping] = {
     "v10": _m(cv.WIND_V), "10v": _m(cv.WIND_V), "vgrd": _m(cv.WIND_V, 1),
     "vgrd10m": _m(cv.WIND_V), "vgrd_10m": _m(cv.WIND_V), "vgrdsfc": _m(cv.WIND_V, 2),
     "vwnd": _m(cv.WIND_V, 2), "v_wind": _m(cv.WIND_V, 2),
+    # GFS served by THREDDS/NCSS: one variable per level type, height dims (10 m is picked)
+    "u-component_of_wind_height_above_ground": _m(cv.WIND_U),
+    "v-component_of_wind_height_above_ground": _m(cv.WIND_V),
+    "u-component_of_wind_surface": _m(cv.WIND_U, 3),
+    "v-component_of_wind_surface": _m(cv.WIND_V, 3),
+    # WAVEWATCH III via THREDDS/NCSS
+    "significant_height_of_combined_wind_waves_and_swell_surface": _m(cv.WAVE_HS),
+    "primary_wave_direction_surface": _m(cv.WAVE_DIR, 2),
+    "primary_wave_mean_period_surface": _m(cv.WAVE_TM, 4, "tp"),
+    "significant_height_of_wind_waves_surface": _m(cv.WIND_WAVE_HS),
+    "direction_of_wind_waves_surface": _m(cv.WIND_WAVE_DIR),
+    "mean_period_of_wind_waves_surface": _m(cv.WIND_WAVE_TM, 1),
+    "significant_height_of_swell_waves_ordered_sequence_of_data": _m(cv.SWELL_HS),
+    "direction_of_swell_waves_ordered_sequence_of_data": _m(cv.SWELL_DIR),
+    "mean_period_of_swell_waves_ordered_sequence_of_data": _m(cv.SWELL_TM, 1),
     # total sea
     "swh": _m(cv.WAVE_HS), "htsgw": _m(cv.WAVE_HS), "htsgwsfc": _m(cv.WAVE_HS),
     "vhm0": _m(cv.WAVE_HS), "hs": _m(cv.WAVE_HS, 1), "hm0": _m(cv.WAVE_HS, 1),
@@ -55,6 +74,7 @@ NAMES: dict[str, Mapping] = {
     "mp2": _m(cv.WAVE_TM, 3, "tm02"), "vtm02": _m(cv.WAVE_TM, 3, "tm02"),
     "mwp": _m(cv.WAVE_TM, 2, "tm_10"), "vtm10": _m(cv.WAVE_TM, 2, "tm_10"),
     "t0m1": _m(cv.WAVE_TM, 2, "tm_10"),
+    "t02": _m(cv.WAVE_TM, 3, "tm02"), "fp": _m(cv.WAVE_TM, 5, "fp"),
     "pp1d": _m(cv.WAVE_TM, 4, "tp"), "vtpk": _m(cv.WAVE_TM, 4, "tp"),
     "perpw": _m(cv.WAVE_TM, 4, "tp"), "perpwsfc": _m(cv.WAVE_TM, 4, "tp"),
     # wind sea

@@ -85,7 +85,8 @@ class WeatherNode(Node):
             slice_interval_s=float(p("slice_interval_s", 0.0).value),
             grid_stride=int(p("grid_stride", 1).value), max_slices=self.max_slices,
             max_slice_bytes=int(p("max_slice_bytes", MAX_SLICE_BYTES).value),
-            required=tuple(required), cycle_id=str(p("cycle_id", "").value))
+            required=tuple(required), cycle_id=str(p("cycle_id", "").value),
+            waves_from_wind=bool(p("estimate_waves_from_wind", True).value))
         diag_period_s = float(p("diagnostics_period_s", 1.0).value)
         encoding = str(p("slice_encoding", DEFAULT_SLICE_ENCODING, ParameterDescriptor(
             description="field encoding of published slices: " + ", ".join(SLICE_ENCODINGS)

@@ -106,7 +106,8 @@ class ForecastSampler:
     """Trilinear interpolation in (time, latitude, longitude) of a canonical dataset.
 
     Longitudes are wrapped into the grid's range (and across the seam of a global grid);
-    times outside the grid are clamped to its first/last valid time; points outside the
+    times outside the grid are clamped to its first/last valid time (without limit: planning
+    uses `coverage.bounded_in_time`, which bounds that persistence and states it); points outside the
     latitude range or outside a regional longitude range give NaN. NaN nodes (e.g. land in a
     wave model) are skipped and the remaining weights renormalised when they carry at least
     `MIN_VALID_WEIGHT` of the total, else the result is NaN. Directions are interpolated as
@@ -132,6 +133,9 @@ class ForecastSampler:
         pack_fields(data, names, lambda n: ds[n].transpose("time", "latitude",
                                                            "longitude").values)
         self._init(data, times_s, grid, names)
+        from .record import cycle_record
+
+        self.record = cycle_record(ds)
 
     @classmethod
     def from_packed(cls, data: np.ndarray, times_s: np.ndarray, grid: Grid,
@@ -149,11 +153,16 @@ class ForecastSampler:
     def _init(self, data: np.ndarray, times_s: np.ndarray, grid: Grid,
               names: list[str]) -> None:
         self.variables: tuple[str, ...] = tuple(names)
+        #: what the cycle holds and where each field came from (`record.cycle_record`), or
+        #: None when the sampler was packed from elsewhere without one
+        self.record: dict | None = None
         self.grid = grid
         self.times_s = np.ascontiguousarray(times_s, dtype=np.float64)
         if self.times_s.size > 1 and np.any(np.diff(self.times_s) <= 0):
             raise ValueError("forecast times must be strictly ascending")
         self._data = np.ascontiguousarray(data)
+        #: the forecast's own valid times (`coverage.bounded_in_time` adds edge slices)
+        self.forecast_times_s = self.times_s
         # the kernel reads half precision as its bit patterns (numba has no CPU float16)
         self.kernel_data = (self._data.view(np.uint16) if self._data.dtype == np.float16
                             else self._data)

@@ -79,6 +79,8 @@ class CycleInfo:
     lon_max_deg: float
     fields: tuple[str, ...]
     source_files: tuple[str, ...]
+    field_sources: tuple[str, ...] = ()  # source file of each entry of `fields`
+    notes: tuple[str, ...] = ()  # what the load estimated, converted, masked or lacks
 
 
 def _step(first: float, last: float, n: int) -> float:
@@ -113,7 +115,9 @@ def cycle_info(ds: xr.Dataset, source_files: Sequence[str] = ()) -> CycleInfo:
     return CycleInfo(str(ds.attrs["cycle_id"]), iso_to_ns(ds.attrs["forecast_reference_time"]),
                      int(t[0]), int(t[-1]), step, int(t.size), str(ds.attrs["source"]),
                      float(lat[0]), float(lat[-1]), float(lon[0]), float(lon[-1]),
-                     tuple(cv.present_variables(ds)), tuple(str(f) for f in source_files))
+                     tuple(cv.present_variables(ds)), tuple(str(f) for f in source_files),
+                     tuple(str(ds[n].attrs.get("source_file", "")) for n in
+                           cv.present_variables(ds)))
 
 
 def dataset_to_slices(ds: xr.Dataset) -> Iterator[SliceData]:

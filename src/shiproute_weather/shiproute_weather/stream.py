@@ -20,6 +20,8 @@ from .cycle_builder import CycleConfig
 from .errors import ForecastFileError, GridError, WeatherError
 from .loaders import NETCDF_CHUNK_CACHE_BYTES, decode_variables, detect_format
 from .normalise import to_canonical
+from .outliers import masked_counts
+from .record import load_notes
 from .slices import CycleInfo, SliceData, cycle_info, dataset_to_slices, snap_grid
 from .validate import validate
 
@@ -31,9 +33,27 @@ BLOCK_TIMES = 16
 
 
 def streamable(paths: list[str], cfg: CycleConfig) -> bool:
-    """One NetCDF file and no time thinning: the streaming path applies."""
+    """One NetCDF file with waves (or no wind), no time thinning: the streaming path applies.
+
+    A wind-only file is loaded whole: its waves are grown from the wind through all of its
+    valid times (`wind_waves`)."""
     return (len(paths) == 1 and cfg.slice_interval_s <= 0 and cfg.grid_stride == 1
-            and Path(paths[0]).exists() and detect_format(Path(paths[0])) == "netcdf")
+            and Path(paths[0]).exists() and detect_format(Path(paths[0])) == "netcdf"
+            and not _wind_without_waves(paths[0]))
+
+
+def _wind_without_waves(path: str) -> bool:
+    """Whether a NetCDF file maps to wind but to no wave height (read lazily: names only)."""
+    from . import canonical as cv
+    from .normalise import mapped_variables
+
+    try:
+        with xr.open_dataset(path, engine="netcdf4", decode_times=False) as raw:
+            found = mapped_variables(raw)
+    except Exception:
+        return False  # the block-wise path reports what is wrong with the file
+    waves = {cv.WAVE_HS, cv.WIND_WAVE_HS, cv.SWELL_HS}
+    return cv.WIND_U in found and not found & waves
 
 
 def _blocks(path: str, cfg: CycleConfig) -> Iterator[xr.Dataset]:
@@ -86,7 +106,10 @@ def load_slices(path: str, cfg: CycleConfig
     first: xr.Dataset | None = None
     stride = 1
     notes: list[str] = []
+    masked: dict[str, int] = {}
     for block in _blocks(path, cfg):
+        for n, k in masked_counts(block).items():
+            masked[n] = masked.get(n, 0) + k
         if first is None:
             per_node = 4 * len(block.data_vars)
             ny, nx = block.sizes["latitude"], block.sizes["longitude"]
@@ -100,6 +123,8 @@ def load_slices(path: str, cfg: CycleConfig
                                          longitude=slice(None, None, stride)))
         if first is None:
             first = block.isel(time=[0])
+            for n in masked:
+                first[n].attrs["masked_outliers"] = 0  # the totals are set below
         slices.extend(dataset_to_slices(block))
     if first is None:
         raise WeatherError(f"{path}: no valid time")
@@ -107,6 +132,10 @@ def load_slices(path: str, cfg: CycleConfig
     slices = [replace(sl, slice_index=k, slice_count=n) for k, sl in enumerate(slices)]
     t = np.array([sl.valid_time_ns for sl in slices], dtype=np.int64)
     step = float((t[1] - t[0]) / 1e9) if n > 1 else 0.0
+    for name, k in masked.items():
+        first[name].attrs["masked_outliers"] = k
+    report = load_notes(first)
     info = replace(cycle_info(first, [path]), first_valid_time_ns=int(t[0]),
-                   last_valid_time_ns=int(t[-1]), step_s=step, slice_count=n)
-    return info, slices, notes
+                   last_valid_time_ns=int(t[-1]), step_s=step, slice_count=n,
+                   notes=tuple(report))
+    return info, slices, report + notes

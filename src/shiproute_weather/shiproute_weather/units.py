@@ -20,6 +20,7 @@ _FACTORS: dict[str, dict[str, float]] = {
     "m": {"m": 1.0, "meter": 1.0, "meters": 1.0, "metre": 1.0, "metres": 1.0,
           "cm": 0.01, "ft": 0.3048, "feet": 0.3048},
     "s": {"s": 1.0, "sec": 1.0, "second": 1.0, "seconds": 1.0},
+    "s-1": {"s-1": 1.0, "hz": 1.0, "1/s": 1.0, "s**-1": 1.0, "1 s-1": 1.0, "hertz": 1.0},
     "degree": {"degree": 1.0, "degrees": 1.0, "deg": 1.0, "degree true": 1.0,
                "degrees true": 1.0, "degree_true": 1.0, "degrees_true": 1.0, "°": 1.0,
                "degrees_north": 1.0, "degree_north": 1.0, "degrees_east": 1.0,

@@ -10,10 +10,12 @@ import xarray as xr
 from . import canonical as cv
 from .errors import GridError, MissingVariableError, ValueRangeError
 
-#: Physical limits (beyond the contract's storage ranges): Hs 0-25 m, |wind| < 100 m/s,
-#: periods 0-30 s, currents below 10 m/s, directions 0-360 deg.
-WIND_SPEED_MAX_M_S = 100.0
-CURRENT_SPEED_MAX_M_S = 10.0
+from .outliers import CURRENT_SPEED_MAX_M_S, WIND_SPEED_MAX_M_S
+
+#: Physical limits (the same as `outliers`, which masks what lies beyond them when a file is
+#: read): Hs 0-30 m, |wind| < 100 m/s, periods 0-40 s, currents below 5 m/s, directions
+#: 0-360 deg. A dataset built in memory that breaks them is refused here.
+__all__ = ["CURRENT_SPEED_MAX_M_S", "WIND_SPEED_MAX_M_S", "validate"]
 
 
 def _check_range(ds: xr.Dataset, name: str, where: str) -> None:

@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import xarray as xr
-from shiproute_weather.loaders import open_forecast
+from shiproute_weather.loaders import open_file, open_forecast
 from shiproute_weather.spectral import to_tm01_factor
 
 from shiproute_weather import canonical as cv
@@ -60,8 +60,8 @@ def test_ecmwf_era5_names_periods_and_lon_0_360(tmp_path: Path) -> None:
 def test_gfs_nomads_names_and_units(tmp_path: Path) -> None:
     raw = _raw({"ugrd10m": (10.0, "m/s"), "vgrd10m": (-2.0, "m/s")},
                np.arange(90.0, -91.0, -2.5), np.arange(0.0, 360.0, 2.5), "lat", "lon")
-    ds = open_forecast([_write(raw, tmp_path / "gfs.nc")])
-    assert set(ds.data_vars) == {cv.WIND_U, cv.WIND_V}
+    ds = open_file(_write(raw, tmp_path / "gfs.nc"))
+    assert set(ds.data_vars) == {cv.WIND_U, cv.WIND_V}  # the file's own fields
     assert ds.latitude.values[0] == -90.0
     assert float(ds[cv.WIND_U].max()) == 10.0 and float(ds[cv.WIND_V].min()) == -2.0
 

@@ -74,7 +74,8 @@ def test_streaming_thins_large_slices(tmp_path: Path) -> None:
 
 def test_streaming_rejects_a_bad_file_before_yielding(tmp_path: Path) -> None:
     ds = small_canonical(n_time=40)
-    ds["sea_surface_wave_significant_height"][37, 2, 30] = np.float32(40.0)
+    # a block late in the file whose wave heights are all impossible (an undeclared fill)
+    ds["sea_surface_wave_significant_height"][32:] = np.float32(9999.0)
     p = str(write_nc(ds, tmp_path / "late_error.nc"))
     with pytest.raises(WeatherError, match=r"late_error\.nc"):
         load_slices(p, CycleConfig())

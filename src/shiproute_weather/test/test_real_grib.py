@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from shiproute_weather.loaders import open_forecast
+from shiproute_weather.loaders import open_file, open_forecast
 from shiproute_weather.sampling import ForecastSampler
 
 from shiproute_weather import canonical as cv
@@ -18,7 +18,7 @@ pytestmark = pytest.mark.skipif(
 
 
 def test_ecmwf_tigge_reduced_gaussian_wind() -> None:
-    ds = open_forecast([EXAMPLES / "ecmwf_tigge.grb"])
+    ds = open_file(EXAMPLES / "ecmwf_tigge.grb")
     assert set(ds.data_vars) == {cv.WIND_U, cv.WIND_V}
     # reduced Gaussian N200 -> 400 rows, regridded onto the densest row (800 columns)
     assert ds.sizes["latitude"] == 400 and ds.sizes["longitude"] == 800
@@ -33,7 +33,7 @@ def test_ecmwf_tigge_reduced_gaussian_wind() -> None:
 
 
 def test_gfs_2p5deg_multi_field_messages() -> None:
-    ds = open_forecast([EXAMPLES / "gfs.t12z.pgrbf120.2p5deg.grib2"])
+    ds = open_file(EXAMPLES / "gfs.t12z.pgrbf120.2p5deg.grib2")
     assert set(ds.data_vars) == {cv.WIND_U, cv.WIND_V}  # u and v share one GRIB message
     assert ds.sizes["latitude"] == 73 and ds.sizes["longitude"] == 144
     assert float(ds.latitude[0]) == -90.0 and float(ds.longitude[1]) == 2.5

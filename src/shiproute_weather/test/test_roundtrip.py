@@ -9,12 +9,13 @@ import numpy as np
 import pytest
 import xarray as xr
 from shiproute_weather.loaders import open_forecast
+from shiproute_weather.record import without_record
 from shiproute_weather.slices import dataset_to_slices, slices_to_dataset
 from weather_fixtures import small_canonical, write_nc
 
 
 def test_slices_round_trip_exact(tmp_path: Path) -> None:
-    ds = open_forecast([write_nc(small_canonical(n_time=4), tmp_path / "a.nc")])
+    ds = without_record(open_forecast([write_nc(small_canonical(n_time=4), tmp_path / "a.nc")]))
     slices = list(dataset_to_slices(ds))
     assert [s.slice_index for s in slices] == [0, 1, 2, 3]
     assert slices[0].nbytes == 13 * ds.sizes["latitude"] * ds.sizes["longitude"] * 4
@@ -29,7 +30,7 @@ def test_messages_round_trip_exact_through_serialisation(tmp_path: Path) -> None
 
     from shiproute_msgs.msg import ForecastCycle, ForecastSlice
 
-    ds = open_forecast([write_nc(small_canonical(n_time=3), tmp_path / "b.nc")])
+    ds = without_record(open_forecast([write_nc(small_canonical(n_time=3), tmp_path / "b.nc")]))
     cycle, msgs = dataset_to_msgs(ds, ["b.nc"], encoding="float32")
     wire = [deserialize_message(serialize_message(m), ForecastSlice) for m in msgs]
     assert all(len(f.packed) == 0 for m in wire for f in m.fields)
@@ -54,7 +55,7 @@ def test_packed_messages_round_trip_within_the_packing_bound(tmp_path: Path) -> 
 
     from shiproute_msgs.msg import ForecastSlice
 
-    ds = open_forecast([write_nc(small_canonical(n_time=3), tmp_path / "c.nc")])
+    ds = without_record(open_forecast([write_nc(small_canonical(n_time=3), tmp_path / "c.nc")]))
     _, msgs = dataset_to_msgs(ds)
     _, exact = dataset_to_msgs(ds, encoding="float32")
     n = ds.sizes["latitude"] * ds.sizes["longitude"]

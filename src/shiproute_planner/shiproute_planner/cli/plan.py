@@ -8,7 +8,7 @@ import sys
 from datetime import timedelta
 from pathlib import Path
 
-from ..errors import PlannerError
+from ..errors import InvalidVoyageError, PlannerError
 from ..methods import Progress, method_names
 from ..planning import load_forecast, plan_voyage, to_posix_s
 
@@ -39,8 +39,16 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--rta", required=True,
                     help="required time of arrival: ISO time or duration after departure (13d)")
     ap.add_argument("--ship", default="container_4600teu", help="bundled ship or YAML path")
-    ap.add_argument("--forecast", default=None,
-                    help="forecast file (GRIB2/NetCDF) or bundled scenario; omit for calm water")
+    ap.add_argument("--forecast", action="append", default=[],
+                    help="forecast file (GRIB1/2, NetCDF) or bundled scenario; repeat to make "
+                         "one cycle of several files (e.g. wind, waves, currents); omit for "
+                         "calm water")
+    ap.add_argument("--no-wave-estimate", action="store_true",
+                    help="refuse a forecast with wind but no waves instead of estimating the "
+                         "waves from the wind")
+    ap.add_argument("--persistence-hours", type=float, default=24.0,
+                    help="hold the forecast's last fields this long beyond its last valid "
+                         "time, then assume calm water (default 24)")
     ap.add_argument("--objective", choices=("fuel", "distance", "eta"), default="fuel")
     ap.add_argument("--method", default="seed_ga", help="planning method (see --list-methods)")
     ap.add_argument("--budget", type=parse_duration_s, default=3.0, help="wall time, e.g. 3s")
@@ -82,7 +90,10 @@ def main(argv: list[str]) -> int:
             name, _, when = v.partition("@")
             via.append(name)
             via_rta.append(to_posix_s(when) if when else None)
-        forecast = load_forecast(args.forecast) if args.forecast else None
+        if args.persistence_hours < 0:
+            raise InvalidVoyageError("--persistence-hours must be >= 0")
+        forecast = (load_forecast(args.forecast, waves_from_wind=not args.no_wave_estimate)
+                    if args.forecast else None)
         # build the sampler outside the budget: --budget is planning time, not file loading
         env_forecast = None
         if forecast is not None:
@@ -94,7 +105,8 @@ def main(argv: list[str]) -> int:
             env_forecast, via=via, via_rta=via_rta, objective=args.objective, method=args.method,
             cycle_id=str(forecast.attrs.get("cycle_id", "")) if forecast is not None else "",
             budget_s=args.budget, seed=args.seed, stage_hours=args.stage_hours,
-            seed_pool_dir=args.seed_pool, progress=_progress)
+            seed_pool_dir=args.seed_pool, progress=_progress,
+            persistence_h=args.persistence_hours)
         print(file=sys.stderr)
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)
@@ -113,6 +125,13 @@ def main(argv: list[str]) -> int:
     print(format_summary(plan))
     print(f"files: {out / stem}.{{rtz,geojson,json{'' if args.no_plot else ',png'}}}")
     return 0 if plan.feasible else 1
+
+
+def _short(name: str) -> str:
+    """Canonical field name without the common prefixes, for one-line summaries."""
+    for p in ("sea_surface_", "sea_water_"):
+        name = name.replace(p, "")
+    return name
 
 
 def format_summary(plan) -> str:
@@ -139,5 +158,13 @@ def format_summary(plan) -> str:
         f"compute    {plan.compute_time_s:.2f} s, {plan.generations} generations, "
         f"{plan.evaluations} route evaluations",
     ]
+    fc = plan.extra.get("forecast") or {}
+    if fc.get("used"):
+        lines.append(f"forecast   {fc['valid_from']} .. {fc['valid_to']}: covers "
+                     f"{fc['covered_hours']:.1f} h of {fc['voyage_hours']:.1f} h "
+                     f"({fc['covered_pct']:.0f} %); fields "
+                     f"{', '.join(_short(n) for n in fc['fields'])}")
+        for f in fc.get("source_files", []):
+            lines.append(f"  from     {f}")
     lines += [f"warning    {w}" for w in plan.warnings]
     return "\n".join(lines)
