@@ -174,3 +174,30 @@ def require_monotonic(ds: xr.Dataset, where: str) -> None:
         if np.any(d == 0) or min(up, down) > 1:
             raise GridError(where, "longitudes are not monotonic (coordinate 'longitude'); "
                                    "expected an ordered grid axis")
+
+
+def regular_axes(ds: xr.Dataset, where: str) -> tuple[xr.Dataset, list[str]]:
+    """Check that latitude and longitude are regular within 2 % of a step (ascending, as after
+    normalising; Gaussian grids pass and are snapped to regular by `snap_grid`). A
+    single irregular row or column at an edge (e.g. a pole row at 90 N after rows every
+    1 deg from 89.46 N) is dropped and said; any other irregularity is refused."""
+    notes = []
+    for name in ("latitude", "longitude"):
+        v = ds[name].values.astype(np.float64)
+        if v.size < 3:
+            continue
+        d = np.diff(v)
+        step = float(np.median(d))
+        tol = 0.02 * abs(step) + 1e-9  # Gaussian latitudes deviate < 0.5 % from regular
+        bad = np.flatnonzero(np.abs(d - step) > tol)
+        if bad.size == 0:
+            continue
+        if bad.size == 1 and bad[0] in (0, d.size - 1):
+            k = 0 if bad[0] == 0 else v.size - 1
+            ds = ds.isel({name: np.delete(np.arange(v.size), k)})
+            notes.append(f"{name} {v[k]:g} dropped: irregular spacing at the grid's edge "
+                         f"({abs(d[bad[0]]):g} instead of {step:g} deg)")
+            continue
+        raise GridError(where, f"coordinate {name!r} is not regular (spacing {step:g} deg, "
+                               f"{bad.size} steps differ)")
+    return ds, notes

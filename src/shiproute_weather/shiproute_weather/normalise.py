@@ -13,6 +13,7 @@ from .coords import (
     ascending_latitude,
     make_regular_lonlat,
     normalise_longitude,
+    regular_axes,
     rename_coords,
     require_monotonic,
     utc_naive_times,
@@ -250,6 +251,7 @@ def to_canonical(raw: xr.Dataset, where: str) -> xr.Dataset:
                             else np.arange(next(iter(members.values())).shape[0]))
     res = xr.Dataset(data, coords=coords)
     res = utc_naive_times(ascending_latitude(normalise_longitude(res, where)), where)
+    res, dropped = regular_axes(res, where)
     res = snap_grid(res)
     attrs = raw.attrs
     ref = attrs.get("forecast_reference_time")
@@ -266,6 +268,9 @@ def to_canonical(raw: xr.Dataset, where: str) -> xr.Dataset:
                  "source_files": where}
     if used:
         res.attrs["ensemble"] = f"planned on the {used}"
+    if dropped or "regridded_from" in ds.attrs:
+        res.attrs["grid_notes"] = "; ".join([*dropped, *([str(ds.attrs["regridded_from"])]
+                                                         if "regridded_from" in ds.attrs else [])])
     for c, rec in record.items():
         if c in res:
             res[c].attrs.update(source_file=where, **rec)

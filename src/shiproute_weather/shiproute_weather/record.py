@@ -61,6 +61,8 @@ def load_notes(ds: Any) -> list[str]:
     notes.extend(f"{', '.join(names)} from {field_record(ds)[names[0]]['source_file']}: {c}"
                  for c, names in held.items())
     notes.extend(f"converted: {c}" for c in sorted(conv))
+    if ds.attrs.get("grid_notes"):
+        notes.append(f"grid: {ds.attrs['grid_notes']}")
     if ds.attrs.get("ensemble"):
         notes.append(f"ensemble: {ds.attrs['ensemble']}")
     return notes
@@ -83,7 +85,7 @@ def cycle_record(ds: Any) -> dict[str, Any]:
 #: attributes that record provenance; they travel on the cycle announcement (field sources,
 #: notes), not with each slice
 VARIABLE_RECORD_ATTRS = ("source_file", "source_variable", "conversion", "masked_outliers")
-DATASET_RECORD_ATTRS = ("source_files", "waves_estimated", "ensemble", "regridded_from")
+DATASET_RECORD_ATTRS = ("source_files", "waves_estimated", "ensemble", "grid_notes")
 
 
 def without_record(ds: Any) -> Any:

@@ -25,7 +25,7 @@ SPIN_UP_H = 24.0
 FETCH_MAX_NODES = 60_000
 WIND_SEA_GAMMA = 3.3
 ESTIMATE_NOTE = ("waves estimated from wind (JONSWAP fetch/duration-limited wind sea, SPM 1984 "
-                 f"equivalent duration, {SPIN_UP_H:g} h spin-up, fetch to land from GSHHG; "
+                 f"equivalent duration, {SPIN_UP_H:g} h spin-up, fetch to land from GSHHG, "
                  "no swell)")
 
 
