@@ -55,9 +55,7 @@ def scan(path: Path) -> tuple[list[tuple[str, str, int]], list[bytes], str, set[
                     if _wanted(*key):
                         wanted.append(bytes(eccodes.codes_get_message(h)))
                         centre = centre or str(eccodes.codes_get(h, "centre"))
-                        if (eccodes.codes_is_defined(h, "uvRelativeToGrid")
-                                and int(eccodes.codes_get(h, "uvRelativeToGrid")) == 1
-                                and str(eccodes.codes_get(h, "gridType")) != "regular_ll"):
+                        if _uv_relative_to_grid(h):
                             grid_relative.add(key[0])
                 finally:
                     eccodes.codes_release(h)
@@ -68,6 +66,19 @@ def scan(path: Path) -> tuple[list[tuple[str, str, int]], list[bytes], str, set[
     if not fields:
         raise ForecastFileError(str(path), "no GRIB messages found")
     return fields, wanted, centre, grid_relative
+
+
+def _uv_relative_to_grid(h: object) -> bool:
+    """Vector components along the grid's axes (flag table 3.3 / GRIB1 table 7, bit 5 =
+    0x08 of resolutionAndComponentFlags), on a grid whose axes are not east/north."""
+    import eccodes
+
+    if str(eccodes.codes_get(h, "gridType")) in ("regular_ll", "reduced_ll", "regular_gg",
+                                                 "reduced_gg"):
+        return False
+    if eccodes.codes_is_defined(h, "resolutionAndComponentFlags"):
+        return bool(int(eccodes.codes_get(h, "resolutionAndComponentFlags")) & 0x08)
+    return False
 
 
 def _wanted(short: str, tol: str, level: int) -> bool:

@@ -58,6 +58,13 @@ def _crs(ds: xr.Dataset, where: str):
                            "Lambert conformal or polar stereographic grid")
 
 
+def _label(ds: xr.Dataset) -> str:
+    attrs = next(iter(ds.data_vars.values())).attrs
+    kind = str(attrs.get("GRIB_gridType", "")) or "projected (CF grid mapping)"
+    return {"lambert": "Lambert conformal", "polar_stereographic": "polar stereographic"
+            }.get(kind, kind)
+
+
 def _affine_fit(x: np.ndarray, y: np.ndarray, where: str) -> np.ndarray:
     """Least-squares (i, j) = M @ (x, y, 1) over every node; refused when it does not fit."""
     ny, nx = x.shape
@@ -78,7 +85,7 @@ def _target_axes(lat2: np.ndarray, lon2: np.ndarray) -> tuple[np.ndarray, np.nda
     dlon_eq = float(np.nanmedian(np.abs((np.diff(lon2, axis=1) + 180.0) % 360.0 - 180.0)
                                  * np.cos(np.deg2rad(lat2[:, 1:]))))
     step = min(dlat, dlon_eq) if np.isfinite(dlon_eq) and dlon_eq > 0 else dlat
-    step = next((s for s in _NICE_STEPS_DEG if s >= 0.9 * step), _NICE_STEPS_DEG[-1])
+    step = max((s for s in _NICE_STEPS_DEG if s <= 1.1 * step), default=_NICE_STEPS_DEG[0])
     lat0, lat1 = np.ceil(np.nanmin(lat2) / step) * step, np.floor(np.nanmax(lat2) / step) * step
     lon = np.sort(np.unique(np.round(lon2[np.isfinite(lon2)] % 360.0, 6)))
     gaps = np.diff(np.concatenate([lon, [lon[0] + 360.0]]))
@@ -155,5 +162,8 @@ def regrid_projected(ds: xr.Dataset, where: str,
               if ydim not in c.dims and xdim not in c.dims and k not in ("latitude", "longitude")}
     coords.update(latitude=lat_t, longitude=lon_t)
     res = xr.Dataset(out, coords=coords, attrs=dict(ds.attrs))
-    res.attrs["regridded_from"] = f"projected grid ({crs.name}) -> regular lat/lon"
+    res.attrs["regridded_from"] = (f"{_label(ds)} {lat2.shape[1]} x {lat2.shape[0]} grid "
+                                   f"regridded to {lat_t[1] - lat_t[0]:g} deg lat/lon"
+                                   + (" (winds turned from grid to east/north)"
+                                      if grid_relative else ""))
     return res
