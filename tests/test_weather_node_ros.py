@@ -195,3 +195,47 @@ def test_new_file_and_corrupt_file(tmp_path: Path) -> None:
             assert proc.running
         finally:
             lis.close()
+
+
+def test_several_files_make_one_cycle_with_its_record(tmp_path: Path) -> None:
+    """Wind from one file and currents from another (own grid and time step) via the load
+    service and via the watched directory: one cycle whose announcement names each field's
+    file and the load's notes (waves estimated from wind), also on /diagnostics."""
+    from shiproute_weather import canonical as cv
+
+    (tmp_path / "watch").mkdir()
+    wind = small_canonical(n_time=5, cycle_id="wind-2026030312")[[cv.WIND_U, cv.WIND_V]]
+    cur = small_canonical(n_time=3, lat=(28.0, 42.0, 1.0), lon=(165.0, 200.0, 1.0), seed=3)
+    cur = cur[[cv.CURRENT_U, cv.CURRENT_V]].isel(time=[0, 2])  # 6-hourly
+    a = write_nc(wind, tmp_path / "gfs_wind.nc")
+    b = write_nc(cur, tmp_path / "cmems_cur.nc")
+    dom = random_domain_id()
+    with _node(tmp_path, dom) as proc, ros_context(dom) as ctx:
+        proc.wait_for_line(r"ready", timeout_s=60)
+        lis = Listener(ctx)
+        try:
+            cli = lis.node.create_client(LoadForecast, LOAD_SERVICE)
+            assert cli.wait_for_service(timeout_sec=10)
+            fut = cli.call_async(LoadForecast.Request(paths=[str(a), str(b)]))
+            spin_until(lis.executor, fut.done, 60, "service reply")
+            assert fut.result().accepted, fut.result().message
+            lis.wait_cycle("wind-2026030312", 5)
+            cycle = lis.cycles[-1]
+            sources = dict(zip(cycle.fields, cycle.field_sources, strict=True))
+            assert sources[cv.WIND_U] == str(a) and sources[cv.CURRENT_V] == str(b)
+            assert sources[cv.WAVE_HS] == str(a)  # grown from that file's wind
+            assert any(n.startswith("waves estimated from wind") for n in cycle.notes)
+            spin_until(lis.executor, lambda: any(
+                "waves estimated from wind" in "".join(kv.value for kv in d.values)
+                for d in lis.diags), 30, "diagnostics with the load notes")
+            # the same two files dropped together into the watched directory: one cycle
+            shutil.copy(a, tmp_path / "watch" / "gfs_wind.nc")
+            shutil.copy(b, tmp_path / "watch" / "cmems_cur.nc")
+            n_before = len(lis.cycles)
+            spin_until(lis.executor, lambda: len(lis.cycles) > n_before, 60, "watched cycle")
+            got = lis.cycles[-1]
+            assert {cv.WIND_U, cv.CURRENT_U, cv.WAVE_HS} <= set(got.fields)
+            assert len(got.source_files) == 2
+            assert proc.running
+        finally:
+            lis.close()
