@@ -1,4 +1,5 @@
-"""Benchmark: load + validate + publish one 16-day 3-hourly 0.5 deg North Pacific cycle."""
+"""Benchmark: load + validate + publish one 16-day 3-hourly 0.5 deg North Pacific cycle; and a
+two-source cycle (wind and waves + currents on another grid and step) loaded and encoded."""
 
 from __future__ import annotations
 
@@ -76,6 +77,15 @@ def main(argv: list[str] | None = None) -> int:
         if sub.poll() is None:
             sub.terminate()
             sub.wait(timeout=10)
+    if not args.file:  # the two-source cycle, in its own process (its own memory peak)
+        from .bench_multi import make_sources
+
+        make_sources(args.scenario)  # derived files are made once, not timed
+        out = subprocess.run([sys.executable, "-m", "shiproute_weather.bench_multi"],
+                             capture_output=True, text=True, timeout=args.timeout_s, env=env)
+        if out.returncode != 0:
+            raise RuntimeError(f"two-source benchmark failed: {out.stderr[-2000:]}")
+        result.update(json.loads(out.stdout.strip().splitlines()[-1]))
     if args.json:
         print(json.dumps(result))
     else:

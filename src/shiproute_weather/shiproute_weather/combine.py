@@ -10,6 +10,7 @@ import xarray as xr
 
 from . import canonical as cv
 from .errors import GridError
+from .regrid import regrid
 from .slices import snap_grid
 
 #: a field of a file with fewer valid times than the cycle's is held this long beyond its own
@@ -90,7 +91,8 @@ def _onto(d: xr.Dataset, names: list[str], base: xr.Dataset) -> xr.Dataset:
         sub = d[names].sel(time=times)
         if _same_axes(sub, base):
             return sub
-    out = resample(d[names], base["latitude"].values, base["longitude"].values, times)
+    out = regrid(d[names], base["latitude"].values.astype(np.float64),
+                 base["longitude"].values.astype(np.float64), times)
     t0, t1 = d["time"].values[0], d["time"].values[-1]
     hold = np.timedelta64(int(PERSISTENCE_H * 3600), "s")
     outside = (times < t0 - hold) | (times > t1 + hold)

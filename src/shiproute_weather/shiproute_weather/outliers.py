@@ -69,23 +69,33 @@ def mask_outliers(ds: xr.Dataset, where: str) -> dict[str, int]:
                 ds[n].values[bad] = np.nan
                 counts[n] = counts.get(n, 0) + n_bad
 
+    def within(a: np.ndarray, lo: float, hi: float, open_lo: bool = False) -> bool:
+        """Whole field inside the limits (NaN skipped): two passes, no temporaries."""
+        a_lo, a_hi = float(np.fmin.reduce(a, axis=None)), float(np.fmax.reduce(a, axis=None))
+        if np.isnan(a_lo):
+            return True  # all missing
+        return (a_lo > lo if open_lo else a_lo >= lo) and a_hi <= hi
+
     with np.errstate(invalid="ignore"):
         for n in _HEIGHTS:
-            if n in ds:
+            if n in ds and not within(ds[n].values, 0.0, HS_MAX_M):
                 a = ds[n].values
                 apply((n,), (a < 0.0) | (a > HS_MAX_M) | np.isinf(a), f"Hs < 0 or > {HS_MAX_M:g} m")
         for n in _PERIODS:
-            if n in ds:
+            if n in ds and not within(ds[n].values, 0.0, PERIOD_MAX_S, open_lo=True):
                 a = ds[n].values
                 apply((n,), (a <= 0.0) | (a > PERIOD_MAX_S) | np.isinf(a),
                       f"period <= 0 or > {PERIOD_MAX_S:g} s")
         for n in cv.DIRECTION_VARIABLES:
-            if n in ds:
+            if n in ds and not within(ds[n].values, -1e30, 1e30):
                 a = ds[n].values
                 apply((n,), np.isinf(a), "infinite direction")
         for u, v, lim in _VECTORS:
             if u in ds and v in ds:
                 a, b = ds[u].values, ds[v].values
+                if within(np.abs(a), 0.0, lim / np.sqrt(2.0)) and within(
+                        np.abs(b), 0.0, lim / np.sqrt(2.0)):
+                    continue  # no component reaches lim / sqrt 2: no speed reaches lim
                 speed2 = a.astype(np.float64) ** 2 + b.astype(np.float64) ** 2
                 apply((u, v), ~(speed2 < lim * lim) & ~np.isnan(speed2),
                       f"speed >= {lim:g} m/s")
