@@ -12,8 +12,9 @@ import pytest
 import xarray as xr
 from shiproute_planner.errors import InvalidVoyageError
 from shiproute_planner.planning import load_forecast, plan_voyage
-from shiproute_weather import canonical as cv
 from shiproute_weather.sampling import ForecastSampler
+
+from shiproute_weather import canonical as cv
 
 CMEMS_NATL = Path("/work/shared/data/forecasts/cmems_glo12_currents_2024-01-01_natl.nc")
 TIGGE_2007 = Path("/usr/share/doc/python-grib-doc/examples/ecmwf_tigge.grb")
@@ -65,7 +66,7 @@ def test_wind_only_gale_plans_with_estimated_waves(tmp_path: Path, land_mask) ->
     block = with_waves.extra["forecast"]
     assert block["fields"][cv.WAVE_HS]["source_file"] == str(path)
     assert block["covered_pct"] == pytest.approx(100.0)
-    with pytest.raises(InvalidVoyageError, match="gfs_wind.nc.*wind only"):
+    with pytest.raises(InvalidVoyageError, match=r"gfs_wind\.nc.*wind only"):
         load_forecast([str(path)], waves_from_wind=False)
 
 

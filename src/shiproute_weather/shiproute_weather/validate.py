@@ -9,7 +9,6 @@ import xarray as xr
 
 from . import canonical as cv
 from .errors import GridError, MissingVariableError, ValueRangeError
-
 from .outliers import CURRENT_SPEED_MAX_M_S, WIND_SPEED_MAX_M_S
 
 #: Physical limits (the same as `outliers`, which masks what lies beyond them when a file is

@@ -5,11 +5,12 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from shiproute_weather import canonical as cv
 from shiproute_weather.coverage import bounded_in_time, require_overlap, time_coverage
 from shiproute_weather.errors import ForecastCoverageError
 from shiproute_weather.sampling import ForecastSampler
 from weather_fixtures import small_canonical
+
+from shiproute_weather import canonical as cv
 
 
 def test_persistence_is_bounded_then_calm() -> None:
@@ -42,5 +43,5 @@ def test_hours_are_split_into_forecast_persistence_and_calm() -> None:
 
 def test_a_forecast_from_another_year_is_refused() -> None:
     t2007 = np.array([1178755200.0, 1178776800.0])  # 2007-05-10 00Z and 06Z
-    with pytest.raises(ForecastCoverageError, match="2007-05-10.*does not overlap.*2026"):
+    with pytest.raises(ForecastCoverageError, match=r"2007-05-10.*does not overlap.*2026"):
         require_overlap(t2007, 1772500000.0, 1773600000.0, "ecmwf_tigge.grb")

@@ -9,11 +9,12 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from shiproute_weather import canonical as cv
 from shiproute_weather.loaders import open_file, open_forecast
 from shiproute_weather.projected import grid_to_earth, x_axis_bearing_deg
 from shiproute_weather.record import load_notes
 from shiproute_weather.spectral import to_tm01_factor
+
+from shiproute_weather import canonical as cv
 
 eccodes = pytest.importorskip("eccodes")
 EXAMPLES = Path("/usr/share/doc/python-grib-doc/examples")

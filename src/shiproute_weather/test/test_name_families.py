@@ -11,10 +11,11 @@ from pathlib import Path
 import netCDF4
 import numpy as np
 import pytest
-from shiproute_weather import canonical as cv
 from shiproute_weather.loaders import open_file, open_forecast
 from shiproute_weather.record import load_notes
 from shiproute_weather.spectral import to_tm01_factor
+
+from shiproute_weather import canonical as cv
 
 LAT = np.array([45.0, 44.0, 43.0, 42.0])  # providers serve north -> south
 LON = np.array([300.0, 301.0, 302.0, 303.0, 304.0])  # 0..360 frame (60 W .. 56 W)

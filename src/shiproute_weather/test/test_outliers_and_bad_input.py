@@ -8,12 +8,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 import xarray as xr
-from shiproute_weather import canonical as cv
 from shiproute_weather.errors import WeatherError
 from shiproute_weather.loaders import open_forecast
 from shiproute_weather.outliers import masked_counts
 from shiproute_weather.record import load_notes
 from weather_fixtures import small_canonical, write_nc
+
+from shiproute_weather import canonical as cv
 
 
 def _with(ds: xr.Dataset, name: str, index: tuple, value: float) -> None:
