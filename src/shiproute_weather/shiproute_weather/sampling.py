@@ -109,8 +109,8 @@ class ForecastSampler:
     times outside the grid are clamped to its first/last valid time (without limit: planning
     uses `coverage.bounded_in_time`, which bounds that persistence and states it); points
     outside the latitude range or outside a regional longitude range give NaN. NaN nodes (e.g.
-    land in a wave model) are skipped and the remaining weights renormalised when they carry at least
-    `MIN_VALID_WEIGHT` of the total, else the result is NaN. Directions are interpolated as
+    land in a wave model) are skipped and the remaining weights renormalised when they carry at
+    least `MIN_VALID_WEIGHT` of the total, else the result is NaN. Directions are interpolated as
     unit vectors (so 350 and 10 deg average to 0, not 180).
 
     The fields are copied once into a (time, lat, lon, channel) array (float32, or float16
