@@ -48,6 +48,7 @@ def _describe(files: list[str]) -> str:
 
     from .canonical import VARIABLES, present_variables
     from .loaders import open_forecast
+    from .record import field_record, load_notes
 
     ds = open_forecast(files)
     lat, lon, t = ds["latitude"].values, ds["longitude"].values, ds["time"].values
@@ -57,11 +58,15 @@ def _describe(files: list[str]) -> str:
              f"{lon[-1]:g} (step {lat[1] - lat[0] if lat.size > 1 else 0:g} x "
              f"{lon[1] - lon[0] if lon.size > 1 else 0:g} deg)",
              f"times {t.size}: {str(t[0])[:16]}Z .. {str(t[-1])[:16]}Z"]
+    record = field_record(ds)
     for n in present_variables(ds):
         a = ds[n].values
         ok = np.isfinite(a)
         rng = f"{a[ok].min():9.3f} .. {a[ok].max():9.3f}" if ok.any() else "all NaN"
-        lines.append(f"  {n:45s} [{VARIABLES[n].units:6s}] {rng}  NaN {100 * (~ok).mean():.1f}%")
+        rec = record[n]
+        lines.append(f"  {n:45s} [{VARIABLES[n].units:6s}] {rng}  NaN {100 * (~ok).mean():.1f}%"
+                     f"  <- {rec['source_variable']} of {Path(rec['source_file']).name}")
+    lines += [f"note: {n}" for n in load_notes(ds)]
     return "\n".join(lines)
 
 
@@ -76,7 +81,8 @@ def _convert(args: argparse.Namespace) -> int:
         ds = subset(ds, Box(*args.region))
     out = Path(args.output)
     ny, nx = ds.sizes["latitude"], ds.sizes["longitude"]
-    enc = {n: {"zlib": True, "complevel": 4, "dtype": "float32", "chunksizes": (1, ny, nx),
+    enc = {n: {"zlib": True, "complevel": 4, "dtype": "float32",
+               "chunksizes": (1,) * (ds[n].ndim - 2) + (ny, nx),
                "_FillValue": np.float32(np.nan)} for n in ds.data_vars}
     ds.to_netcdf(out, engine="netcdf4", encoding=enc)
     print(f"wrote {out} ({', '.join(ds.data_vars)})")

@@ -61,3 +61,22 @@ def test_truncated_grib_is_reported_with_its_name(tmp_path: Path) -> None:
     cut.write_bytes((EXAMPLES / "gfs.t12z.pgrbf120.2p5deg.grib2").read_bytes()[:20000])
     with pytest.raises(ForecastFileError, match=r"cut\.grib2"):
         open_forecast([cut])
+
+
+def test_real_gfs_wind_only_grib2_gets_waves_estimated_or_is_refused() -> None:
+    from shiproute_weather.errors import MissingVariableError
+    from shiproute_weather.record import load_notes
+
+    path = EXAMPLES / "gfs.t12z.pgrbf120.2p5deg.grib2"  # real NCEP GFS: 10 m wind, no waves
+    ds = open_forecast([path])
+    assert any(n.startswith("waves estimated from wind") for n in load_notes(ds))
+    hs = ds[cv.WAVE_HS].values
+    speed = np.hypot(ds[cv.WIND_U].values, ds[cv.WIND_V].values)
+    sea = np.isfinite(hs)
+    # no sea exceeds the fully developed Pierson-Moskowitz height of its own wind (+ the
+    # growth from a stronger wind earlier is impossible here: one valid time, 24 h spin-up)
+    assert np.all(hs[sea] <= 0.241 * np.maximum(speed[sea], 0.5) ** 2 / 9.81 + 1e-3)
+    assert 0.5 < float(np.nanmean(hs)) < 5.0  # global mean Hs is ~2.5 m
+    assert 0.2 < sea.mean() < 0.9  # land is NaN
+    with pytest.raises(MissingVariableError, match=r"pgrbf120\.2p5deg\.grib2"):
+        open_forecast([path], waves_from_wind=False)
