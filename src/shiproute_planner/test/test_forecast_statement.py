@@ -121,3 +121,37 @@ def test_two_file_cycle_following_gulf_stream_saves_fuel(tmp_path: Path, land_ma
     assert block["fields"][cv.CURRENT_V]["source_file"] == str(CMEMS_NATL)
     assert any("held (persistence" in w for w in down.warnings)  # a one-time daily mean
     assert any("no currents" in w for w in down_still.warnings)
+
+
+def test_node_path_states_the_cycle_announcement() -> None:
+    """The planner node plans on a sampler packed from slices: the announcement's field
+    sources and load notes become its record, and the plan's statement repeats them."""
+    pytest.importorskip("shiproute_msgs.msg")
+    from types import SimpleNamespace
+
+    from shiproute_msgs.msg import ForecastCycle
+    from shiproute_planner.convert import cycle_record
+    from shiproute_planner.forecast_statement import forecast_statement
+    from shiproute_weather.canonical import Grid
+
+    msg = ForecastCycle(cycle_id="c1", fields=[cv.WIND_U, cv.WIND_V, cv.WAVE_HS],
+                        source_files=["gfs.grib2"],
+                        field_sources=["gfs.grib2", "gfs.grib2", "gfs.grib2"],
+                        notes=["waves estimated from wind (...)",
+                               "no currents in the forecast: currents taken as zero"])
+    grid = Grid(30.0, 1.0, 11, -60.0, 1.0, 21)  # 30-40 N, 60-40 W
+    times = np.array([0.0, 6 * 3600.0])
+    sampler = ForecastSampler.from_packed(np.zeros((2, 11, 21, 3), np.float32), times, grid,
+                                          [cv.WIND_U, cv.WIND_V, cv.WAVE_HS])
+    sampler.record = cycle_record(msg)
+    wp = [SimpleNamespace(lat_deg=35.0, lon_deg=-55.0 + 10.0 * k, leg_duration_s=6 * 3600.0,
+                          leg_distance_nm=100.0) for k in range(3)]  # the last one off grid
+    plan = SimpleNamespace(departure_s=0.0, eta_s=12 * 3600.0, waypoints=wp, cycle_id="c1")
+    block, warnings = forecast_statement(sampler, plan, persistence_h=24.0)
+    assert block["fields"][cv.WAVE_HS]["source_file"] == "gfs.grib2"
+    assert "waves estimated from wind (...)" in warnings
+    assert any("no currents" in w for w in warnings)
+    assert block["covered_hours"] == pytest.approx(6.0)
+    assert block["persistence_hours"] == pytest.approx(6.0)
+    assert block["outside_grid_hours"] == pytest.approx(6.0)  # the leg reaching 35 W
+    assert any("outside the forecast grid" in w for w in warnings)

@@ -43,22 +43,29 @@ def scan(path: Path) -> tuple[list[tuple[str, str, int]], list[bytes], str, set[
     eccodes.codes_grib_multi_support_on()
     try:
         with path.open("rb") as f:
-            while True:
-                h = eccodes.codes_grib_new_from_file(f)
-                if h is None:
-                    break
-                try:
-                    key = (str(eccodes.codes_get(h, "shortName")),
-                           str(eccodes.codes_get(h, "typeOfLevel")),
-                           int(eccodes.codes_get(h, "level")))
-                    fields.append(key)
-                    if _wanted(*key):
-                        wanted.append(bytes(eccodes.codes_get_message(h)))
-                        centre = centre or str(eccodes.codes_get(h, "centre"))
-                        if _uv_relative_to_grid(h):
-                            grid_relative.add(key[0])
-                finally:
-                    eccodes.codes_release(h)
+            try:
+                while True:
+                    h = eccodes.codes_grib_new_from_file(f)
+                    if h is None:
+                        break
+                    try:
+                        key = (str(eccodes.codes_get(h, "shortName")),
+                               str(eccodes.codes_get(h, "typeOfLevel")),
+                               int(eccodes.codes_get(h, "level")))
+                        fields.append(key)
+                        if _wanted(*key):
+                            msg = bytes(eccodes.codes_get_message(h))
+                            if not wanted or wanted[-1] != msg:  # u and v of one message
+                                wanted.append(msg)
+                            centre = centre or str(eccodes.codes_get(h, "centre"))
+                            if _uv_relative_to_grid(h):
+                                grid_relative.add(key[0])
+                    finally:
+                        eccodes.codes_release(h)
+            finally:
+                # a file given up half-way (truncated) must not leave ecCodes' multi-field
+                # state to the next file read
+                eccodes.codes_grib_multi_support_reset_file(f)
     except Exception as exc:
         raise ForecastFileError(str(path), f"corrupt or truncated GRIB ({exc})") from exc
     finally:
