@@ -26,9 +26,10 @@ _GROUPS = {
 
 
 def prepare_forecast(sampler: Any, depart_s: float, rta_s: float,
-                     persistence_h: float) -> Any:
+                     persistence_h: float, climatology: Any = None) -> Any:
     """The sampler to plan with: refused when its valid times miss the voyage altogether;
-    bounded in time (persistence, then calm) when the voyage may run beyond them."""
+    bounded in time (persistence, then the monthly `climatology` dataset if given, else calm)
+    when the voyage may run beyond them."""
     if sampler is None or not hasattr(sampler, "times_s"):
         return sampler
     from shiproute_weather.coverage import bounded_in_time, require_overlap
@@ -42,7 +43,13 @@ def prepare_forecast(sampler: Any, depart_s: float, rta_s: float,
         raise InvalidVoyageError(str(exc)) from exc
     slack = max(0.25 * (rta_s - depart_s), 86400.0)  # a plan may arrive after its RTA
     if times is sampler.times_s and (depart_s < times[0] or rta_s + slack > times[-1]):
-        return bounded_in_time(sampler, persistence_h)
+        try:
+            out = bounded_in_time(sampler, persistence_h, climatology, rta_s + slack)
+        except ForecastCoverageError as exc:
+            raise InvalidVoyageError(str(exc)) from exc
+        if climatology is not None:
+            out.climatology = str(climatology.attrs.get("source_files", "climatology"))
+        return out
     return sampler
 
 
@@ -67,7 +74,8 @@ def forecast_statement(sampler: Any, plan: Any, persistence_h: float
 
     record = getattr(sampler, "record", None) or {}
     times = np.asarray(getattr(sampler, "forecast_times_s", sampler.times_s))
-    cov = time_coverage(times, plan.departure_s, plan.eta_s, persistence_h)
+    clim = str(getattr(sampler, "climatology", "") or "")
+    cov = time_coverage(times, plan.departure_s, plan.eta_s, persistence_h, clim)
     wps = plan.waypoints
     lon = np.array([w.lon_deg for w in wps])
     lat = np.array([w.lat_deg for w in wps])
@@ -98,7 +106,9 @@ def forecast_statement(sampler: Any, plan: Any, persistence_h: float
         "valid_from": _iso(float(times[0])), "valid_to": _iso(float(times[-1])),
         "voyage_hours": cov.voyage_h, "covered_hours": cov.forecast_h,
         "covered_pct": cov.covered_pct, "persistence_limit_hours": persistence_h,
-        "persistence_hours": cov.persistence_h, "calm_hours": cov.calm_h,
+        "persistence_hours": cov.persistence_h,
+        "calm_hours": 0.0 if clim else cov.calm_h,
+        "climatology_hours": cov.calm_h if clim else 0.0, "climatology_file": clim or None,
         "outside_grid_hours": off_h, "outside_grid_nm": off_nm,
         "outside_grid_pct": 100.0 * off_h / cov.voyage_h if cov.voyage_h > 0 else 0.0,
         "notes": notes,

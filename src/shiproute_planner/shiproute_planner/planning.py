@@ -175,6 +175,7 @@ def plan_voyage(
     coastal_passage: bool = True,
     cycle_id: str = "",
     persistence_h: float = 24.0,
+    climatology: Any = None,
 ) -> RoutePlan:
     """Plan a voyage and return a frozen RoutePlan.
 
@@ -190,7 +191,8 @@ def plan_voyage(
     great circle between the approaches' ends is clear of land (each within the first/last
     sixth of the lane; off lets the method choose between straits); the method optimises
     between the approaches' sea ends. A forecast whose valid times miss the voyage is refused;
-    beyond its ends its edge fields are held for `persistence_h`, then calm water is assumed,
+    beyond its ends its edge fields are held for `persistence_h`, then the monthly
+    `climatology` (a canonical dataset whose times name the months) or calm water is assumed,
     and the plan states all of it (`forecast_statement`: warnings and `extra["forecast"]`).
     """
     t0 = time.perf_counter()
@@ -213,7 +215,7 @@ def plan_voyage(
         raise InvalidVoyageError("the RTA must be after the departure time")
     leg_rtas = _leg_rtas(ports, depart_s, rta_s, via_rta)
     env = dataclasses.replace(env, sampler=prepare_forecast(env.sampler, depart_s, rta_s,
-                                                            persistence_h))
+                                                            persistence_h, climatology))
     is_cancelled = _cancel_fn(cancel)
     rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
     pool = SeedPool(seed_pool_dir) if seed_pool_dir is not None else None

@@ -2,8 +2,9 @@
 
 Inside the forecast's valid-time range its fields are interpolated. Beyond the last valid
 time (or before the first) the edge field is held (persistence) for at most `persistence_h`,
-and calm water (no wind, waves or currents: missing values, which the ship model takes as
-calm) is assumed after that. A voyage that does not overlap the forecast at all is refused.
+and after that a monthly climatology when one is given (a canonical file whose valid times
+name the months: `climatology_slices`), else calm water (no wind, waves or currents: missing
+values, which the ship model takes as calm). A voyage that does not overlap the forecast at all is refused.
 `bounded_in_time` builds a sampler that does exactly this (the bare sampler clamps times to
 its ends without limit); `time_coverage` states it in hours.
 """
@@ -14,6 +15,7 @@ from dataclasses import dataclass
 from datetime import UTC, datetime
 
 import numpy as np
+import xarray as xr
 
 from .errors import ForecastCoverageError
 from .sampling import ForecastSampler
@@ -41,7 +43,8 @@ class TimeCoverage:
     persistence_limit_h: float
     forecast_h: float
     persistence_h: float
-    calm_h: float
+    calm_h: float  # beyond persistence: climatology when `climatology` names one, else calm
+    climatology: str = ""
 
     @property
     def voyage_h(self) -> float:
@@ -61,7 +64,10 @@ class TimeCoverage:
         if self.persistence_h > 0:
             out.append(f"forecast edge held (persistence, at most "
                        f"{self.persistence_limit_h:g} h) for {self.persistence_h:.1f} h")
-        if self.calm_h > 0:
+        if self.calm_h > 0 and self.climatology:
+            out.append(f"monthly climatology ({self.climatology}) used for {self.calm_h:.1f} h "
+                       "beyond the forecast and its persistence")
+        elif self.calm_h > 0:
             out.append(f"calm water assumed for {self.calm_h:.1f} h beyond the forecast and "
                        "its persistence (no wind, waves or currents known)")
         return out
@@ -72,7 +78,7 @@ def _overlap_h(a0: float, a1: float, b0: float, b1: float) -> float:
 
 
 def time_coverage(times_s: np.ndarray, start_s: float, end_s: float,
-                  persistence_h: float = PERSISTENCE_H) -> TimeCoverage:
+                  persistence_h: float = PERSISTENCE_H, climatology: str = "") -> TimeCoverage:
     """Split the voyage [start_s, end_s] into forecast, persistence and calm hours."""
     t0, t1 = float(times_s[0]), float(times_s[-1])
     p = persistence_h * 3600.0
@@ -80,7 +86,7 @@ def time_coverage(times_s: np.ndarray, start_s: float, end_s: float,
     pers = _overlap_h(start_s, end_s, t1, t1 + p) + _overlap_h(start_s, end_s, t0 - p, t0)
     total = max(end_s - start_s, 0.0) / 3600.0
     return TimeCoverage(t0, t1, start_s, end_s, persistence_h, fc, pers,
-                        max(total - fc - pers, 0.0))
+                        max(total - fc - pers, 0.0), climatology)
 
 
 def require_overlap(times_s: np.ndarray, start_s: float, end_s: float, where: str) -> None:
@@ -92,13 +98,52 @@ def require_overlap(times_s: np.ndarray, start_s: float, end_s: float, where: st
             f"{_iso(start_s)} .. {_iso(end_s)}; use a forecast for the voyage's dates")
 
 
-def bounded_in_time(sampler: ForecastSampler,
-                    persistence_h: float = PERSISTENCE_H) -> ForecastSampler:
-    """Sampler that holds the edge fields for `persistence_h` beyond the forecast's first and
-    last valid times, then gives missing values (calm), instead of clamping without limit.
+def climatology_slices(sampler: ForecastSampler, clim: xr.Dataset, start_s: float,
+                       until_s: float) -> tuple[list[np.ndarray], list[float]]:
+    """Slices of a monthly climatology on the sampler's grid and channels: one at `start_s`
+    (its month) and one at the middle of every later month up to past `until_s`. A field the
+    climatology lacks is missing (calm); a month it lacks is refused."""
+    from .regrid import regrid
+    from .sampling import pack_fields
 
-    Two slices are added at each end (a copy of the edge slice and a missing one); the field
-    array is copied once.
+    months = {int(str(t)[5:7]): k for k, t in enumerate(clim["time"].values.astype(
+        "datetime64[M]"))}
+    g = sampler.grid
+    stamps = [start_s]
+    d = datetime.fromtimestamp(start_s, UTC).replace(day=15, hour=0, minute=0, second=0,
+                                                     microsecond=0)
+    while True:
+        d = (d.replace(month=d.month + 1) if d.month < 12
+             else d.replace(year=d.year + 1, month=1))
+        if d.timestamp() > start_s:
+            stamps.append(d.timestamp())
+        if d.timestamp() > until_s:
+            break
+    slices = []
+    for ts in stamps:
+        month = datetime.fromtimestamp(ts, UTC).month
+        if month not in months:
+            raise ForecastCoverageError(f"climatology has no values for month {month} "
+                                        f"(months {sorted(months)})")
+        one = clim.isel(time=[months[month]])
+        on = regrid(one, g.latitudes_deg, g.longitudes_deg, one["time"].values)
+        out = np.empty((1, g.n_lat, g.n_lon, sampler._data.shape[3]), dtype=sampler.dtype)
+        nan = np.full((g.n_lat, g.n_lon), np.nan, dtype=np.float32)
+        pack_fields(out, sampler.variables,
+                    lambda n, on=on: on[n].values[0] if n in on else nan)
+        slices.append(out)
+    return slices, stamps
+
+
+def bounded_in_time(sampler: ForecastSampler, persistence_h: float = PERSISTENCE_H,
+                    climatology: xr.Dataset | None = None,
+                    until_s: float | None = None) -> ForecastSampler:
+    """Sampler that holds the edge fields for `persistence_h` beyond the forecast's first and
+    last valid times, then gives a monthly `climatology` (up to `until_s`) or missing values
+    (calm), instead of clamping without limit.
+
+    Two slices are added at each end (a copy of the edge slice and a missing one), plus the
+    climatology's; the field array is copied once.
     """
     data = sampler._data
     t = sampler.times_s
@@ -106,6 +151,9 @@ def bounded_in_time(sampler: ForecastSampler,
     nan = np.full((1, *data.shape[1:]), np.nan, dtype=data.dtype)
     head, tail = [nan], [nan]
     head_t, tail_t = [t[0] - p - _STEP_S], [t[-1] + p + _STEP_S]
+    if climatology is not None:
+        end = max(until_s if until_s is not None else t[-1], t[-1] + p) + 31 * 86400.0
+        tail, tail_t = climatology_slices(sampler, climatology, t[-1] + p + _STEP_S, end)
     if p > 0:
         head.append(data[:1])
         head_t.append(t[0] - p)
@@ -117,3 +165,18 @@ def bounded_in_time(sampler: ForecastSampler,
     out.record = sampler.record
     out.forecast_times_s = t
     return out
+
+
+def load_climatology(path: str) -> xr.Dataset:
+    """A monthly climatology file as a canonical dataset (one valid time per month of any
+    year; nothing is estimated: a field it lacks stays calm)."""
+    from .loaders import open_file
+    from .validate import validate
+
+    ds = validate(open_file(path), path)
+    months = ds["time"].values.astype("datetime64[M]").astype(int) % 12
+    if np.unique(months).size != months.size:
+        raise ForecastCoverageError(f"{path}: a climatology needs one valid time per month; "
+                                    f"got {months.size} times in {np.unique(months).size} "
+                                    "months")
+    return ds

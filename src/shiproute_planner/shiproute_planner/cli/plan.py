@@ -46,6 +46,9 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--no-wave-estimate", action="store_true",
                     help="refuse a forecast with wind but no waves instead of estimating the "
                          "waves from the wind")
+    ap.add_argument("--climatology", default=None,
+                    help="monthly climatology file (GRIB/NetCDF, one valid time per month) "
+                         "used beyond the forecast and its persistence instead of calm water")
     ap.add_argument("--persistence-hours", type=float, default=24.0,
                     help="hold the forecast's last fields this long beyond its last valid "
                          "time, then assume calm water (default 24)")
@@ -60,6 +63,19 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--no-plot", action="store_true")
     ap.add_argument("--list-methods", action="store_true")
     return ap
+
+
+def _climatology(path: str | None):
+    """The user's monthly climatology dataset, or None; refused with the reason."""
+    if not path:
+        return None
+    from shiproute_weather.coverage import load_climatology
+    from shiproute_weather.errors import WeatherError
+
+    try:
+        return load_climatology(path)
+    except WeatherError as exc:
+        raise InvalidVoyageError(f"climatology refused: {exc}") from exc
 
 
 def _rta(text: str, depart_s: float):
@@ -106,7 +122,8 @@ def main(argv: list[str]) -> int:
             cycle_id=str(forecast.attrs.get("cycle_id", "")) if forecast is not None else "",
             budget_s=args.budget, seed=args.seed, stage_hours=args.stage_hours,
             seed_pool_dir=args.seed_pool, progress=_progress,
-            persistence_h=args.persistence_hours)
+            persistence_h=args.persistence_hours,
+            climatology=_climatology(args.climatology))
         print(file=sys.stderr)
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)
