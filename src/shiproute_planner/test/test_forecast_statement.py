@@ -129,10 +129,11 @@ def test_node_path_states_the_cycle_announcement() -> None:
     pytest.importorskip("shiproute_msgs.msg")
     from types import SimpleNamespace
 
-    from shiproute_msgs.msg import ForecastCycle
     from shiproute_planner.convert import cycle_record
     from shiproute_planner.forecast_statement import forecast_statement
     from shiproute_weather.canonical import Grid
+
+    from shiproute_msgs.msg import ForecastCycle
 
     msg = ForecastCycle(cycle_id="c1", fields=[cv.WIND_U, cv.WIND_V, cv.WAVE_HS],
                         source_files=["gfs.grib2"],

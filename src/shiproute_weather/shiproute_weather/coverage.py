@@ -4,7 +4,8 @@ Inside the forecast's valid-time range its fields are interpolated. Beyond the l
 time (or before the first) the edge field is held (persistence) for at most `persistence_h`,
 and after that a monthly climatology when one is given (a canonical file whose valid times
 name the months: `climatology_slices`), else calm water (no wind, waves or currents: missing
-values, which the ship model takes as calm). A voyage that does not overlap the forecast at all is refused.
+values, which the ship model takes as calm). A voyage that does not overlap the forecast at
+all is refused.
 `bounded_in_time` builds a sampler that does exactly this (the bare sampler clamps times to
 its ends without limit); `time_coverage` states it in hours.
 """
@@ -130,7 +131,7 @@ def climatology_slices(sampler: ForecastSampler, clim: xr.Dataset, start_s: floa
         out = np.empty((1, g.n_lat, g.n_lon, sampler._data.shape[3]), dtype=sampler.dtype)
         nan = np.full((g.n_lat, g.n_lon), np.nan, dtype=np.float32)
         pack_fields(out, sampler.variables,
-                    lambda n, on=on: on[n].values[0] if n in on else nan)
+                    lambda n, on=on, nan=nan: on[n].values[0] if n in on else nan)
         slices.append(out)
     return slices, stamps
 
