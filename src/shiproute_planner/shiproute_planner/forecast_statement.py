@@ -41,7 +41,10 @@ def prepare_forecast(sampler: Any, depart_s: float, rta_s: float,
         require_overlap(times, depart_s, rta_s, cycle)
     except ForecastCoverageError as exc:
         raise InvalidVoyageError(str(exc)) from exc
-    slack = max(0.25 * (rta_s - depart_s), 86400.0)  # a plan may arrive after its RTA
+    # a plan may arrive after its RTA; the bounded sampler copies the field array once, so it
+    # is built only when the voyage reaches past the forecast (a late plan beyond this slack
+    # meets the clamped edge, and the statement says persistence for those hours)
+    slack = 12 * 3600.0
     if times is sampler.times_s and (depart_s < times[0] or rta_s + slack > times[-1]):
         try:
             out = bounded_in_time(sampler, persistence_h, climatology, rta_s + slack)
@@ -75,7 +78,9 @@ def forecast_statement(sampler: Any, plan: Any, persistence_h: float
     record = getattr(sampler, "record", None) or {}
     times = np.asarray(getattr(sampler, "forecast_times_s", sampler.times_s))
     clim = str(getattr(sampler, "climatology", "") or "")
-    cov = time_coverage(times, plan.departure_s, plan.eta_s, persistence_h, clim)
+    bounded = times is not sampler.times_s
+    cov = time_coverage(times, plan.departure_s, plan.eta_s,
+                        persistence_h if bounded else float("inf"), clim)
     wps = plan.waypoints
     lon = np.array([w.lon_deg for w in wps])
     lat = np.array([w.lat_deg for w in wps])
@@ -105,7 +110,7 @@ def forecast_statement(sampler: Any, plan: Any, persistence_h: float
         "fields": {n: fields.get(n, {"source_file": ""}) for n in sampler.variables},
         "valid_from": _iso(float(times[0])), "valid_to": _iso(float(times[-1])),
         "voyage_hours": cov.voyage_h, "covered_hours": cov.forecast_h,
-        "covered_pct": cov.covered_pct, "persistence_limit_hours": persistence_h,
+        "covered_pct": cov.covered_pct, "persistence_limit_hours": cov.persistence_limit_h,
         "persistence_hours": cov.persistence_h,
         "calm_hours": 0.0 if clim else cov.calm_h,
         "climatology_hours": cov.calm_h if clim else 0.0, "climatology_file": clim or None,

@@ -63,8 +63,10 @@ class TimeCoverage:
                f"{self.forecast_h:.1f} h of the {self.voyage_h:.1f} h voyage "
                f"({self.covered_pct:.0f} %)"]
         if self.persistence_h > 0:
-            out.append(f"forecast edge held (persistence, at most "
-                       f"{self.persistence_limit_h:g} h) for {self.persistence_h:.1f} h")
+            limit = (f"at most {self.persistence_limit_h:g} h"
+                     if np.isfinite(self.persistence_limit_h) else "unbounded")
+            out.append(f"forecast edge held (persistence, {limit}) for "
+                       f"{self.persistence_h:.1f} h")
         if self.calm_h > 0 and self.climatology:
             out.append(f"monthly climatology ({self.climatology}) used for {self.calm_h:.1f} h "
                        "beyond the forecast and its persistence")
