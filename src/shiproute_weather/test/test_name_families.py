@@ -187,6 +187,20 @@ def test_cmems_physics_currents_going_to_with_depth(tmp_path: Path) -> None:
     got = open_file(p)
     assert float(got[cv.CURRENT_U][0, 0, 0]) == pytest.approx(1.2)  # the surface layer
     assert got[cv.CURRENT_U].attrs["direction_convention"] == "going_to"
+    # the merged product: total currents (tides, Stokes drift) win over Eulerian uo/vo
+    p2 = tmp_path / "cmems_mod_glo_phy_anfc_merged-uv_PT1H-i.nc"
+    ds = _nc(p2)
+    dims3 = ("time", "latitude", "longitude")
+    shape3 = (HOURS.size, LAT.size, LON.size)
+    for name, val, std in (("uo", 0.5, "eastward_sea_water_velocity"),
+                           ("vo", 0.0, "northward_sea_water_velocity"),
+                           ("utotal", 0.7, "surface_eastward_sea_water_velocity"),
+                           ("vtotal", -0.2, "surface_northward_sea_water_velocity")):
+        _float(ds, name, dims3, _field(shape3, val), {"units": "m s-1", "standard_name": std})
+    ds.close()
+    got = open_file(p2)
+    assert got[cv.CURRENT_U].attrs["source_variable"] == "utotal"
+    assert float(got[cv.CURRENT_V][0, 0, 0]) == pytest.approx(-0.2)
 
 
 def test_wavewatch3_ounf_names_and_peak_frequency(tmp_path: Path) -> None:
