@@ -166,6 +166,7 @@ def plan_voyage(
     approach_rpm: float | None = None,
     coastal_passage: bool = True,
     cycle_id: str = "",
+    ship_model: str = "",
 ) -> RoutePlan:
     """Plan a voyage and return a frozen RoutePlan.
 
@@ -180,10 +181,13 @@ def plan_voyage(
     `coastal_passage` on through the straits and past the capes next to each port until the
     great circle between the approaches' ends is clear of land (each within the first/last
     sixth of the lane; off lets the method choose between straits); the method optimises
-    between the approaches' sea ends.
+    between the approaches' sea ends. `ship_model` chooses the performance model
+    (`learned.select.resolve_model`: physics, kwon, profile:FILE, learned:FILE; "" = the ship
+    file's `performance_model` entry or physics); the choice is stated in the plan's warnings.
     """
     t0 = time.perf_counter()
     land = land or default_land_mask()
+    ship, model_notes = _chosen_model(ship, ship_model)
     env, spec = make_environment(ship, forecast)
     if cycle_id:
         env = dataclasses.replace(env, cycle_id=cycle_id)
@@ -250,9 +254,35 @@ def plan_voyage(
             leg_depart = float(post.eta_s[0])
         approaches.append((pre, post))
     land.fine_coast.save()  # coastal cells this plan resolved: later processes start with them
-    return _assemble(ports, problems, results, baselines, sources, approaches, env, spec,
+    plan = _assemble(ports, problems, results, baselines, sources, approaches, env, spec,
                      method, objective, depart_s, rta_s, leg_rtas, gens, evals,
                      time.perf_counter() - t0)
+    if model_notes:
+        from .learned.select import plan_warnings
+
+        notes = model_notes + plan_warnings(env.model, plan)
+        plan = dataclasses.replace(plan, warnings=plan.warnings + notes)
+    return plan
+
+
+def _chosen_model(ship: Any, ship_model: str) -> tuple[Any, tuple[str, ...]]:
+    """(ship or performance model, notes for the plan's warnings) for a `ship_model` choice."""
+    from .ship import ShipSpec, load_ship
+
+    if not isinstance(ship, str | Path | ShipSpec):
+        if ship_model:
+            raise InvalidVoyageError("give ship_model with a ship name/file, not with a model")
+        return ship, ()
+    spec = ship if isinstance(ship, ShipSpec) else load_ship(ship)
+    if (ship_model or spec.performance_model or "physics") == "physics":
+        return spec, ()
+    from .learned.select import resolve_model
+    from .ship import ShipModelError
+
+    try:
+        return resolve_model(spec, ship_model)
+    except ShipModelError as exc:  # wrong ship, unreadable model file, unknown choice
+        raise InvalidVoyageError(f"ship model: {exc}") from exc
 
 
 @dataclasses.dataclass(frozen=True)

@@ -39,6 +39,9 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--rta", required=True,
                     help="required time of arrival: ISO time or duration after departure (13d)")
     ap.add_argument("--ship", default="container_4600teu", help="bundled ship or YAML path")
+    ap.add_argument("--model", default="",
+                    help="ship model: physics, kwon, profile:FILE.nc or learned:FILE.nc "
+                         "(default: the ship file's performance_model entry, else physics)")
     ap.add_argument("--forecast", default=None,
                     help="forecast file (GRIB2/NetCDF) or bundled scenario; omit for calm water")
     ap.add_argument("--objective", choices=("fuel", "distance", "eta"), default="fuel")
@@ -94,7 +97,7 @@ def main(argv: list[str]) -> int:
             env_forecast, via=via, via_rta=via_rta, objective=args.objective, method=args.method,
             cycle_id=str(forecast.attrs.get("cycle_id", "")) if forecast is not None else "",
             budget_s=args.budget, seed=args.seed, stage_hours=args.stage_hours,
-            seed_pool_dir=args.seed_pool, progress=_progress)
+            seed_pool_dir=args.seed_pool, progress=_progress, ship_model=args.model)
         print(file=sys.stderr)
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)
