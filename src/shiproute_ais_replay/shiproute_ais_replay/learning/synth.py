@@ -115,12 +115,25 @@ def simulate_fleet_records(ship, forecast, n_voyages: int, start_s: float, seed:
                            corruption: Corruption = Corruption(), rate_hz: float = 1 / 60.0
                            ) -> Records:
     """Records of ``n_voyages`` consecutive voyages of the true ship (see the module doc)."""
+    import numba
     from shiproute_weather.sampling import ForecastSampler
 
-    from ..simulate import SimulationOptions, VoyageSimulator
 
     rng = np.random.default_rng(seed)
     sampler = ForecastSampler(forecast).sample if forecast is not None else None
+    threads = numba.get_num_threads()
+    numba.set_num_threads(1)  # one point per call: waking the thread pool cost 25 ms a call
+    try:
+        return _simulate(ship, sampler, n_voyages, start_s, rng, legs, leg_nm, change,
+                         corruption, rate_hz)
+    finally:
+        numba.set_num_threads(threads)
+
+
+def _simulate(ship, sampler, n_voyages, start_s, rng, legs, leg_nm, change, corruption,
+              rate_hz) -> Records:
+    from ..simulate import SimulationOptions, VoyageSimulator
+
     parts = []
     t = start_s
     for v in range(n_voyages):

@@ -4,15 +4,16 @@ The fast kernel solves thrust = resistance with tables of calm-water resistance,
 resistance per Hs^2, the wind coefficient and SFOC. A learned model is turned into the same
 tables, so planning with it costs exactly what planning with the ship file costs:
 
-- calm water: at every speed of the calm table the learned RPM (drafts: the model's reference
-  drafts) fixes the thrust, hence the effective resistance R_eff(V) = KT(J) rho n^2 D^4 (1 - t)
-  the table must hold for the kernel to return that RPM; beyond the training speeds the
-  learned residual fades to zero, so the table returns to the ship file's;
-- fuel: the kernel's brake power at the learned RPM and the learned fuel rate give an
-  effective SFOC per engine load (its ratio to the file's curve held flat beyond the loads
-  met in calm water);
-- weather: one factor on the wave added resistance and one on the wind resistance, fitted by
-  least squares to the learned RPMs over seeded samples of the training range.
+- resistance: over seeded samples of the training range (speed and weather), the learned RPM
+  fixes the thrust, hence the effective resistance KT(J) rho n^2 D^4 (1 - t) the kernel must
+  see to return that RPM; it is fitted by least squares as a(V) R_calm(V) + k_wave R_waves +
+  k_wind R_wind with the ship file's terms, a(V) quadratic in speed (hull fouling, trim) and
+  two constant factors (added resistance); the calm table becomes a(V) R_calm(V), fading back
+  to the file's beyond the training speeds (over ``fallback_std`` standard deviations, as the
+  learned model does), the wave and wind tables are scaled by k_wave and k_wind;
+- fuel: at the same samples the learned fuel rate over the kernel's brake power times the
+  file's SFOC gives a ratio, fitted quadratic in engine load; the SFOC table is the file's
+  times that ratio (held at the ends of the loads seen, fading to 1 beyond them).
 The agreement with the learned model itself is measured (`agreement`) and reported.
 """
 
@@ -57,7 +58,7 @@ def _weather_samples(model: LearnedModel, fore: float, aft: float,
         wind_v_m_s=-u["wind_speed_m_s"] * np.cos(wind_from),
         wind_wave_hs_m=u["hs_m"], wind_wave_from_deg=wave_from,
         wind_wave_period_s=np.maximum(u["wave_period_s"], 1.0))
-    del fore, aft
+    del fore, aft  # the samples are evaluated at the model's reference drafts by the caller
     return u["stw_kn"] * KN_M_S, sea
 
 
@@ -69,34 +70,38 @@ def learned_fast_model(ship: ShipSpec, model: LearnedModel, source: str = "",
     par, tables, _ = base.kernel_arrays()
     r_calm, wake, u_ws, u_sw, m0_ws, m0_sw, caa, sfoc_x, sfoc_y = tables
     fore, aft = model.reference_draft_fore_m, model.reference_draft_aft_m
-    v = np.arange(r_calm.size) * par[fk.P_DV]
-    ok = v >= 0.5
-    calm = SeaState.calm(int(ok.sum()))
-    pred = model.predict(ship, v[ok] / KN_M_S, np.zeros(ok.sum()), fore, aft, calm)
-    n_l = pred.rpm / 60.0
-    thrust, pb = _thrust_power(base, v[ok], n_l, wake[ok])
-    ratio = np.ones_like(v)
-    ratio[ok] = thrust / r_calm[ok]
-    ratio[~ok] = ratio[ok][0]
-    r_new = r_calm * ratio
-    # effective SFOC over the engine loads the calm curve passes
-    load = np.maximum.accumulate(pb / par[fk.P_MCR])
-    file_sfoc = np.interp(load, sfoc_x[0] + np.arange(sfoc_y.size) * (sfoc_x[1] - sfoc_x[0]),
-                          sfoc_y)
-    sfoc_ratio = (pred.fuel_t_per_h / pb * 1e6) / file_sfoc
-    loads = sfoc_x[0] + np.arange(sfoc_y.size) * (sfoc_x[1] - sfoc_x[0])
-    keep = np.concatenate([[True], np.diff(load) > 0])
-    sfoc_new = sfoc_y * np.interp(loads, load[keep], sfoc_ratio[keep])
-    # weather: factors on wave and wind added resistance fitted to the learned RPMs
+    v_grid = np.arange(r_calm.size) * par[fk.P_DV]
     rng = np.random.default_rng(seed)
-    vw, sea = _weather_samples(model, fore, aft, rng)
-    pw = model.predict(ship, vw / KN_M_S, np.zeros(vw.size), fore, aft, sea)
-    w_v = np.interp(vw, v, wake)
-    thrust_w, _ = _thrust_power(base, vw, pw.rpm / 60.0, w_v)
-    r_add = thrust_w - np.interp(vw, v, r_new)
-    r_wind, r_wave = base.physics.added_resistance_n(vw, np.zeros(vw.size), sea)
-    a = np.column_stack([r_wave, r_wind])
-    k_wave, k_wind = np.clip(np.linalg.lstsq(a, r_add, rcond=None)[0], 0.2, 5.0)
+    v, sea = _weather_samples(model, fore, aft, rng)
+    pred = model.predict(ship, v / KN_M_S, np.zeros(v.size), fore, aft, sea)
+    w_v = np.interp(v, v_grid, wake)
+    thrust, pb = _thrust_power(base, v, pred.rpm / 60.0, w_v)
+    r_wind, r_wave = base.physics.added_resistance_n(v, np.zeros(v.size), sea)
+    rc = np.interp(v, v_grid, r_calm)
+    v_lo, v_hi = model.x_lo[0] * KN_M_S, model.x_hi[0] * KN_M_S
+    mid, half = 0.5 * (v_lo + v_hi), max(0.5 * (v_hi - v_lo), 0.1)
+    z = (v - mid) / half
+    a = np.column_stack([rc, rc * z, rc * z**2, r_wave, r_wind])
+    coef = np.linalg.lstsq(a, thrust, rcond=None)[0]
+    k_wave, k_wind = np.clip(coef[3:], 0.2, 5.0)
+    zg = (np.clip(v_grid, v_lo, v_hi) - mid) / half
+    a_grid = coef[0] + coef[1] * zg + coef[2] * zg**2
+    beyond = np.maximum(v_lo - v_grid, v_grid - v_hi) / (model.x_std[0] * KN_M_S)
+    fade = np.clip(1.0 - np.maximum(beyond, 0.0) / model.fallback_std, 0.0, 1.0)
+    ratio = 1.0 + fade * (a_grid - 1.0)
+    r_new = r_calm * ratio
+    # fuel: learned fuel over the kernel's power x the file's SFOC, quadratic in load
+    loads = sfoc_x[0] + np.arange(sfoc_y.size) * (sfoc_x[1] - sfoc_x[0])
+    load = pb / par[fk.P_MCR]
+    f_ratio = pred.fuel_t_per_h / (pb * np.interp(load, loads, sfoc_y) * 1e-6)
+    l_lo, l_hi = float(np.min(load)), float(np.max(load))
+    lm, lh = 0.5 * (l_lo + l_hi), max(0.5 * (l_hi - l_lo), 1e-3)
+    lz = (load - lm) / lh
+    b = np.linalg.lstsq(np.column_stack([np.ones_like(lz), lz, lz**2]), f_ratio, rcond=None)[0]
+    lzg = (np.clip(loads, l_lo, l_hi) - lm) / lh
+    fade_l = np.clip(1.0 - np.maximum(np.maximum(l_lo - loads, loads - l_hi), 0.0) / lh,
+                     0.0, 1.0)
+    sfoc_new = sfoc_y * (1.0 + fade_l * (b[0] + b[1] * lzg + b[2] * lzg**2 - 1.0))
     out = copy.copy(base)
     out._tables = (r_new, wake, u_ws * k_wave, u_sw * k_wave, m0_ws, m0_sw, caa * k_wind,
                    sfoc_x, sfoc_new)
@@ -104,9 +109,9 @@ def learned_fast_model(ship: ShipSpec, model: LearnedModel, source: str = "",
     out.learned_source = source  # type: ignore[attr-defined]
     out.calibration = {  # type: ignore[attr-defined]
         "wave_added_resistance_factor": float(k_wave), "wind_resistance_factor": float(k_wind),
-        "calm_resistance_ratio_at_training_speeds": [
-            float(np.interp(model.x_lo[0] * KN_M_S, v, ratio)),
-            float(np.interp(model.x_hi[0] * KN_M_S, v, ratio))],
+        "calm_resistance_factor_at_training_speeds": [float(a_grid[np.argmin(abs(v_grid - x))])
+                                                      for x in (v_lo, mid, v_hi)],
+        "sfoc_factor_at_loads": [float(b[0] + b[1] * x + b[2] * x * x) for x in (-1, 0, 1)],
     }
     return out
 
