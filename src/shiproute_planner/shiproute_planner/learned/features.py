@@ -67,13 +67,48 @@ def feature_matrix(stw_kn: np.ndarray, heading_deg: np.ndarray, draft_fore_m: np
     return np.column_stack([np.asarray(c, dtype=float).reshape(-1) for c in cols])
 
 
-def physics_prior(ship: ShipSpec, stw_kn: np.ndarray, heading_deg: np.ndarray,
-                  sea: SeaState) -> tuple[np.ndarray, np.ndarray]:
-    """(rpm, fuel t/h) the ship file's model needs for ``stw_kn`` in ``sea``: the prior the
-    network corrects (tabulated model, within 0.5 % of the direct physics solve)."""
-    fm = fast_model(ship)
+DRAFT_STEP_M = 0.1  # drafts are rounded to this for the prior (one table set per pair)
+
+
+def at_drafts(ship: ShipSpec, draft_fore_m: float, draft_aft_m: float) -> ShipSpec:
+    """``ship`` floating at other drafts: displacement changed by the waterplane times the
+    mean-draft change (parallel sinkage), everything else as in the file."""
+    c = ship.condition
+    if draft_fore_m == c.draft_fore_m and draft_aft_m == c.draft_aft_m:
+        return ship
+    d_mean = 0.5 * (draft_fore_m + draft_aft_m) - ship.mean_draft_m
+    h = ship.hull
+    extra_t = 1.025 * h.waterplane_coefficient * h.lwl_m * h.breadth_m * d_mean
+    cond = dataclasses.replace(c, name=f"{c.name} at {draft_fore_m:.2f}/{draft_aft_m:.2f} m",
+                               draft_fore_m=float(draft_fore_m), draft_aft_m=float(draft_aft_m),
+                               displacement_t=c.displacement_t + extra_t)
+    return dataclasses.replace(ship, condition=cond, content_hash=ship.content_hash
+                               + f"#drafts={draft_fore_m:.3f}/{draft_aft_m:.3f}")
+
+
+def physics_prior(ship: ShipSpec, stw_kn: np.ndarray, heading_deg: np.ndarray, sea: SeaState,
+                  draft_fore_m: np.ndarray | float | None = None,
+                  draft_aft_m: np.ndarray | float | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """(rpm, fuel t/h) the ship file's model needs for ``stw_kn`` in ``sea`` at the given
+    drafts (rounded to DRAFT_STEP_M; None = the file's): the prior the network corrects
+    (tabulated model, within 0.5 % of the direct physics solve)."""
     v = np.maximum(np.asarray(stw_kn, dtype=float), 0.5) * KN_M_S
-    rpm = fm.rpm_for_speed(v, np.asarray(heading_deg, dtype=float), sea)
-    rpm = np.clip(rpm, 1.0, 1.45 * ship.engine.rpm_max)
-    fuel = fm.evaluate(rpm, np.asarray(heading_deg, dtype=float), sea).fuel_t_per_h
-    return np.asarray(rpm, dtype=float), np.asarray(fuel, dtype=float)
+    n = v.size
+    hdg = np.broadcast_to(np.asarray(heading_deg, dtype=float), (n,))
+    sea = sea.broadcast((n,))
+    c = ship.condition
+    fore = np.broadcast_to(np.asarray(c.draft_fore_m if draft_fore_m is None else draft_fore_m,
+                                      dtype=float), (n,))
+    aft = np.broadcast_to(np.asarray(c.draft_aft_m if draft_aft_m is None else draft_aft_m,
+                                     dtype=float), (n,))
+    key = np.round(np.column_stack([fore, aft]) / DRAFT_STEP_M).astype(np.int64)
+    rpm, fuel = np.empty(n), np.empty(n)
+    groups, inverse = np.unique(key, axis=0, return_inverse=True)
+    for g, (kf, ka) in enumerate(groups):
+        idx = np.flatnonzero(inverse.reshape(-1) == g)
+        fm = fast_model(at_drafts(ship, round(kf * DRAFT_STEP_M, 3), round(ka * DRAFT_STEP_M, 3)))
+        s = sea.take(idx)
+        r = np.clip(fm.rpm_for_speed(v[idx], hdg[idx], s), 1.0, 1.45 * ship.engine.rpm_max)
+        rpm[idx] = r
+        fuel[idx] = fm.evaluate(r, hdg[idx], s).fuel_t_per_h
+    return rpm, fuel

@@ -1,7 +1,7 @@
 """The learned ship model: physics prior x exp(neural residual), its uncertainty and its file.
 
-Each output (shaft RPM, fuel rate) is the ship file's physics value at the same speed and
-weather times exp(r), where r is the mean of an ensemble of single-hidden-layer ReLU networks
+Each output (shaft RPM, fuel rate) is the ship file's physics value at the same speed,
+weather and drafts (the file's hull floating at the recorded drafts) times exp(r), where r is the mean of an ensemble of single-hidden-layer ReLU networks
 on z-scored inputs (reference 003's network, several of them for predictive uncertainty: the
 ensemble spread is reported as a relative standard deviation). Outside the training range
 the residual fades linearly to zero over ``fallback_std`` standard deviations of the input
@@ -93,7 +93,7 @@ class LearnedModel:
     def weight(self, x: np.ndarray) -> np.ndarray:
         """1 inside the training range, fading to 0 over ``fallback_std`` std beyond it."""
         over = np.maximum((x - self.x_hi) / self.x_std, (self.x_lo - x) / self.x_std)
-        d = np.max(np.maximum(over, 0.0), axis=1)
+        d = np.max(np.maximum(over - 1e-9, 0.0), axis=1)  # rounding at the range's ends
         return np.clip(1.0 - d / self.fallback_std, 0.0, 1.0)
 
     def residuals(self, x: np.ndarray) -> dict[str, np.ndarray]:
@@ -113,7 +113,9 @@ class LearnedModel:
         x = feature_matrix(stw_kn, heading_deg, draft_fore_m, draft_aft_m, sea)
         n = x.shape[0]
         hdg = np.broadcast_to(np.asarray(heading_deg, dtype=float), (n,))
-        rpm0, fuel0 = physics_prior(ship, x[:, 0], hdg, sea.broadcast((n,)))
+        rpm0, fuel0 = physics_prior(ship, x[:, 0], hdg, sea.broadcast((n,)),
+                                    np.broadcast_to(draft_fore_m, (n,)),
+                                    np.broadcast_to(draft_aft_m, (n,)))
         r = self.residuals(x)
         return Prediction(rpm0 * np.exp(r["rpm"]), fuel0 * np.exp(r["fuel"]),
                           r["rpm_std"], r["fuel_std"], r["weight"], rpm0, fuel0)

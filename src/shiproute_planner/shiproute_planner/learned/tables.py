@@ -27,7 +27,7 @@ from ..ship import fast_kernel as fk
 from ..ship.fast import FastModel, fast_model
 from ..ship.seastate import SeaState
 from ..ship.spec import ShipSpec
-from .features import FEATURES, KN_M_S
+from .features import DRAFT_STEP_M, FEATURES, KN_M_S, at_drafts
 from .model import LearnedModel
 
 N_WEATHER_SAMPLES = 600
@@ -66,10 +66,12 @@ def learned_fast_model(ship: ShipSpec, model: LearnedModel, source: str = "",
                        seed: int = 0) -> FastModel:
     """A `FastModel` of ``ship`` whose tables reproduce ``model`` (see the module docstring)."""
     model.check_ship(ship, source or "learned model")
-    base = fast_model(ship)
+    fore, aft = model.reference_draft_fore_m, model.reference_draft_aft_m
+    step = DRAFT_STEP_M  # the drafts the learned model's prior uses
+    base = fast_model(at_drafts(ship, round(round(fore / step) * step, 3),
+                                round(round(aft / step) * step, 3)))
     par, tables, _ = base.kernel_arrays()
     r_calm, wake, u_ws, u_sw, m0_ws, m0_sw, caa, sfoc_x, sfoc_y = tables
-    fore, aft = model.reference_draft_fore_m, model.reference_draft_aft_m
     v_grid = np.arange(r_calm.size) * par[fk.P_DV]
     rng = np.random.default_rng(seed)
     v, sea = _weather_samples(model, fore, aft, rng)

@@ -105,7 +105,8 @@ def train(ship: ShipSpec, segments: dict[str, np.ndarray], cfg: TrainConfig = Tr
     s = {k: np.asarray(v, dtype=float) for k, v in segments.items()}
     sea = sea_of(s)
     x = feature_matrix(s["stw_kn"], s["heading_deg"], s["draft_fore_m"], s["draft_aft_m"], sea)
-    rpm0, fuel0 = physics_prior(ship, s["stw_kn"], s["heading_deg"], sea)
+    rpm0, fuel0 = physics_prior(ship, s["stw_kn"], s["heading_deg"], sea, s["draft_fore_m"],
+                                s["draft_aft_m"])
     y_rpm, y_fuel = np.log(s["rpm"] / rpm0), np.log(s["fuel_t_per_h"] / fuel0)
     tr, te = split_by_time(s["time_s"], s["voyage"], cfg.test_fraction)
     if te.size < cfg.min_test_segments:
@@ -136,7 +137,7 @@ def train(ship: ShipSpec, segments: dict[str, np.ndarray], cfg: TrainConfig = Tr
         "physics_rpm_mre_pct": rel_errors(rpm0[te], s["rpm"][te])["mre_pct"],
         "fuel_rel_std_median_pct": float(np.median(r["fuel_std"]) * 100.0),
         "rpm_rel_std_median_pct": float(np.median(r["rpm_std"]) * 100.0),
-        "test_outside_training_range": int(np.sum(r["weight"] < 1.0)),
+        "test_outside_training_range": int(np.sum(r["weight"] < 1.0 - 1e-9)),
     }
     ranges = {f: [float(a), float(b)] for f, a, b in
               zip(FEATURES, model.x_lo, model.x_hi, strict=True)}
