@@ -7,7 +7,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-
 from shiproute_ais_replay.learning.cleaning import CleaningConfig, clean
 from shiproute_ais_replay.learning.records import join_met
 from shiproute_ais_replay.learning.synth import (
@@ -130,7 +129,7 @@ def test_plan_with_the_learned_model_serves_the_true_ship_better(learned) -> Non
                            ship, sampler, budget_s=1.5, seed=0, ship_model=choice,
                            max_generations=60, with_baseline=False)
         out[choice.split(":")[0]] = (plan, reevaluate(plan, truth, sampler))
-    (p_phys, o_phys), (p_learn, o_learn) = out["physics"], out["learned"]
+    (_, o_phys), (p_learn, o_learn) = out["physics"], out["learned"]
     assert any("learned from records" in w for w in p_learn.warnings)
     assert o_learn.fuel_t < o_phys.fuel_t or abs(o_learn.late_h) < abs(o_phys.late_h)
     # the learned plan's own fuel estimate is what the true ship burns (within 3 %)

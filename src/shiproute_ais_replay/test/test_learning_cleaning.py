@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
 from shiproute_ais_replay.learning.cleaning import CleaningConfig, clean
 from shiproute_ais_replay.learning.records import COLUMNS, Records
 from shiproute_planner.learned.features import SEA_COLUMNS
@@ -18,7 +17,8 @@ def _block(k: int, **over: np.ndarray | float) -> dict[str, np.ndarray]:
     z = np.where(np.arange(N) % 2, 1.0, -1.0)
     t = 1.77e9 + k * 86400.0 + 60.0 * np.arange(N)
     c = {
-        "time_s": t, "latitude_deg": np.full(N, 35.0), "longitude_deg": 160.0 + 0.005 * np.arange(N),
+        "time_s": t, "latitude_deg": np.full(N, 35.0),
+        "longitude_deg": 160.0 + 0.005 * np.arange(N),
         "sog_kn": 17.0 + 0.05 * z, "cog_deg": np.full(N, 90.0),
         "heading_deg": 90.0 + 0.3 * z, "stw_kn": 17.0 + 0.05 * z,
         "shaft_rpm": 75.0 + 0.2 * z,

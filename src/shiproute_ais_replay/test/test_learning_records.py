@@ -6,7 +6,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-
 from shiproute_ais_replay.learning.records import RecordsError, read_csv, read_records
 from shiproute_ais_replay.learning.synth import write_bag, write_csv
 

@@ -11,7 +11,7 @@ quantity and unit; a column whose unit is not stated or not known is an error, n
 | course over ground, heading | ``cog_deg``, ``heading_deg`` (true) |
 | speed through water (log) | ``stw_kn`` or ``stw_m_s`` (optional: else SOG minus current) |
 | shaft speed | ``shaft_rpm`` or ``shaft_speed_rps`` |
-| fuel rate, main engine | ``fuel_rate_t_per_h``, ``fuel_rate_kg_per_h`` or ``fuel_rate_t_per_day`` |
+| fuel rate, main engine | ``fuel_rate_t_per_h``, ``fuel_rate_kg_per_h``, ``fuel_rate_t_per_day`` |
 | drafts | ``draft_fore_m``, ``draft_aft_m`` |
 | optional | ``rudder_angle_deg``, ``water_depth_m``, ``voyage`` (integer id) |
 

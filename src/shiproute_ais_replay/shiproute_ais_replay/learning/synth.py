@@ -225,7 +225,7 @@ def write_bag(records: Records, path: str | Path) -> dict[str, int]:
     def states():
         for i in range(len(records)):
             yield ShipStateRecord(
-                time_ns=int(round(cols["time_s"][i] * 1e9)),
+                time_ns=round(float(cols["time_s"][i]) * 1e9),
                 **{q: float(cols[q][i]) for q in COLUMNS[1:11]},
                 nav_status=0 if cols["shaft_rpm"][i] > 0 else 15)
 

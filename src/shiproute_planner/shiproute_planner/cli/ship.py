@@ -10,7 +10,6 @@ from ..ship import ShipModelError, bundled_ships, fast_model, load_ship
 from ..ship.physics import PhysicsModel
 from ..ship.profile import ProfileGrid, export_profile
 
-
 LEARNING = {
     "learn": "learn fuel-rate and RPM models from records: RECORDS... --forecast F... --out M.nc",
     "drift": "ISO 19030 performance indicator of records vs a model: RECORDS... --model M.nc",

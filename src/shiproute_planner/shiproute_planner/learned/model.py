@@ -1,9 +1,10 @@
 """The learned ship model: physics prior x exp(neural residual), its uncertainty and its file.
 
 Each output (shaft RPM, fuel rate) is the ship file's physics value at the same speed,
-weather and drafts (the file's hull floating at the recorded drafts) times exp(r), where r is the mean of an ensemble of single-hidden-layer ReLU networks
-on z-scored inputs (reference 003's network, several of them for predictive uncertainty: the
-ensemble spread is reported as a relative standard deviation). Outside the training range
+weather and drafts (the file's hull floating at the recorded drafts) times exp(r), where r
+is the mean of an ensemble of single-hidden-layer ReLU networks on z-scored inputs
+(reference 003's network, several of them for predictive uncertainty: the ensemble spread is
+reported as a relative standard deviation). Outside the training range
 the residual fades linearly to zero over ``fallback_std`` standard deviations of the input
 beyond the range, so the model falls back to the physics model there (and says so).
 

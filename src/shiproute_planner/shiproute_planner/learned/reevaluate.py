@@ -10,7 +10,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-
 from ..route.environment import Environment
 from ..route.problem import RouteLimits, RouteProblem
 from ..route.sail import sail_tracks

@@ -17,7 +17,14 @@ import numpy as np
 
 from ..ship.spec import ShipSpec
 from .errors import TrainingDataError
-from .features import FEATURES, SEGMENT_COLUMNS, feature_matrix, physics_prior, sea_of, ship_identity
+from .features import (
+    FEATURES,
+    SEGMENT_COLUMNS,
+    feature_matrix,
+    physics_prior,
+    sea_of,
+    ship_identity,
+)
 from .model import LearnedModel, Network
 
 
