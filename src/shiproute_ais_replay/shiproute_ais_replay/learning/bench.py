@@ -17,6 +17,35 @@ import time
 from pathlib import Path
 
 
+def evaluation_rate(models: dict, sampler, n_pop: int = 4000, repeats: int = 3) -> dict:
+    """Routes per second of the GA's compiled population evaluator (no land test) for each
+    model on one 13-day North Pacific problem: a learned model must cost what physics costs."""
+    import numpy as np
+    from shiproute_planner.route.encoding import gene_bounds
+    from shiproute_planner.route.environment import Environment
+    from shiproute_planner.route.fast_eval import FastEvaluator
+    from shiproute_planner.route.problem import RouteLimits, RouteProblem
+
+    out = {}
+    for name, model in models.items():
+        e = model.ship.engine
+        problem = RouteProblem(142.8, 41.7, 239.0, 34.0, 1772582400.0, 1772582400.0 + 12 * 86400,
+                               RouteLimits(rpm_min=e.rpm_min, rpm_max=e.rpm_max))
+        lo, hi = gene_bounds(problem)
+        x = np.random.default_rng(0).uniform(lo, hi, (n_pop, lo.size))
+        ev = FastEvaluator(problem, Environment(model, sampler), None)
+        ev.evaluate(x[:10])
+        best = min(_timed(ev.evaluate, x) for _ in range(repeats))
+        out[name] = n_pop / best
+    return out
+
+
+def _timed(fn, *args) -> float:
+    t0 = time.perf_counter()
+    fn(*args)
+    return time.perf_counter() - t0
+
+
 def run(voyages: int = 5, seed: int = 1, budget_s: float = 3.0) -> dict:
     """Run the benchmark; returns the JSON-able result."""
     from shiproute_planner.learned.reevaluate import reevaluate
@@ -47,6 +76,11 @@ def run(voyages: int = 5, seed: int = 1, budget_s: float = 3.0) -> dict:
         mean = 0.5 * (model.reference_draft_fore_m + model.reference_draft_aft_m)
         offset = mean - faults.draft_bias_m - 0.5 * (c.draft_fore_m + c.draft_aft_m)
         _, truth = true_ship(ship, change, offset)
+        from shiproute_planner.learned.select import resolve_model
+
+        rates = evaluation_rate({"physics": resolve_model(ship, "physics")[0],
+                                 "learned": resolve_model(ship, f"learned:{path}")[0]},
+                                sampler)
         plans = {}
         for name, choice in (("physics", "physics"), ("learned", f"learned:{path}")):
             t0 = time.perf_counter()
@@ -71,6 +105,8 @@ def run(voyages: int = 5, seed: int = 1, budget_s: float = 3.0) -> dict:
         "plan_fuel_physics_t": plans["physics"]["true_fuel_t"],
         "plan_late_learned_h": plans["learned"]["true_late_h"],
         "plan_late_physics_h": plans["physics"]["true_late_h"],
+        "eval_routes_per_s_physics": rates["physics"],
+        "eval_routes_per_s_learned": rates["learned"],
         "plans": plans,
     }
 
