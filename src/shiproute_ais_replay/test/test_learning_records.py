@@ -76,3 +76,16 @@ def test_voyages_split_at_long_pauses_and_per_file(tmp_path: Path) -> None:
     assert list(v) == [0] * 5 + [1] * 5
     with pytest.raises(RecordsError, match="do not exist"):
         read_records([tmp_path / "missing.csv"])
+
+
+def test_learn_cli_refuses_records_without_fuel_and_writes_nothing(tmp_path: Path,
+                                                                   capsys) -> None:
+    from shiproute_ais_replay.learning.cli import main
+
+    p = _write(tmp_path, HEADER.replace(",fuel_rate_kg_per_h", ""),
+               ["2026-03-05T00:00:00Z,35,160,17,90,91,75,11.5,12.5,ok"])
+    out = tmp_path / "model.nc"
+    rc = main(["learn", str(p), "--forecast", "storm_march", "--out", str(out)])
+    err = capsys.readouterr().err
+    assert rc == 2 and "fuel: fuel_rate_t_per_h" in err and "Traceback" not in err
+    assert not out.exists() and not list(tmp_path.glob("model.nc*"))
