@@ -66,9 +66,9 @@ def _learned(ship: ShipSpec, path: str, mtime_ns: int) -> tuple[LearnedModel, An
 
 
 def plan_warnings(model: Any, plan: Any) -> tuple[str, ...]:
-    """For a learned model: how many legs of ``plan`` left the training range (the learned
-    correction fades to the physics model there, in speed exactly, in weather as a fitted
-    factor on the physics added resistance)."""
+    """For a learned model: its ensemble spread along ``plan`` and how many legs left the
+    training range (the learned correction fades to the physics model there: in the planner's
+    tables exactly in speed, in weather as fitted factors on the physics added resistance)."""
     learned: LearnedModel | None = getattr(model, "learned", None)
     wps = plan.waypoints[:-1]
     if learned is None or not wps:
@@ -91,14 +91,17 @@ def plan_warnings(model: Any, plan: Any) -> tuple[str, ...]:
         return ()
     x = feature_matrix(stw[good], arr("heading_deg")[good], learned.reference_draft_fore_m,
                        learned.reference_draft_aft_m, sea.take(np.flatnonzero(good)))
-    w = learned.weight(x)
-    out = int(np.sum(w < 1.0))
-    if out == 0:
-        return ()
-    lo, hi = learned.x_lo, learned.x_hi
-    return (f"learned ship model: {out} of {int(good.sum())} legs outside its training range "
+    r = learned.residuals(x)
+    w = r["weight"]
+    notes = [f"learned ship model: ensemble spread along the plan "
+             f"{100 * np.median(r['fuel_std']):.1f} % of fuel rate, "
+             f"{100 * np.median(r['rpm_std']):.2f} % of RPM (median over legs)"]
+    out = int(np.sum(w < 1.0 - 1e-9))
+    if out:
+        lo, hi = learned.x_lo, learned.x_hi
+        notes.append(
+            f"learned ship model: {out} of {int(good.sum())} legs outside its training range "
             f"(STW {lo[0]:.1f}-{hi[0]:.1f} kn, Hs <= {hi[5]:.1f} m, wind <= {hi[3]:.0f} m/s); "
             "there it falls back towards the ship file's physics model "
-            f"({int(np.sum(w == 0.0))} legs fully physics)",)
-
-
+            f"({int(np.sum(w == 0.0))} legs fully physics)")
+    return tuple(notes)
