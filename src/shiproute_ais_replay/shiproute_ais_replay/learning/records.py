@@ -143,9 +143,8 @@ def read_bag(path: str | Path) -> dict[str, np.ndarray]:
             continue
         rec = from_rosbags(reader.deserialize(msg))
         out["time_s"].append(rec.time_ns / 1e9)
-        for c in COLUMNS[1:11]:
-            out[c].append(float(getattr(rec, "fuel_rate_t_per_h" if c == "fuel_rate_t_per_h"
-                                        else c)))
+        for c in COLUMNS[1:11]:  # ShipState field names = column names
+            out[c].append(float(getattr(rec, c)))
         for c in COLUMNS[11:]:
             out[c].append(math.nan)
     if not out["time_s"]:
