@@ -145,3 +145,22 @@ def test_too_few_clean_segments_is_a_clear_error_and_nothing_is_written(learned,
                                                 r"least 150"):
         train(ship, few).save(out)
     assert not out.exists()
+
+
+def test_drift_shows_the_fouling_against_physics_and_none_against_the_learned_model(
+        learned, tmp_path: Path) -> None:
+    from shiproute_ais_replay.learning.drift import daily, drift_table, plot
+    from shiproute_planner.ship import fast_model
+
+    ship, _, seg, _, model, _ = learned
+    vs_physics = daily(drift_table(seg, fast_model(ship)))
+    # +15 % frictional resistance and more trim: more fuel for the speed, less speed for the
+    # RPM than the ship file says (cubic law: ~10 % power is ~3 % speed)
+    assert vs_physics["excess_fuel_mean_pct"] > 5.0
+    assert vs_physics["speed_loss_mean_pct"] < -1.5
+    table = drift_table(seg, learned_fast_model(ship, model), model)
+    vs_learned = daily(table)
+    assert abs(vs_learned["excess_fuel_mean_pct"]) < 1.5
+    assert abs(vs_learned["speed_loss_mean_pct"]) < 0.5
+    plot(table, vs_learned, tmp_path / "drift.png", "test")
+    assert (tmp_path / "drift.png").stat().st_size > 10_000
