@@ -75,6 +75,8 @@ PARAMETERS: dict[str, tuple[object, str]] = {
     "departure_time": ("", "ISO 8601 UTC departure when no ShipState has arrived"),
     "rta": ("2026-03-16T18:00:00Z", "required time of arrival, ISO 8601 UTC"),
     "ship": ("container_4600teu", "bundled ship name or ship file path"),
+    "ship_model": ("", "physics | kwon | profile:FILE.nc | learned:FILE.nc; '' = the ship "
+                   "file's performance_model, else physics"),
     "objective": ("fuel", "fuel | distance | eta"),
     "method": ("seed_ga", "route-finding method"),
     "stage_hours": (12.0, "fixed stage duration [h]"),
@@ -413,7 +415,7 @@ class PlannerNode(Node):
             budget_s=float(self._p("budget_s")), seed=int(self._p("rng_seed")),
             stage_hours=float(self._p("stage_hours")), previous_plan=inputs.previous,
             position=position, seed_pool_dir=pool, progress=self._on_progress,
-            cancel=self._cancel,
+            cancel=self._cancel, ship_model=str(self._p("ship_model")),
         )
         if self._cancel.is_set():
             self.get_logger().info(f"plan on {inputs.cycle_id} superseded by a newer cycle")

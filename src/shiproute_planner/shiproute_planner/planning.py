@@ -176,6 +176,7 @@ def plan_voyage(
     cycle_id: str = "",
     persistence_h: float = 24.0,
     climatology: Any = None,
+    ship_model: str = "",
 ) -> RoutePlan:
     """Plan a voyage and return a frozen RoutePlan.
 
@@ -194,9 +195,13 @@ def plan_voyage(
     beyond its ends its edge fields are held for `persistence_h`, then the monthly
     `climatology` (a canonical dataset whose times name the months) or calm water is assumed,
     and the plan states all of it (`forecast_statement`: warnings and `extra["forecast"]`).
+    `ship_model` chooses the performance model
+    (`learned.select.resolve_model`: physics, kwon, profile:FILE, learned:FILE; "" = the ship
+    file's `performance_model` entry or physics); the choice is stated in the plan's warnings.
     """
     t0 = time.perf_counter()
     land = land or default_land_mask()
+    ship, model_notes = _chosen_model(ship, ship_model)
     env, spec = make_environment(ship, forecast)
     if cycle_id:
         env = dataclasses.replace(env, cycle_id=cycle_id)
@@ -268,9 +273,34 @@ def plan_voyage(
     plan = _assemble(ports, problems, results, baselines, sources, approaches, env, spec,
                      method, objective, depart_s, rta_s, leg_rtas, gens, evals,
                      time.perf_counter() - t0)
+    if model_notes:
+        from .learned.select import plan_warnings
+
+        notes = model_notes + plan_warnings(env.model, plan)
+        plan = dataclasses.replace(plan, warnings=plan.warnings + notes)
     block, said = forecast_statement(env.sampler, plan, persistence_h)
     return dataclasses.replace(plan, warnings=(*plan.warnings, *said),
                                extra={**plan.extra, "forecast": block})
+
+
+def _chosen_model(ship: Any, ship_model: str) -> tuple[Any, tuple[str, ...]]:
+    """(ship or performance model, notes for the plan's warnings) for a `ship_model` choice."""
+    from .ship import ShipSpec, load_ship
+
+    if not isinstance(ship, str | Path | ShipSpec):
+        if ship_model:
+            raise InvalidVoyageError("give ship_model with a ship name/file, not with a model")
+        return ship, ()
+    spec = ship if isinstance(ship, ShipSpec) else load_ship(ship)
+    if (ship_model or spec.performance_model or "physics") == "physics":
+        return spec, ()
+    from .learned.select import resolve_model
+    from .ship import ShipModelError
+
+    try:
+        return resolve_model(spec, ship_model)
+    except ShipModelError as exc:  # wrong ship, unreadable model file, unknown choice
+        raise InvalidVoyageError(f"ship model: {exc}") from exc
 
 
 @dataclasses.dataclass(frozen=True)

@@ -46,6 +46,21 @@ def check_parameter(name: str, value: Any) -> str | None:
         return f"stage_hours must be <= 48, got {value!r}"
     if name == "destination" and not str(value).strip():
         return "destination must name a port, a UN/LOCODE or 'lat,lon'"
+    if name == "ship_model":
+        return _ship_model_reason(str(value))
     if name == "rng_seed" and (not isinstance(value, int) or value < 0):
         return f"rng_seed must be a non-negative integer, got {value!r}"
     return None
+
+
+def _ship_model_reason(value: str) -> str | None:
+    """ship_model: '', physics, kwon, or profile:/learned: with an existing file."""
+    import os
+
+    kind, sep, path = value.strip().partition(":")
+    if kind in ("", "physics", "kwon") and not sep:
+        return None
+    if kind in ("profile", "learned") and path:
+        return None if os.path.isfile(path) else f"ship_model file {path!r} does not exist"
+    return (f"ship_model must be '', physics, kwon, profile:FILE.nc or learned:FILE.nc, "
+            f"got {value!r}")

@@ -39,6 +39,9 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--rta", required=True,
                     help="required time of arrival: ISO time or duration after departure (13d)")
     ap.add_argument("--ship", default="container_4600teu", help="bundled ship or YAML path")
+    ap.add_argument("--model", default="",
+                    help="ship model: physics, kwon, profile:FILE.nc or learned:FILE.nc "
+                         "(default: the ship file's performance_model entry, else physics)")
     ap.add_argument("--forecast", action="append", default=[],
                     help="forecast file (GRIB1/2, NetCDF) or bundled scenario; repeat to make "
                          "one cycle of several files (e.g. wind, waves, currents); omit for "
@@ -123,7 +126,7 @@ def main(argv: list[str]) -> int:
             budget_s=args.budget, seed=args.seed, stage_hours=args.stage_hours,
             seed_pool_dir=args.seed_pool, progress=_progress,
             persistence_h=args.persistence_hours,
-            climatology=_climatology(args.climatology))
+            climatology=_climatology(args.climatology), ship_model=args.model)
         print(file=sys.stderr)
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)

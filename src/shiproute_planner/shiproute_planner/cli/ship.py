@@ -10,9 +10,22 @@ from ..ship import ShipModelError, bundled_ships, fast_model, load_ship
 from ..ship.physics import PhysicsModel
 from ..ship.profile import ProfileGrid, export_profile
 
+LEARNING = {
+    "learn": "learn fuel-rate and RPM models from records: RECORDS... --forecast F... --out M.nc",
+    "drift": "ISO 19030 performance indicator of records vs a model: RECORDS... --model M.nc",
+    "synth-records": "records (bag + CSV) of a fouled, re-trimmed ship for tests: OUT_DIR",
+}
+
 
 def main(argv: list[str]) -> int:
-    """``shiproute ship list | show NAME | profile NAME OUT.nc``."""
+    """``shiproute ship list | show NAME | profile NAME OUT.nc | learn | drift | synth-records``."""
+    if argv and argv[0] in LEARNING:  # records live in the replay package (bags, simulation)
+        try:
+            from shiproute_ais_replay.learning.cli import main as learning_main
+        except ImportError as exc:
+            print(f"shiproute ship {argv[0]}: needs shiproute_ais_replay ({exc})")
+            return 2
+        return learning_main(argv)
     ap = argparse.ArgumentParser(prog="shiproute ship", description=__doc__)
     sub = ap.add_subparsers(dest="cmd", required=True)
     sub.add_parser("list", help="bundled ship names")
@@ -26,6 +39,8 @@ def main(argv: list[str]) -> int:
     prof.add_argument("--n-rpm", type=int, default=12)
     prof.add_argument("--model", choices=("fast", "physics"), default="fast",
                       help="fast (tables, < 0.5 %% from physics) or the direct physics solve")
+    for name, text in LEARNING.items():
+        sub.add_parser(name, help=text, add_help=False)
     args = ap.parse_args(argv)
     try:
         if args.cmd == "list":

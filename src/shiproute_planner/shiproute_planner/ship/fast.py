@@ -47,9 +47,10 @@ _N_MOTION_V = 25
 class FastModel:
     """``PerformanceModel`` backed by precomputed tables and a compiled kernel."""
 
-    def __init__(self, ship: ShipSpec) -> None:
+    def __init__(self, ship: ShipSpec, physics: PhysicsModel | None = None) -> None:
+        """Tables of ``ship``; ``physics`` replaces its physics model (e.g. a fouled hull)."""
         self.ship = ship
-        self.physics = PhysicsModel(ship)
+        self.physics = physics or PhysicsModel(ship)
         c: ShipConstants = self.physics.const
         e, p = ship.engine, ship.propeller
         v_top = c.j_max * (1.5 * e.rpm_max / 60.0) * p.diameter_m / (1.0 - c.max_wake_fraction)

@@ -196,7 +196,21 @@ def parse_ship(text: str, source: str, condition: str | None = None) -> ShipSpec
         water=water,
         sources=tuple(str(s) for s in sources),
         content_hash=digest,
+        performance_model=_performance_model(root, source),
     )
+
+
+def _performance_model(root: Mapping[str, Any], source: str) -> str:
+    """The file's ``performance_model`` entry with a relative file path made absolute."""
+    value = str(root.get("performance_model", "") or "").strip()
+    kind, sep, path = value.partition(":")
+    if kind not in ("", "physics", "kwon", "profile", "learned") or (kind in (
+            "profile", "learned") and not path):
+        raise ShipFileError(source, "performance_model",
+                            f"'{value}': use physics, kwon, profile:FILE.nc or learned:FILE.nc")
+    if sep and not Path(path).is_absolute():
+        path = str(Path(source).parent / path)
+    return f"{kind}{sep}{path}"
 
 
 def _windage(r: _Reader, m: Mapping[str, Any]) -> WindageSpec:

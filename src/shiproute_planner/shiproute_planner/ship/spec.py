@@ -116,6 +116,9 @@ class ShipSpec:
     water: WaterSpec
     sources: tuple[str, ...]
     content_hash: str  # sha256 of the file text + condition; keys caches of derived models
+    # planner model the file asks for: "" (physics), "kwon", "profile:PATH" or "learned:PATH";
+    # relative paths resolved against the ship file's folder
+    performance_model: str = ""
 
     @property
     def mean_draft_m(self) -> float:
