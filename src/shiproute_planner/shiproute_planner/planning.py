@@ -20,10 +20,12 @@ from typing import Any
 import numpy as np
 
 from .approach import Approach, CoastalPassage, approach_length_m, lane_approaches, sail_approach
+from .depth_setup import depth_limits, with_depth_report
 from .errors import InvalidVoyageError, PlanCancelledError
 from .ga.loop import GAConfig
 from .ga.pool import Seed, SeedPool, pool_key
 from .ga.seeds import TrackSeed, shift_track
+from .geo.depth import Bathymetry
 from .geo.geodesy import inverse, unwrap_near
 from .geo.landmask import LandMask, default_land_mask
 from .geo.ports import Port, resolve_port
@@ -166,6 +168,9 @@ def plan_voyage(
     approach_rpm: float | None = None,
     coastal_passage: bool = True,
     cycle_id: str = "",
+    bathymetry: Sequence[str | Path] | Bathymetry | None = None,
+    default_bathymetry: bool = True,
+    ukc_margin_m: float = 1.0,
 ) -> RoutePlan:
     """Plan a voyage and return a frozen RoutePlan.
 
@@ -180,7 +185,9 @@ def plan_voyage(
     `coastal_passage` on through the straits and past the capes next to each port until the
     great circle between the approaches' ends is clear of land (each within the first/last
     sixth of the lane; off lets the method choose between straits); the method optimises
-    between the approaches' sea ends.
+    between the approaches' sea ends. `bathymetry` (grid files or a `Bathymetry`) plus, with
+    `default_bathymetry`, the packaged ETOPO5 grid make the under-keel clearance (margin
+    `ukc_margin_m` on top of draft, squat and wave allowance) a constraint of every leg.
     """
     t0 = time.perf_counter()
     land = land or default_land_mask()
@@ -188,6 +195,7 @@ def plan_voyage(
     if cycle_id:
         env = dataclasses.replace(env, cycle_id=cycle_id)
     lim = route_limits(spec, limits)
+    lim, warnings = depth_limits(lim, spec, bathymetry, default_bathymetry, ukc_margin_m)
     ports = [p if isinstance(p, Port) else resolve_port(p, land)
              for p in (origin, *via, destination)]
     depart_s = to_posix_s(depart)
@@ -250,9 +258,10 @@ def plan_voyage(
             leg_depart = float(post.eta_s[0])
         approaches.append((pre, post))
     land.fine_coast.save()  # coastal cells this plan resolved: later processes start with them
-    return _assemble(ports, problems, results, baselines, sources, approaches, env, spec,
+    plan = _assemble(ports, problems, results, baselines, sources, approaches, env, spec,
                      method, objective, depart_s, rta_s, leg_rtas, gens, evals,
                      time.perf_counter() - t0)
+    return with_depth_report(plan, lim.under_keel, warnings)
 
 
 @dataclasses.dataclass(frozen=True)

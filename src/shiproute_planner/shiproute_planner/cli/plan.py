@@ -51,6 +51,15 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--name", default=None, help="output file stem (default from ports)")
     ap.add_argument("--no-plot", action="store_true")
     ap.add_argument("--list-methods", action="store_true")
+    ap.add_argument("--bathymetry", action="append", default=[], metavar="FILE",
+                    help="bathymetry grid (GEBCO/ETOPO/EMODnet NetCDF; repeatable, the finest "
+                         "wins where they overlap); the global ETOPO5 grid of Debian's "
+                         "ferret-datasets is added when installed")
+    ap.add_argument("--no-default-bathymetry", action="store_true",
+                    help="do not add the coarse global ETOPO5 grid")
+    ap.add_argument("--ukc-margin", type=float, default=1.0, metavar="M",
+                    help="under-keel clearance margin [m] on top of draft, squat and "
+                         "wave allowance (default 1.0)")
     return ap
 
 
@@ -94,7 +103,8 @@ def main(argv: list[str]) -> int:
             env_forecast, via=via, via_rta=via_rta, objective=args.objective, method=args.method,
             cycle_id=str(forecast.attrs.get("cycle_id", "")) if forecast is not None else "",
             budget_s=args.budget, seed=args.seed, stage_hours=args.stage_hours,
-            seed_pool_dir=args.seed_pool, progress=_progress)
+            seed_pool_dir=args.seed_pool, progress=_progress, bathymetry=args.bathymetry,
+            default_bathymetry=not args.no_default_bathymetry, ukc_margin_m=args.ukc_margin)
         print(file=sys.stderr)
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)

@@ -106,6 +106,9 @@ def leg_flags_and_violation(
             add(np.asarray(legs[key], dtype=bool), bit, 1.0)
     if limits.engine_limit:
         add(np.asarray(legs["engine_limit_exceeded"], dtype=bool), FLAG_ENGINE_LIMIT, 1.0)
+    if "ukc_m" in legs:  # metres short of the required depth (NaN: depth unknown)
+        short = np.maximum(0.0, -np.nan_to_num(legs["ukc_m"], nan=0.0))
+        add(short > 0, FLAG_DEPTH, 1.0 + short)
     lat_ex = np.maximum(0.0, np.abs(legs["lat_end_deg"]) - limits.lat_bound_deg)
     add(lat_ex > 0, FLAG_LATITUDE, lat_ex)
     return flags, viol

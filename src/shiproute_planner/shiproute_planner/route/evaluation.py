@@ -103,6 +103,12 @@ def finish(
         legs["land_samples"] = np.where(active, samples, 0)
     else:
         legs["land_samples"] = np.zeros(active.shape, dtype=np.int64)
+    under_keel = problem.limits.under_keel
+    if under_keel is not None:
+        ends = clear_ports(problem, lon, lat, legs["distance_m"])
+        depth, ukc = under_keel.leg_clearance(*ends, legs["stw_m_s"], legs["hs_m"])
+        legs["min_depth_m"] = np.where(active, depth, np.nan)
+        legs["ukc_m"] = np.where(active, ukc, np.nan)
     legs["lat_end_deg"] = lat[:, 1:]
     leg_flags, leg_viol = leg_flags_and_violation(legs, problem.limits, active)
     del legs["lat_end_deg"]
