@@ -3,8 +3,8 @@
 `depth_limits` adds the ship's under-keel clearance constraint to the route limits when
 bathymetry is available and says in words what depth the plan uses (or that it has none);
 `with_depth_report` puts each leg's shallowest depth and UKC, computed exactly (no cap) along
-the final track, into the waypoints and warns about legs no grid covers and approach legs
-(pilotage, not optimised) that lack clearance.
+the final track, into the waypoints and warns about legs no grid covers (the route check
+lists the legs that lack clearance).
 """
 
 from __future__ import annotations
@@ -97,11 +97,6 @@ def with_depth_report(plan: RoutePlan, uk: UnderKeel | None, notes: list[str]) -
     if unknown:
         warnings.append(f"depth not checked on {unknown} of {depth.size} legs "
                         "(no bathymetry grid covers them)")
-    shallow = np.flatnonzero(~optimised & (ukc < 0))
-    for k in shallow[:5]:
-        warnings.append(f"approach leg {k} (pilotage, not optimised): shallowest "
-                        f"{depth[k]:.1f} m, UKC {ukc[k]:+.1f} m near {lat[k]:.3f},"
-                        f"{(lon[k] + 180) % 360 - 180:.3f}: check the chart")
     extra = {}
     if np.any(optimised & (ukc < 0)) and plan.feasible:  # the constraint missed a leg
         extra = {"feasible": False, "infeasible_reasons": (*plan.infeasible_reasons,

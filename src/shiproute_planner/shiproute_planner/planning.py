@@ -29,7 +29,9 @@ from .geo.depth import Bathymetry
 from .geo.geodesy import inverse, unwrap_near
 from .geo.landmask import LandMask, default_land_mask
 from .geo.ports import Port, resolve_port
+from .geo.zones import Zones
 from .methods import MethodContext, Progress, compute_baseline, get_method
+from .plan_checks import checked_plan, zone_limits
 from .plan_types import RoutePlan, Waypoint, reasons_of, waypoints_from_evaluation
 from .route.environment import Environment
 from .route.evaluation import RouteEvaluation
@@ -171,6 +173,8 @@ def plan_voyage(
     bathymetry: Sequence[str | Path] | Bathymetry | None = None,
     default_bathymetry: bool = True,
     ukc_margin_m: float = 1.0,
+    zones: Sequence[str | Path] | Zones | None = None,
+    clearance_nm: float = 0.0,
 ) -> RoutePlan:
     """Plan a voyage and return a frozen RoutePlan.
 
@@ -187,7 +191,10 @@ def plan_voyage(
     sixth of the lane; off lets the method choose between straits); the method optimises
     between the approaches' sea ends. `bathymetry` (grid files or a `Bathymetry`) plus, with
     `default_bathymetry`, the packaged ETOPO5 grid make the under-keel clearance (margin
-    `ukc_margin_m` on top of draft, squat and wave allowance) a constraint of every leg.
+    `ukc_margin_m` on top of draft, squat and wave allowance) a constraint of every leg;
+    `zones` (GeoJSON files or `Zones`) add no-go areas (hard) and avoid-if-possible areas
+    (a penalty per NM). The finished plan gets the route check (land, `clearance_nm` from
+    land, depth, zones) and carries its findings in its warnings.
     """
     t0 = time.perf_counter()
     land = land or default_land_mask()
@@ -196,6 +203,8 @@ def plan_voyage(
         env = dataclasses.replace(env, cycle_id=cycle_id)
     lim = route_limits(spec, limits)
     lim, warnings = depth_limits(lim, spec, bathymetry, default_bathymetry, ukc_margin_m)
+    lim, zone_notes = zone_limits(lim, zones)
+    warnings += zone_notes
     ports = [p if isinstance(p, Port) else resolve_port(p, land)
              for p in (origin, *via, destination)]
     depart_s = to_posix_s(depart)
@@ -261,7 +270,8 @@ def plan_voyage(
     plan = _assemble(ports, problems, results, baselines, sources, approaches, env, spec,
                      method, objective, depart_s, rta_s, leg_rtas, gens, evals,
                      time.perf_counter() - t0)
-    return with_depth_report(plan, lim.under_keel, warnings)
+    plan = with_depth_report(plan, lim.under_keel, warnings)
+    return checked_plan(plan, land, lim, clearance_nm)
 
 
 @dataclasses.dataclass(frozen=True)

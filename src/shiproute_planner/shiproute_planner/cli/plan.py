@@ -60,6 +60,11 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--ukc-margin", type=float, default=1.0, metavar="M",
                     help="under-keel clearance margin [m] on top of draft, squat and "
                          "wave allowance (default 1.0)")
+    ap.add_argument("--zones", action="append", default=[], metavar="Z.geojson",
+                    help="no-go areas (GeoJSON polygons; property mode hard|penalty, "
+                         "penalty_per_nm); repeatable")
+    ap.add_argument("--clearance-nm", type=float, default=0.0,
+                    help="distance from land [NM] the route check of the plan requires")
     return ap
 
 
@@ -104,7 +109,8 @@ def main(argv: list[str]) -> int:
             cycle_id=str(forecast.attrs.get("cycle_id", "")) if forecast is not None else "",
             budget_s=args.budget, seed=args.seed, stage_hours=args.stage_hours,
             seed_pool_dir=args.seed_pool, progress=_progress, bathymetry=args.bathymetry,
-            default_bathymetry=not args.no_default_bathymetry, ukc_margin_m=args.ukc_margin)
+            default_bathymetry=not args.no_default_bathymetry, ukc_margin_m=args.ukc_margin,
+            zones=args.zones, clearance_nm=args.clearance_nm)
         print(file=sys.stderr)
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)

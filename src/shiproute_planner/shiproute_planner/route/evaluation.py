@@ -109,6 +109,16 @@ def finish(
         depth, ukc = under_keel.leg_clearance(*ends, legs["stw_m_s"], legs["hs_m"])
         legs["min_depth_m"] = np.where(active, depth, np.nan)
         legs["ukc_m"] = np.where(active, ukc, np.nan)
+    penalty = 0.0
+    zones = problem.limits.zones
+    if zones is not None:
+        ends = clear_ports(problem, lon, lat, legs["distance_m"])
+        share = zones.leg_inside(*ends)  # (zone, pop, m)
+        leg_nm = np.where(active, legs["distance_m"], 0.0) / 1852.0
+        hard = np.array([z.hard for z in zones.zones])
+        per_nm = np.array([z.penalty_per_nm for z in zones.zones])
+        legs["zone_nm"] = share[hard].sum(axis=0) * leg_nm
+        penalty = (np.tensordot(per_nm[~hard], share[~hard], axes=1) * leg_nm).sum(axis=1)
     legs["lat_end_deg"] = lat[:, 1:]
     leg_flags, leg_viol = leg_flags_and_violation(legs, problem.limits, active)
     del legs["lat_end_deg"]
@@ -123,5 +133,5 @@ def finish(
     violation = np.where(np.isfinite(violation), violation, 1e12)
     return RouteEvaluation(
         lon, lat, time_s, legs, leg_flags, fuel, dist, eta, flags, violation,
-        objective_of(problem, fuel, dist, eta),
+        objective_of(problem, fuel, dist, eta) + penalty,
     )

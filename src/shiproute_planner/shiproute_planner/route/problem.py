@@ -31,6 +31,8 @@ class RouteLimits:
     engine_limit: bool = True
     # depth constraint (route.under_keel.UnderKeel); None: depth not checked
     under_keel: object | None = field(default=None, compare=False)
+    # no-go / avoid zones (geo.zones.Zones): hard ones constrain, penalty ones cost
+    zones: object | None = field(default=None, compare=False)
 
 
 @dataclass(frozen=True)
