@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 from datetime import UTC, datetime
+from pathlib import Path
 from typing import Any
 
 OBJECTIVES = ("fuel", "distance", "eta")
@@ -46,6 +47,14 @@ def check_parameter(name: str, value: Any) -> str | None:
         return f"stage_hours must be <= 48, got {value!r}"
     if name == "destination" and not str(value).strip():
         return "destination must name a port, a UN/LOCODE or 'lat,lon'"
+    if name in ("ukc_margin_m", "clearance_nm") and (
+            not isinstance(value, int | float) or not value >= 0):
+        return f"{name} must be a non-negative number, got {value!r}"
+    if name in ("bathymetry_files", "zones_files"):
+        missing = [p.strip() for p in str(value).split(",") if p.strip()
+                   and not Path(p.strip()).is_file()]
+        if missing:
+            return f"{name}: no such file {', '.join(missing)}"
     if name == "rng_seed" and (not isinstance(value, int) or value < 0):
         return f"rng_seed must be a non-negative integer, got {value!r}"
     return None
