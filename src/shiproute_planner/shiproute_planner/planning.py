@@ -207,6 +207,7 @@ def plan_voyage(
     warnings += zone_notes
     ports = [p if isinstance(p, Port) else resolve_port(p, land)
              for p in (origin, *via, destination)]
+    warnings += [p.note for p in ports if p.note]
     depart_s = to_posix_s(depart)
     rta_s = depart_s + rta.total_seconds() if isinstance(rta, timedelta) else to_posix_s(rta)
     if position is not None:
