@@ -31,7 +31,7 @@ def test_river_ports_start_at_sea_and_say_so(land_mask, name, sea_end, max_nm):
 
 
 def test_unknown_name_suggests_close_matches():
-    with pytest.raises(PortNotFoundError, match="similar names: .*rotterdam"):
+    with pytest.raises(PortNotFoundError, match=r"similar names: .*rotterdam"):
         lookup_port("Roterdam")
-    with pytest.raises(PortNotFoundError, match="genova|genoa"):
+    with pytest.raises(PortNotFoundError, match=r"genova|genoa"):
         lookup_port("Genua")
