@@ -5,8 +5,9 @@ check each plan with the route check at GSHHG full resolution.
 shiproute project's shared data (20 trade lanes through Suez, Panama, Kiel, Dover,
 Gibraltar, Malacca, the Bosphorus, Torres Strait, the Great Barrier Reef, the Elbe, the St
 Lawrence). A lane is land-clean when no sample of its track (every 0.25 NM) lies on GSHHG
-full-resolution land outside 3 NM round each port, and depth-checked when every leg's depth
-was known (no "depth not checked" warning).
+full-resolution land outside 3 NM round each port, and depth-checked when the plan was made
+with bathymetry and every planned leg's depth was known (port approaches inside coarse-grid
+coastal cells may be unknown: the coastline decides there; they are counted per lane).
 """
 
 from __future__ import annotations
@@ -68,13 +69,17 @@ def run(budget_s: float, only: list[str]) -> dict:
                              land_full.contains, port_clearance_m=3.0 * 1852.0)
         land = [v for v in result.violations if v.kind == "land"]
         depths = np.array([w.min_depth_m for w in plan.waypoints[:-1]])
+        planned = np.zeros(depths.size, dtype=bool)
+        for a, b in plan.optimised_spans:
+            planned[a:b] = True
         row.update(
             plan_s=round(dt, 2), feasible=plan.feasible,
             infeasible_reasons=list(plan.infeasible_reasons),
             land_legs_full_res=[(v.leg, round(v.lat_deg, 3), round(v.lon_deg, 3),
                                  round(v.value, 2)) for v in land],
-            depth_checked=not any(w.startswith("depth not checked") for w in plan.warnings)
-            and bool(np.all(np.isfinite(depths))),
+            depth_checked=not any(w.startswith("depth not checked:") for w in plan.warnings)
+            and bool(np.all(np.isfinite(depths[planned]))),
+            depth_unknown_legs=int(np.count_nonzero(~np.isfinite(depths))),
             min_ukc_m=round(float(np.nanmin([w.ukc_m for w in plan.waypoints[:-1]])), 1)
             if np.isfinite(depths).any() else None,
             distance_nm=round(plan.total_distance_nm, 1), fuel_t=round(plan.total_fuel_t, 1),

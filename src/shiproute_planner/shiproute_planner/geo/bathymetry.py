@@ -7,8 +7,9 @@ variable's CF attributes (`positive`, `standard_name`) or, failing those, its na
 `Bathymetry`; where they overlap the finest one answers (see `geo.depth_scan`).
 
 Cells at or above the datum are land or drying: a fine grid (<= 1 arc-minute) reports them as
-0 m of water; a coarse grid reports them as unknown, because its coastal cells average sea
-and land over several kilometres and the coastline, not the grid, decides there.
+0 m of water; a coarse grid reports them and the cells next to them as unknown, because its
+coastal cells average sea and land over several kilometres and the coastline, not the grid,
+decides there.
 """
 
 from __future__ import annotations
@@ -193,8 +194,14 @@ def load_depth_grid(path_text: str) -> DepthGrid:
     grid = DepthGrid(path.name, np.ascontiguousarray(depth, dtype=np.float32),
                      float(lat[0]), dlat, lon0, dlon, bool(periodic))
     dry = grid.depth_m <= 0.0
-    if grid.is_coarse:
-        grid.depth_m[dry] = np.nan
+    if grid.is_coarse:  # dry cells and their neighbours: the coastline decides there
+        from scipy import ndimage
+
+        near = ndimage.binary_dilation(dry, structure=np.ones((3, 3), dtype=bool))
+        if grid.periodic:  # the seam columns see each other
+            near[:, 0] |= dry[:, -1]
+            near[:, -1] |= dry[:, 0]
+        grid.depth_m[near] = np.nan
     else:
         grid.depth_m[dry] = 0.0
     if not np.isfinite(grid.depth_m).any():
