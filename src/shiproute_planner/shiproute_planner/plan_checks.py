@@ -49,7 +49,9 @@ def checked_plan(plan: RoutePlan, land: LandMask, limits: RouteLimits,
     hs = np.nan_to_num(np.array([w.hs_m for w in wps]), nan=0.0)
     result = check_track(lon, lat, speed, land.is_land, clearance_nm=clearance_nm,
                          land_near=land.exact.clipped, under_keel=limits.under_keel,
-                         hs_m=hs, zones=limits.zones)
+                         hs_m=hs, zones=limits.zones,
+                         skip_legs=frozenset(k for a, b in plan.extra.get("fixed_passages", ())
+                                             for k in range(a, b)))
     found = result.violations
     warnings = list(plan.warnings)
     warnings += [f"route check: {v.line().strip()}" for v in found[:MAX_LISTED]]

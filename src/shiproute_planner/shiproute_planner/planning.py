@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 
 from .approach import Approach, CoastalPassage, approach_length_m, lane_approaches, sail_approach
+from .canals import route_canals, sail_canal
 from .depth_setup import depth_limits, with_depth_report
 from .errors import InvalidVoyageError, PlanCancelledError
 from .ga.loop import GAConfig
@@ -218,6 +219,8 @@ def plan_voyage(
         depart_s = float(now_s)
     if not rta_s > depart_s:
         raise InvalidVoyageError("the RTA must be after the departure time")
+    ports, canal_legs, via_rta, canal_notes = route_canals(ports, spec, list(via_rta))
+    warnings += canal_notes
     leg_rtas = _leg_rtas(ports, depart_s, rta_s, via_rta)
     is_cancelled = _cancel_fn(cancel)
     rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
@@ -230,6 +233,19 @@ def plan_voyage(
     gens = evals = 0
     leg_depart = depart_s
     for k, (a, b) in enumerate(itertools.pairwise(ports)):
+        if k in canal_legs:  # a fixed passage: sailed along the canal at its transit speed
+            canal, rev = canal_legs[k]
+            sea_rpm = float(results[-1].legs["rpm"][0, -1]) if results else None
+            lead_in, ev, lead_out, rpm_c, canal_problem = sail_canal(
+                env, canal, rev, leg_depart, lim, stage_hours * 3600.0, sea_rpm)
+            results.append(ev)
+            sources.append("canal")
+            problems.append(canal_problem)
+            if with_baseline:
+                baselines.append(("canal", rpm_c, ev))
+            approaches.append((lead_in, lead_out))
+            leg_depart = float((lead_out or ev).eta_s[0])
+            continue
         under_way = k == 0 and position is not None
         leg = leg_setup(a, b, env, lim, land, leg_depart, leg_rtas[k], approach_nm=approach_nm,
                         approach_rpm=approach_rpm, coastal_passage=coastal_passage,
@@ -429,7 +445,7 @@ def _assemble(ports, problems, results, baselines, sources, approaches, env, spe
               objective, depart_s, rta_s, leg_rtas, gens, evals, compute_s) -> RoutePlan:
     wps: list[Waypoint] = []
     flags = 0
-    plan_parts, base_parts, spans = [], [], []
+    plan_parts, base_parts, spans, fixed = [], [], [], []
     for k, ev in enumerate(results):
         pre, post = approaches[k]
         parts = _legs_of(ev, pre, post)
@@ -450,7 +466,9 @@ def _assemble(ports, problems, results, baselines, sources, approaches, env, spe
                 wps[-1] = dataclasses.replace(w[0], port=wps[-1].port or w[0].port)
                 w = w[1:]
             wps.extend(w)
-            if part is ev:
+            if part is ev and sources[k] == "canal":
+                fixed.append((start, len(wps) - 1))
+            elif part is ev:
                 spans.append((start, len(wps) - 1))
             if part is ev:  # approaches are fixed pilotage: their flags inform, not decide
                 flags |= int(part.flags[0]) & ~2
@@ -480,4 +498,5 @@ def _assemble(ports, problems, results, baselines, sources, approaches, env, spe
         vessel_max_wave_m=float(problems[0].limits.max_hs_m or float("nan")),
         vessel_max_wind_m_s=float(problems[0].limits.max_wind_m_s or float("nan")),
         baseline_track=b_track, leg_rtas_s=tuple(leg_rtas), optimised_spans=tuple(spans),
+        extra={"fixed_passages": tuple(fixed)} if fixed else {},
     )

@@ -63,9 +63,11 @@ def check_track(lon_deg: np.ndarray, lat_deg: np.ndarray, speed_kn: np.ndarray,
                 clearance_nm: float = 0.0, land_near: Callable | None = None,
                 under_keel: UnderKeel | None = None,
                 hs_m: np.ndarray | None = None, zones: Zones | None = None,
-                step_m: float = 463.0, port_clearance_m: float = 3000.0) -> CheckResult:
+                step_m: float = 463.0, port_clearance_m: float = 3000.0,
+                skip_legs: frozenset[int] = frozenset()) -> CheckResult:
     """Check a polyline (continuous longitudes) sailed at `speed_kn` per leg; the first and
-    last `port_clearance_m` (berths) are not tested for land, clearance or depth."""
+    last `port_clearance_m` (berths) are not tested for land, clearance or depth, nor are
+    `skip_legs` (fixed passages such as canals, under their authority's rules)."""
     lon = np.unwrap(np.asarray(lon_deg, dtype=float), period=360.0)
     lat = np.asarray(lat_deg, dtype=float)
     n_leg = lon.size - 1
@@ -76,6 +78,8 @@ def check_track(lon_deg: np.ndarray, lat_deg: np.ndarray, speed_kn: np.ndarray,
     found: list[Violation] = []
     notes: list[str] = []
     for k in range(n_leg):
+        if k in skip_legs:
+            continue
         plon, plat = _leg_points(lon, lat, k, step_m)
         _, d = inverse(plon[:-1], plat[:-1], plon[1:], plat[1:])
         along = start[k] + np.concatenate([[0.0], np.cumsum(np.atleast_1d(d))])
@@ -105,6 +109,7 @@ def check_track(lon_deg: np.ndarray, lat_deg: np.ndarray, speed_kn: np.ndarray,
         found_z, notes_z = _zone_findings(lon, lat, dist, zones, step_m)
         found += found_z
         notes += notes_z
+    found = [v for v in found if v.leg not in skip_legs]
     found.sort(key=lambda v: (v.leg, v.kind))
     return CheckResult(tuple(found), tuple(notes))
 

@@ -9,7 +9,8 @@ variable's CF attributes (`positive`, `standard_name`) or, failing those, its na
 Cells at or above the datum are land or drying: a fine grid (<= 1 arc-minute) reports them as
 0 m of water; a coarse grid reports them and the cells next to them as unknown, because its
 coastal cells average sea and land over several kilometres and the coastline, not the grid,
-decides there.
+decides there, and reports the median of each 3 x 3 neighbourhood (a shoal must cover most
+of it, ~15 km at 5 arc-minutes, to count: single-cell values are as often errors).
 """
 
 from __future__ import annotations
@@ -193,6 +194,32 @@ def load_depth_grid(path_text: str) -> DepthGrid:
     lon0 = float((lon[0] + 180.0) % 360.0 - 180.0)
     grid = DepthGrid(path.name, np.ascontiguousarray(depth, dtype=np.float32),
                      float(lat[0]), dlat, lon0, dlon, bool(periodic))
+    _prepare(grid, path)
+    if not np.isfinite(grid.depth_m).any():
+        raise BathymetryError(f"bathymetry file {path}: {var.name!r} holds no sea depths")
+    return grid
+
+
+PREPARED_VERSION = 1
+
+
+def _prepare(grid: DepthGrid, path: Path) -> None:
+    """Dry and coastal cells as the grid's resolution allows (see the module docstring), in
+    place; the result of a coarse grid (seconds of filtering for ETOPO5) is cached in the
+    data directory per file (name, size, modification time)."""
+    from .datadir import data_dir
+
+    st = path.stat()
+    key = f"{path.name}_{st.st_size}_{int(st.st_mtime)}_v{PREPARED_VERSION}"
+    cache = data_dir() / f"depth_{key}.npy"
+    if grid.is_coarse and cache.is_file():
+        try:
+            ready = np.load(cache)
+            if ready.shape == grid.depth_m.shape:
+                grid.depth_m[:] = ready
+                return
+        except (OSError, ValueError):
+            pass  # rebuilt below
     dry = grid.depth_m <= 0.0
     if grid.is_coarse:  # dry cells and their neighbours: the coastline decides there
         from scipy import ndimage
@@ -201,12 +228,24 @@ def load_depth_grid(path_text: str) -> DepthGrid:
         if grid.periodic:  # the seam columns see each other
             near[:, 0] |= dry[:, -1]
             near[:, -1] |= dry[:, 0]
-        grid.depth_m[near] = np.nan
+        # each coarse cell reads the median of its 3 x 3 neighbourhood: single cells of
+        # 5-arc-minute compilations are as often errors as shoals (shoals that small need a
+        # finer grid anyway), banks several cells wide stay shallow
+        known = np.where(np.isnan(grid.depth_m) | near, np.inf, grid.depth_m)
+        median = ndimage.median_filter(known, size=3, mode="wrap" if grid.periodic
+                                       else "nearest")
+        grid.depth_m[:] = np.where(near | ~np.isfinite(median), np.nan, median)
     else:
         grid.depth_m[dry] = 0.0
-    if not np.isfinite(grid.depth_m).any():
-        raise BathymetryError(f"bathymetry file {path}: {var.name!r} holds no sea depths")
-    return grid
+    if grid.is_coarse:
+        import os
+
+        tmp = cache.with_suffix(f".{os.getpid()}.tmp.npy")
+        try:
+            np.save(tmp, grid.depth_m)
+            os.replace(tmp, cache)
+        except OSError:
+            tmp.unlink(missing_ok=True)
 
 
 def default_depth_files() -> list[Path]:
