@@ -92,6 +92,7 @@ PARAMETERS: dict[str, tuple[object, str]] = {
     "ukc_margin_m": (1.0, "under-keel clearance margin on draft + squat + waves [m]"),
     "zones_files": ("", "no-go / avoid zone GeoJSON files, comma-separated"),
     "clearance_nm": (0.0, "distance from land the route check of each plan requires [NM]"),
+    "approach_files": ("", "coastal passages from/to ports (RTZ/GeoJSON), comma-separated"),
 }
 
 
@@ -424,6 +425,7 @@ class PlannerNode(Node):
             ukc_margin_m=float(self._p("ukc_margin_m")),
             zones=_paths(str(self._p("zones_files"))),
             clearance_nm=float(self._p("clearance_nm")),
+            approaches_given=_paths(str(self._p("approach_files"))),
         )
         if self._cancel.is_set():
             self.get_logger().info(f"plan on {inputs.cycle_id} superseded by a newer cycle")

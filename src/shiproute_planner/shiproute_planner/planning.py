@@ -31,6 +31,7 @@ from .geo.geodesy import inverse, unwrap_near
 from .geo.landmask import LandMask, default_land_mask
 from .geo.ports import Port, resolve_port
 from .geo.zones import Zones
+from .given_approach import approaches_at, load_approaches
 from .methods import MethodContext, Progress, compute_baseline, get_method
 from .plan_checks import checked_plan, zone_limits
 from .plan_types import RoutePlan, Waypoint, reasons_of, waypoints_from_evaluation
@@ -176,6 +177,7 @@ def plan_voyage(
     ukc_margin_m: float = 1.0,
     zones: Sequence[str | Path] | Zones | None = None,
     clearance_nm: float = 0.0,
+    approaches_given: Sequence[str | Path] = (),
 ) -> RoutePlan:
     """Plan a voyage and return a frozen RoutePlan.
 
@@ -195,7 +197,8 @@ def plan_voyage(
     `ukc_margin_m` on top of draft, squat and wave allowance) a constraint of every leg;
     `zones` (GeoJSON files or `Zones`) add no-go areas (hard) and avoid-if-possible areas
     (a penalty per NM). The finished plan gets the route check (land, `clearance_nm` from
-    land, depth, zones) and carries its findings in its warnings.
+    land, depth, zones) and carries its findings in its warnings. `approaches_given`: route
+    files (RTZ/GeoJSON) of coastal passages from a port or to one, used as given.
     """
     t0 = time.perf_counter()
     land = land or default_land_mask()
@@ -206,6 +209,7 @@ def plan_voyage(
     lim, warnings = depth_limits(lim, spec, bathymetry, default_bathymetry, ukc_margin_m)
     lim, zone_notes = zone_limits(lim, zones)
     warnings += zone_notes
+    given = load_approaches(approaches_given)
     ports = [p if isinstance(p, Port) else resolve_port(p, land)
              for p in (origin, *via, destination)]
     warnings += [p.note for p in ports if p.note]
@@ -251,7 +255,7 @@ def plan_voyage(
                         approach_rpm=approach_rpm, coastal_passage=coastal_passage,
                         stage_hours=stage_hours, objective=objective,
                         under_way=under_way, previous_plan=previous_plan if under_way else None,
-                        position=position if under_way else None)
+                        position=position if under_way else None, given=given)
         problem, pre, ap_arr, rpm_ap = leg.problem, leg.pre, leg.ap_arr, leg.rpm_ap
         seeds, gene_seeds = _seeds(problem, pool, a, b, month,
                                    previous_plan if k == 0 else None, position)
@@ -307,10 +311,13 @@ def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMa
               approach_rpm: float | None = None, coastal_passage: bool = True,
               stage_hours: float = 12.0, objective: str = "fuel", under_way: bool = False,
               previous_plan: RoutePlan | None = None,
-              position: tuple[float, float, float] | None = None) -> LegSetup:
+              position: tuple[float, float, float] | None = None,
+              given: Sequence[Approach] = ()) -> LegSetup:
     """Approaches of a leg a -> b and the problem between their sea ends (see `plan_voyage`;
     shared with the method comparison so every method solves the same problem). Under way
-    the ship finishes the coastal passage it is in, if any, from where it is."""
+    the ship finishes the coastal passage it is in, if any, from where it is. `given`
+    approaches (the user's coastal routes, e.g. from the ECDIS) that start at `a` or end at
+    `b` replace the computed ones and are sailed as given."""
     coastal = CoastalPassage(land) if coastal_passage else None
     rest = _rest_of_approach(previous_plan, position) if under_way else None
     kept = _previous_arrival(previous_plan, b, position) if under_way else None
@@ -323,6 +330,11 @@ def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMa
             coastal=coastal, dep_min_m=0.0 if under_way else None)
     if rest is not None:
         ap_dep = rest
+    mine_dep, mine_arr = approaches_at(given, a, b)
+    if mine_dep is not None and not under_way:
+        ap_dep = mine_dep
+    if mine_arr is not None:
+        ap_arr = mine_arr
     rpm_ap = approach_rpm or _lane_rpm(env, a, b, ap_dep, ap_arr, depart_s, rta_s, lim)
     pre = sail_approach(env, ap_dep, rpm_ap, depart_s, lim) if ap_dep else None
     t_leg = float(pre.eta_s[0]) if pre is not None else depart_s

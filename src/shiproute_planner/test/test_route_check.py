@@ -92,3 +92,23 @@ def test_bad_route_and_zone_files(tmp_path, capsys):
     route = _rtz(tmp_path / "r.rtz", OVER)
     assert check_main([str(route), "--zones", str(bad), "--resolution", "i"]) == 2
     assert check_main([str(route), "--bathymetry", str(tmp_path / "none.nc")]) == 2
+
+
+def test_given_approach_is_sailed_as_given_and_checked(land_mask, tmp_path):
+    from datetime import timedelta
+
+    from shiproute_planner.planning import plan_voyage
+
+    given = [(49.0, -6.0), (48.8, -6.5), (48.5, -6.6)]  # lat, lon: from the departure
+    path = _rtz(tmp_path / "dep.rtz", given)
+    plan = plan_voyage("49.0,-6.0", "45.0,-10.0", "2026-06-01T00:00Z", timedelta(days=2),
+                       "container_4600teu", land=land_mask, budget_s=30.0,
+                       max_generations=5, default_bathymetry=False,
+                       approaches_given=[path])
+    first = [(round(w.lat_deg, 6), round(w.lon_deg, 6)) for w in plan.waypoints[:3]]
+    assert first == given
+    assert plan.optimised_spans[0][0] == 2  # the method plans from the given passage's end
+    with pytest.raises(RouteFileError, match="1 waypoint"):
+        plan_voyage("49.0,-6.0", "45.0,-10.0", "2026-06-01T00:00Z", timedelta(days=2),
+                    "container_4600teu", land=land_mask, default_bathymetry=False,
+                    approaches_given=[_rtz(tmp_path / "one.rtz", [(49.0, -6.0)])])

@@ -65,6 +65,9 @@ def build_parser() -> argparse.ArgumentParser:
                          "penalty_per_nm); repeatable")
     ap.add_argument("--clearance-nm", type=float, default=0.0,
                     help="distance from land [NM] the route check of the plan requires")
+    ap.add_argument("--approach", action="append", default=[], metavar="FILE.rtz",
+                    help="coastal passage from/to a port (RTZ or GeoJSON, e.g. from the "
+                         "ECDIS), sailed as given and checked; repeatable")
     return ap
 
 
@@ -110,7 +113,8 @@ def main(argv: list[str]) -> int:
             budget_s=args.budget, seed=args.seed, stage_hours=args.stage_hours,
             seed_pool_dir=args.seed_pool, progress=_progress, bathymetry=args.bathymetry,
             default_bathymetry=not args.no_default_bathymetry, ukc_margin_m=args.ukc_margin,
-            zones=args.zones, clearance_nm=args.clearance_nm)
+            zones=args.zones, clearance_nm=args.clearance_nm,
+            approaches_given=args.approach)
         print(file=sys.stderr)
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)
