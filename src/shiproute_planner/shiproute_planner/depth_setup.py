@@ -20,7 +20,6 @@ from .errors import BathymetryError
 from .geo.depth import Bathymetry, load_bathymetry
 from .geo.geodesy import direct, inverse
 from .plan_types import KN_PER_M_S, RoutePlan
-from .route.constraints import FLAG_DEPTH
 from .route.problem import RouteLimits
 from .route.under_keel import UnderKeel, under_keel_for_ship
 
@@ -44,7 +43,9 @@ def depth_limits(limits: RouteLimits, spec: Any, bathymetry: Sequence[str | Path
     uk = under_keel_for_ship(spec, bathy, margin_m)
     note = (f"depth from {bathy.description}; UKC = depth - (draft {uk.draft_m:.1f} m + "
             f"Barrass squat Cb {uk.block_coefficient:.2f} V^2/100 + "
-            f"{uk.wave_allowance_per_hs:g} Hs + margin {uk.margin_m:.1f} m)")
+            f"{uk.wave_allowance_per_hs:g} Hs + margin {uk.margin_m:.1f} m); not a constraint "
+            "within 10 NM of ports and approach ends (dredged channels no grid resolves: the "
+            "route check lists what it finds there)")
     return dataclasses.replace(limits, under_keel=uk), [note]
 
 
@@ -83,22 +84,13 @@ def with_depth_report(plan: RoutePlan, uk: UnderKeel | None, notes: list[str]) -
     stw = np.array([w.stw_kn for w in wps[:-1]]) / KN_PER_M_S
     hs = np.array([w.hs_m for w in wps[:-1]])
     depth, ukc = track_clearance(uk, lon, lat, stw, hs)
-    optimised = np.zeros(depth.size, dtype=bool)
-    for a, b in plan.optimised_spans or ((0, depth.size),):
-        optimised[a:b] = True
     new = []
     for k, w in enumerate(wps):
-        if k < depth.size:
-            flags = w.constraint_flags | (FLAG_DEPTH if ukc[k] < 0 else 0)
-            w = dataclasses.replace(w, min_depth_m=float(depth[k]), ukc_m=float(ukc[k]),
-                                    constraint_flags=int(flags))
+        if k < depth.size:  # FLAG_DEPTH stays the optimiser's (pilotage waters excepted)
+            w = dataclasses.replace(w, min_depth_m=float(depth[k]), ukc_m=float(ukc[k]))
         new.append(w)
     unknown = int(np.count_nonzero(np.isnan(depth)))
     if unknown:
         warnings.append(f"depth not checked on {unknown} of {depth.size} legs "
                         "(no bathymetry grid covers them)")
-    extra = {}
-    if np.any(optimised & (ukc < 0)) and plan.feasible:  # the constraint missed a leg
-        extra = {"feasible": False, "infeasible_reasons": (*plan.infeasible_reasons,
-                                                            "under-keel clearance below limit")}
-    return dataclasses.replace(plan, waypoints=tuple(new), warnings=tuple(warnings), **extra)
+    return dataclasses.replace(plan, waypoints=tuple(new), warnings=tuple(warnings))

@@ -61,7 +61,9 @@ def checked_plan(plan: RoutePlan, land: LandMask, limits: RouteLimits,
     planned = np.zeros(len(wps), dtype=bool)
     for a, b in plan.optimised_spans or ((0, len(wps)),):
         planned[a:b] = True
-    bad = [v for v in found if planned[v.leg]]
+    # depth next to ports and approach ends is pilotage (dredged channels): listed, not
+    # deciding; elsewhere the optimiser's own UKC constraint has decided already
+    bad = [v for v in found if planned[v.leg] and v.kind != "depth"]
     extra = {}
     if bad and plan.feasible:
         extra = {"feasible": False, "infeasible_reasons": tuple(

@@ -96,7 +96,8 @@ def segment_min_depth(lon0: np.ndarray, lat0: np.ndarray, lon1: np.ndarray,
             bi = min(max(int((lat + 90.0) / block_deg), 0), n_blat - 1)
             bj = min(max(int(((lon + 180.0) % 360.0) / block_deg), 0), n_blon - 1)
             if coarse[bi, bj] >= cap:
-                seen = True  # known to be at least the cap here (or unknown)
+                if coarse[bi, bj] < math.inf:
+                    seen = True  # known to be at least the cap here
                 k += skip if k + skip <= n or k == n else n - k
                 continue
             v = depth_at(lat, lon, data, grids)
