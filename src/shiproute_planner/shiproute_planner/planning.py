@@ -173,7 +173,7 @@ def plan_voyage(
     coastal_passage: bool = True,
     cycle_id: str = "",
     bathymetry: Sequence[str | Path] | Bathymetry | None = None,
-    default_bathymetry: bool = True,
+    default_bathymetry: bool = False,
     ukc_margin_m: float = 1.0,
     zones: Sequence[str | Path] | Zones | None = None,
     clearance_nm: float = 0.0,
@@ -193,7 +193,8 @@ def plan_voyage(
     great circle between the approaches' ends is clear of land (each within the first/last
     sixth of the lane; off lets the method choose between straits); the method optimises
     between the approaches' sea ends. `bathymetry` (grid files or a `Bathymetry`) plus, with
-    `default_bathymetry`, the packaged ETOPO5 grid make the under-keel clearance (margin
+    `default_bathymetry` (on in the CLI, the node and `bench world`; off here so a library
+    call uses no data it was not given), the packaged ETOPO5 grid make the under-keel clearance (margin
     `ukc_margin_m` on top of draft, squat and wave allowance) a constraint of every leg;
     `zones` (GeoJSON files or `Zones`) add no-go areas (hard) and avoid-if-possible areas
     (a penalty per NM). The finished plan gets the route check (land, `clearance_nm` from

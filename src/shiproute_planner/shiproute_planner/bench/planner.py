@@ -89,9 +89,10 @@ def run(budget_s: float, warm_budget_s: float, ref_factor: float, seed: int) -> 
     # warm the process like a running planner node: sea-lane graph, coastline polygons near
     # the ports, compiled kernels (no seed pool involved, so the timed plan stays cold)
     plan_voyage("Busan", "Long Beach", DEPART, timedelta(days=13), forecast=s1, budget_s=0.0,
-                max_generations=0, with_baseline=False, ship="container_4600teu", land=land)
+                max_generations=0, with_baseline=False, ship="container_4600teu", land=land,
+                default_bathymetry=True)
     setup_s = time.perf_counter() - t0
-    common = dict(ship="container_4600teu", land=land, seed=seed)
+    common = dict(ship="container_4600teu", land=land, seed=seed, default_bathymetry=True)
     with tempfile.TemporaryDirectory() as pool_dir:
         t = time.perf_counter()
         cold = plan_voyage("Busan", "Long Beach", DEPART, timedelta(days=13), forecast=s1,

@@ -5,7 +5,8 @@ check each plan with the route check at GSHHG full resolution.
 shiproute project's shared data (20 trade lanes through Suez, Panama, Kiel, Dover,
 Gibraltar, Malacca, the Bosphorus, Torres Strait, the Great Barrier Reef, the Elbe, the St
 Lawrence). A lane is land-clean when no sample of its track (every 0.25 NM) lies on GSHHG
-full-resolution land outside 3 NM round each port, and depth-checked when the plan was made
+full-resolution land outside 3 NM round each port and outside canals (fixed passages under
+their authorities' rules), and depth-checked when the plan was made
 with bathymetry and every planned leg's depth was known (port approaches inside coarse-grid
 coastal cells may be unknown: the coastline decides there; they are counted per lane).
 """
@@ -57,7 +58,7 @@ def run(budget_s: float, only: list[str]) -> dict:
         try:
             plan = plan_voyage(lane["from"], lane["to"], lane["depart"],
                                timedelta(days=float(lane["rta_days"])), lane["ship"], None,
-                               budget_s=budget_s)
+                               budget_s=budget_s, default_bathymetry=True)
         except PlannerError as exc:
             row.update(error=str(exc), plan_s=round(time.perf_counter() - t, 2))
             rows.append(row)
@@ -65,8 +66,11 @@ def run(budget_s: float, only: list[str]) -> dict:
         dt = time.perf_counter() - t
         times.append(dt)
         lon, lat, _ = plan.track()
+        fixed = frozenset(k for a, b in plan.extra.get("fixed_passages", ())
+                          for k in range(a, b))
         result = check_track(lon, lat, np.array([w.stw_kn for w in plan.waypoints[:-1]]),
-                             land_full.contains, port_clearance_m=3.0 * 1852.0)
+                             land_full.contains, port_clearance_m=3.0 * 1852.0,
+                             skip_legs=fixed)
         land = [v for v in result.violations if v.kind == "land"]
         depths = np.array([w.min_depth_m for w in plan.waypoints[:-1]])
         planned = np.zeros(depths.size, dtype=bool)
