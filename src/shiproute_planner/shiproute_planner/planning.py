@@ -194,8 +194,9 @@ def plan_voyage(
     sixth of the lane; off lets the method choose between straits); the method optimises
     between the approaches' sea ends. `bathymetry` (grid files or a `Bathymetry`) plus, with
     `default_bathymetry` (on in the CLI, the node and `bench world`; off here so a library
-    call uses no data it was not given), the packaged ETOPO5 grid make the under-keel clearance (margin
-    `ukc_margin_m` on top of draft, squat and wave allowance) a constraint of every leg;
+    call uses no data it was not given), the packaged ETOPO5 grid make the under-keel
+    clearance (margin `ukc_margin_m` on top of draft, squat and wave allowance) a constraint
+    of every leg;
     `zones` (GeoJSON files or `Zones`) add no-go areas (hard) and avoid-if-possible areas
     (a penalty per NM). The finished plan gets the route check (land, `clearance_nm` from
     land, depth, zones) and carries its findings in its warnings. `approaches_given`: route
