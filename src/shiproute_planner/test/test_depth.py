@@ -73,7 +73,7 @@ def test_plan_goes_round_skerki_bank_and_keeps_ukc(land_mask):
     blind = plan_voyage(A, B, "2026-06-01T00:00Z", timedelta(hours=12), ship, **kw)
     lon, lat = densify_track(*blind.track()[:2], 90.0)
     # premise: the plan made without depth runs over the bank, shallower than the draft
-    assert "depth not checked" in blind.warnings[-1]
+    assert any(w.startswith("depth not checked") for w in blind.warnings)
     assert _file_depth_along(lon, lat).min() < 12.0
 
     plan = plan_voyage(A, B, "2026-06-01T00:00Z", timedelta(hours=12), ship,
