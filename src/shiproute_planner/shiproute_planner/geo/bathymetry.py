@@ -168,8 +168,9 @@ def load_depth_grid(path_text: str) -> DepthGrid:
     try:
         ds = xr.open_dataset(path, decode_times=False)
     except (OSError, ValueError) as exc:
-        raise BathymetryError(f"bathymetry file {path} is not a readable NetCDF grid: {exc}"
-                              ) from None
+        first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+        raise BathymetryError(f"bathymetry file {path} is not a readable NetCDF grid "
+                              f"({first})") from None
     with ds:
         var, up = _pick_variable(ds, path)
         _check_crs(ds, var, path)
