@@ -124,3 +124,28 @@ def test_node_parameters_for_depth_and_zones_are_validated(tmp_path):
     assert "non-negative" in check_parameter("clearance_nm", float("nan"))
     assert check_parameter("bathymetry_files", f"{SKERKI}, ") is None
     assert "no such file" in check_parameter("zones_files", str(tmp_path / "none.geojson"))
+
+
+def test_ship_too_deep_for_the_passage_goes_round(land_mask):
+    # the 12 m container ship threads Skerki Bank's 14-20 m gaps; a VLCC (20 m draft) may not
+    kw = dict(approach_nm=0, land=land_mask, budget_s=60.0, max_generations=40,
+              stage_hours=2.0, default_bathymetry=False, bathymetry=[SKERKI])
+    small = plan_voyage(A, B, "2026-06-01T00:00Z", timedelta(hours=14), "container_4600teu",
+                        **kw)
+    deep = plan_voyage(A, B, "2026-06-01T00:00Z", timedelta(hours=14), "vlcc_270k", **kw)
+    spec = load_ship("vlcc_270k")
+    c, h = spec.condition, spec.hull
+    cb = c.displacement_t / 1.025 / (h.lwl_m * h.breadth_m * spec.mean_draft_m)
+    draft = max(c.draft_fore_m, c.draft_aft_m)
+
+    def shallowest(plan):
+        lon, lat = densify_track(*plan.track()[:2], 90.0)
+        return _file_depth_along(lon, lat).min()
+
+    assert small.feasible and deep.feasible, (small.infeasible_reasons, deep.infeasible_reasons)
+    assert shallowest(small) < draft  # the small ship's track would ground the VLCC
+    p_lon, p_lat, _ = deep.track()
+    for k, w in enumerate(deep.waypoints[:-1]):
+        seg_lon, seg_lat = densify_track(p_lon[k:k + 2], p_lat[k:k + 2], 90.0)
+        need = draft + cb * w.stw_kn**2 / 100.0 + 1.0
+        assert _file_depth_along(seg_lon, seg_lat).min() >= need - 0.05, k
