@@ -89,6 +89,7 @@ command -v cc >/dev/null && command -v c++ >/dev/null || missing+=(g++)
 deb_installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q 'install ok installed'; }
 if command -v dpkg-query >/dev/null; then
   deb_installed python-grib-doc || missing+=(python-grib-doc)  # real GRIB examples for tests
+  deb_installed ferret-datasets || missing+=(ferret-datasets)  # ETOPO5 global depth (5 arc-min), default bathymetry
 fi
 PY_REAL="$(command -v "$PY_BASE" || true)"
 [[ -n "$PY_REAL" ]] || missing+=(python3)

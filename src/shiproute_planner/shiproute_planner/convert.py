@@ -76,7 +76,7 @@ def _waypoint_msg(w) -> RouteWaypoint:
     for name in (
         "heading_deg", "stw_kn", "sog_kn", "leg_distance_nm", "leg_duration_s", "leg_fuel_t",
         "brake_power_kw", "hs_m", "wave_from_deg", "wind_speed_m_s", "wind_from_deg",
-        "p_slamming", "p_deck_wetness", "p_propeller_emergence",
+        "p_slamming", "p_deck_wetness", "p_propeller_emergence", "min_depth_m", "ukc_m",
     ):
         setattr(m, name, float(getattr(w, name)))
     m.shaft_rpm = float(w.shaft_rpm)

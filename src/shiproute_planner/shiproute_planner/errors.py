@@ -41,3 +41,15 @@ class OutputError(PlannerError):
 
 class ForecastCycleError(PlannerError, ValueError):
     """A forecast cycle's slices are out of range or inconsistent (grid, fields, times)."""
+
+
+class BathymetryError(PlannerError):
+    """A bathymetry grid is missing, unreadable, not a lat/lon grid or holds no depth."""
+
+
+class ZoneFileError(PlannerError):
+    """A no-go zone file is not GeoJSON polygons or has invalid properties."""
+
+
+class RouteFileError(PlannerError):
+    """A route file (RTZ, GeoJSON) to check cannot be read or has too few waypoints."""

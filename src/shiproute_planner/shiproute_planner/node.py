@@ -90,7 +90,18 @@ PARAMETERS: dict[str, tuple[object, str]] = {
     "min_replan_interval_s": (3600.0, "least ship-time between off-plan re-plans [s]"),
     "departure_radius_nm": (10.0, "within this of the origin the plan starts at the port [NM]"),
     "plan_without_ship_state": (False, "plan from origin/departure_time without a ShipState"),
+    "bathymetry_files": ("", "bathymetry grids, comma-separated NetCDF paths (finest wins)"),
+    "default_bathymetry": (True, "add the global ETOPO5 grid (Debian ferret-datasets)"),
+    "ukc_margin_m": (1.0, "under-keel clearance margin on draft + squat + waves [m]"),
+    "zones_files": ("", "no-go / avoid zone GeoJSON files, comma-separated"),
+    "clearance_nm": (0.0, "distance from land the route check of each plan requires [NM]"),
+    "approach_files": ("", "coastal passages from/to ports (RTZ/GeoJSON), comma-separated"),
 }
+
+
+def _paths(text: str) -> list[str]:
+    """Comma-separated file list of a string parameter."""
+    return [p.strip() for p in text.split(",") if p.strip()]
 
 
 def _return_freed_memory(collect: bool = True) -> None:
@@ -416,6 +427,12 @@ class PlannerNode(Node):
             stage_hours=float(self._p("stage_hours")), previous_plan=inputs.previous,
             position=position, seed_pool_dir=pool, progress=self._on_progress,
             cancel=self._cancel, ship_model=str(self._p("ship_model")),
+            bathymetry=_paths(str(self._p("bathymetry_files"))),
+            default_bathymetry=bool(self._p("default_bathymetry")),
+            ukc_margin_m=float(self._p("ukc_margin_m")),
+            zones=_paths(str(self._p("zones_files"))),
+            clearance_nm=float(self._p("clearance_nm")),
+            approaches_given=_paths(str(self._p("approach_files"))),
         )
         if self._cancel.is_set():
             self.get_logger().info(f"plan on {inputs.cycle_id} superseded by a newer cycle")

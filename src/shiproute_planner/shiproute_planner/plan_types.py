@@ -41,6 +41,10 @@ class Waypoint:
     p_propeller_emergence: float
     constraint_flags: int
     port: str = ""  # port name at departure/arrival/via nodes
+    # shallowest charted depth on the leg and the under-keel clearance left there after
+    # draft, squat, wave allowance and margin (NaN: depth not checked)
+    min_depth_m: float = float("nan")
+    ukc_m: float = float("nan")
 
 
 @dataclass(frozen=True)
@@ -144,6 +148,8 @@ def waypoints_from_evaluation(ev: RouteEvaluation, weather: dict, port_names: di
             p_propeller_emergence=g("p_propeller_emergence"),
             constraint_flags=int(ev.leg_flags[0, k]) if leg else 0,
             port=port_names.get(k, ""),
+            min_depth_m=g("min_depth_m") if "min_depth_m" in legs else nan,
+            ukc_m=g("ukc_m") if "ukc_m" in legs else nan,
         ))
     return out
 

@@ -20,15 +20,21 @@ from typing import Any
 import numpy as np
 
 from .approach import Approach, CoastalPassage, approach_length_m, lane_approaches, sail_approach
+from .canals import route_canals, sail_canal
+from .depth_setup import depth_limits, with_depth_report
 from .errors import InvalidVoyageError, PlanCancelledError
 from .forecast_statement import forecast_statement, prepare_forecast
 from .ga.loop import GAConfig
 from .ga.pool import Seed, SeedPool, pool_key
 from .ga.seeds import TrackSeed, shift_track
+from .geo.depth import Bathymetry
 from .geo.geodesy import inverse, unwrap_near
 from .geo.landmask import LandMask, default_land_mask
 from .geo.ports import Port, resolve_port
+from .geo.zones import Zones
+from .given_approach import approaches_at, load_approaches
 from .methods import MethodContext, Progress, compute_baseline, get_method
+from .plan_checks import checked_plan, zone_limits
 from .plan_types import RoutePlan, Waypoint, reasons_of, waypoints_from_evaluation
 from .route.environment import Environment
 from .route.evaluation import RouteEvaluation
@@ -177,6 +183,12 @@ def plan_voyage(
     persistence_h: float = 24.0,
     climatology: Any = None,
     ship_model: str = "",
+    bathymetry: Sequence[str | Path] | Bathymetry | None = None,
+    default_bathymetry: bool = False,
+    ukc_margin_m: float = 1.0,
+    zones: Sequence[str | Path] | Zones | None = None,
+    clearance_nm: float = 0.0,
+    approaches_given: Sequence[str | Path] = (),
 ) -> RoutePlan:
     """Plan a voyage and return a frozen RoutePlan.
 
@@ -198,6 +210,15 @@ def plan_voyage(
     `ship_model` chooses the performance model
     (`learned.select.resolve_model`: physics, kwon, profile:FILE, learned:FILE; "" = the ship
     file's `performance_model` entry or physics); the choice is stated in the plan's warnings.
+    `bathymetry` (grid files or a `Bathymetry`) plus, with
+    `default_bathymetry` (on in the CLI, the node and `bench world`; off here so a library
+    call uses no data it was not given), the packaged ETOPO5 grid make the under-keel
+    clearance (margin `ukc_margin_m` on top of draft, squat and wave allowance) a constraint
+    of every leg;
+    `zones` (GeoJSON files or `Zones`) add no-go areas (hard) and avoid-if-possible areas
+    (a penalty per NM). The finished plan gets the route check (land, `clearance_nm` from
+    land, depth, zones) and carries its findings in its warnings. `approaches_given`: route
+    files (RTZ/GeoJSON) of coastal passages from a port or to one, used as given.
     """
     t0 = time.perf_counter()
     land = land or default_land_mask()
@@ -206,8 +227,13 @@ def plan_voyage(
     if cycle_id:
         env = dataclasses.replace(env, cycle_id=cycle_id)
     lim = route_limits(spec, limits)
+    lim, warnings = depth_limits(lim, spec, bathymetry, default_bathymetry, ukc_margin_m)
+    lim, zone_notes = zone_limits(lim, zones)
+    warnings += zone_notes
+    given = load_approaches(approaches_given)
     ports = [p if isinstance(p, Port) else resolve_port(p, land)
              for p in (origin, *via, destination)]
+    warnings += [p.note for p in ports if p.note]
     depart_s = to_posix_s(depart)
     rta_s = depart_s + rta.total_seconds() if isinstance(rta, timedelta) else to_posix_s(rta)
     if position is not None:
@@ -218,6 +244,8 @@ def plan_voyage(
         depart_s = float(now_s)
     if not rta_s > depart_s:
         raise InvalidVoyageError("the RTA must be after the departure time")
+    ports, canal_legs, via_rta, canal_notes = route_canals(ports, spec, list(via_rta))
+    warnings += canal_notes
     leg_rtas = _leg_rtas(ports, depart_s, rta_s, via_rta)
     env = dataclasses.replace(env, sampler=prepare_forecast(env.sampler, depart_s, rta_s,
                                                             persistence_h, climatology))
@@ -232,12 +260,25 @@ def plan_voyage(
     gens = evals = 0
     leg_depart = depart_s
     for k, (a, b) in enumerate(itertools.pairwise(ports)):
+        if k in canal_legs:  # a fixed passage: sailed along the canal at its transit speed
+            canal, rev = canal_legs[k]
+            sea_rpm = float(results[-1].legs["rpm"][0, -1]) if results else None
+            lead_in, ev, lead_out, rpm_c, canal_problem = sail_canal(
+                env, canal, rev, leg_depart, lim, stage_hours * 3600.0, sea_rpm)
+            results.append(ev)
+            sources.append("canal")
+            problems.append(canal_problem)
+            if with_baseline:
+                baselines.append(("canal", rpm_c, ev))
+            approaches.append((lead_in, lead_out))
+            leg_depart = float((lead_out or ev).eta_s[0])
+            continue
         under_way = k == 0 and position is not None
         leg = leg_setup(a, b, env, lim, land, leg_depart, leg_rtas[k], approach_nm=approach_nm,
                         approach_rpm=approach_rpm, coastal_passage=coastal_passage,
                         stage_hours=stage_hours, objective=objective,
                         under_way=under_way, previous_plan=previous_plan if under_way else None,
-                        position=position if under_way else None)
+                        position=position if under_way else None, given=given)
         problem, pre, ap_arr, rpm_ap = leg.problem, leg.pre, leg.ap_arr, leg.rpm_ap
         seeds, gene_seeds = _seeds(problem, pool, a, b, month,
                                    previous_plan if k == 0 else None, position)
@@ -278,6 +319,8 @@ def plan_voyage(
 
         notes = model_notes + plan_warnings(env.model, plan)
         plan = dataclasses.replace(plan, warnings=plan.warnings + notes)
+    plan = checked_plan(with_depth_report(plan, lim.under_keel, warnings), land, lim,
+                        clearance_nm)
     block, said = forecast_statement(env.sampler, plan, persistence_h)
     return dataclasses.replace(plan, warnings=(*plan.warnings, *said),
                                extra={**plan.extra, "forecast": block})
@@ -319,10 +362,13 @@ def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMa
               approach_rpm: float | None = None, coastal_passage: bool = True,
               stage_hours: float = 12.0, objective: str = "fuel", under_way: bool = False,
               previous_plan: RoutePlan | None = None,
-              position: tuple[float, float, float] | None = None) -> LegSetup:
+              position: tuple[float, float, float] | None = None,
+              given: Sequence[Approach] = ()) -> LegSetup:
     """Approaches of a leg a -> b and the problem between their sea ends (see `plan_voyage`;
     shared with the method comparison so every method solves the same problem). Under way
-    the ship finishes the coastal passage it is in, if any, from where it is."""
+    the ship finishes the coastal passage it is in, if any, from where it is. `given`
+    approaches (the user's coastal routes, e.g. from the ECDIS) that start at `a` or end at
+    `b` replace the computed ones and are sailed as given."""
     coastal = CoastalPassage(land) if coastal_passage else None
     rest = _rest_of_approach(previous_plan, position) if under_way else None
     kept = _previous_arrival(previous_plan, b, position) if under_way else None
@@ -335,6 +381,11 @@ def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMa
             coastal=coastal, dep_min_m=0.0 if under_way else None)
     if rest is not None:
         ap_dep = rest
+    mine_dep, mine_arr = approaches_at(given, a, b)
+    if mine_dep is not None and not under_way:
+        ap_dep = mine_dep
+    if mine_arr is not None:
+        ap_arr = mine_arr
     rpm_ap = approach_rpm or _lane_rpm(env, a, b, ap_dep, ap_arr, depart_s, rta_s, lim)
     pre = sail_approach(env, ap_dep, rpm_ap, depart_s, lim) if ap_dep else None
     t_leg = float(pre.eta_s[0]) if pre is not None else depart_s
@@ -457,7 +508,7 @@ def _assemble(ports, problems, results, baselines, sources, approaches, env, spe
               objective, depart_s, rta_s, leg_rtas, gens, evals, compute_s) -> RoutePlan:
     wps: list[Waypoint] = []
     flags = 0
-    plan_parts, base_parts, spans = [], [], []
+    plan_parts, base_parts, spans, fixed = [], [], [], []
     for k, ev in enumerate(results):
         pre, post = approaches[k]
         parts = _legs_of(ev, pre, post)
@@ -478,7 +529,9 @@ def _assemble(ports, problems, results, baselines, sources, approaches, env, spe
                 wps[-1] = dataclasses.replace(w[0], port=wps[-1].port or w[0].port)
                 w = w[1:]
             wps.extend(w)
-            if part is ev:
+            if part is ev and sources[k] == "canal":
+                fixed.append((start, len(wps) - 1))
+            elif part is ev:
                 spans.append((start, len(wps) - 1))
             if part is ev:  # approaches are fixed pilotage: their flags inform, not decide
                 flags |= int(part.flags[0]) & ~2
@@ -508,4 +561,5 @@ def _assemble(ports, problems, results, baselines, sources, approaches, env, spe
         vessel_max_wave_m=float(problems[0].limits.max_hs_m or float("nan")),
         vessel_max_wind_m_s=float(problems[0].limits.max_wind_m_s or float("nan")),
         baseline_track=b_track, leg_rtas_s=tuple(leg_rtas), optimised_spans=tuple(spans),
+        extra={"fixed_passages": tuple(fixed)} if fixed else {},
     )

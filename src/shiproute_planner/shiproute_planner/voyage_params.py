@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 from datetime import UTC, datetime
+from pathlib import Path
 from typing import Any
 
 OBJECTIVES = ("fuel", "distance", "eta")
@@ -48,6 +49,14 @@ def check_parameter(name: str, value: Any) -> str | None:
         return "destination must name a port, a UN/LOCODE or 'lat,lon'"
     if name == "ship_model":
         return _ship_model_reason(str(value))
+    if name in ("ukc_margin_m", "clearance_nm") and (
+            not isinstance(value, int | float) or not value >= 0):
+        return f"{name} must be a non-negative number, got {value!r}"
+    if name in ("bathymetry_files", "zones_files", "approach_files"):
+        missing = [p.strip() for p in str(value).split(",") if p.strip()
+                   and not Path(p.strip()).is_file()]
+        if missing:
+            return f"{name}: no such file {', '.join(missing)}"
     if name == "rng_seed" and (not isinstance(value, int) or value < 0):
         return f"rng_seed must be a non-negative integer, got {value!r}"
     return None

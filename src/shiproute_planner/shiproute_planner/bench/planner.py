@@ -10,6 +10,7 @@ check and ETA - RTA. Forecast sampler, ship tables and land mask are built befor
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import tempfile
 import time
@@ -88,9 +89,10 @@ def run(budget_s: float, warm_budget_s: float, ref_factor: float, seed: int) -> 
     # warm the process like a running planner node: sea-lane graph, coastline polygons near
     # the ports, compiled kernels (no seed pool involved, so the timed plan stays cold)
     plan_voyage("Busan", "Long Beach", DEPART, timedelta(days=13), forecast=s1, budget_s=0.0,
-                max_generations=0, with_baseline=False, ship="container_4600teu", land=land)
+                max_generations=0, with_baseline=False, ship="container_4600teu", land=land,
+                default_bathymetry=True)
     setup_s = time.perf_counter() - t0
-    common = dict(ship="container_4600teu", land=land, seed=seed)
+    common = dict(ship="container_4600teu", land=land, seed=seed, default_bathymetry=True)
     with tempfile.TemporaryDirectory() as pool_dir:
         t = time.perf_counter()
         cold = plan_voyage("Busan", "Long Beach", DEPART, timedelta(days=13), forecast=s1,
@@ -134,6 +136,9 @@ def run(budget_s: float, warm_budget_s: float, ref_factor: float, seed: int) -> 
         "gap_to_reference_pct": round(100.0 * (cold.total_fuel_t - reference) / reference, 3),
         "route_evals_per_s": round(evals_per_s(env, land, problem), 1),
         "route_evals_per_s_without_land": round(evals_per_s(env, None, problem), 1),
+        "route_evals_per_s_without_depth": round(evals_per_s(
+            env, land, dataclasses.replace(problem, limits=_limits_of(cold, env, False))), 1),
+        "depth": next((w for w in cold.warnings if w.startswith("depth")), ""),
         "exact_route_evals_per_s": round(evals_per_s(env, land, problem, exact=True), 1),
         "ga_evals_per_s": round(cold.evaluations / max(cold.compute_time_s, 1e-9), 1),
         "land_crossings": sum(len(land_crossings(lo, la, port_clearance_m=0.0))
@@ -145,10 +150,17 @@ def run(budget_s: float, warm_budget_s: float, ref_factor: float, seed: int) -> 
     }
 
 
-def _limits_of(plan, env):
+def _limits_of(plan, env, depth: bool = True):
+    """The plan's route limits, with the UKC constraint the planner adds by default."""
     from ..planning import route_limits
 
-    return route_limits(getattr(env.model, "ship", None))
+    spec = getattr(env.model, "ship", None)
+    limits = route_limits(spec)
+    if not depth:
+        return limits
+    from ..depth_setup import depth_limits
+
+    return depth_limits(limits, spec, None, True, 1.0)[0]
 
 
 def main(argv: list[str]) -> int:

@@ -65,6 +65,23 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--name", default=None, help="output file stem (default from ports)")
     ap.add_argument("--no-plot", action="store_true")
     ap.add_argument("--list-methods", action="store_true")
+    ap.add_argument("--bathymetry", action="append", default=[], metavar="FILE",
+                    help="bathymetry grid (GEBCO/ETOPO/EMODnet NetCDF; repeatable, the finest "
+                         "wins where they overlap); the global ETOPO5 grid of Debian's "
+                         "ferret-datasets is added when installed")
+    ap.add_argument("--no-default-bathymetry", action="store_true",
+                    help="do not add the coarse global ETOPO5 grid")
+    ap.add_argument("--ukc-margin", type=float, default=1.0, metavar="M",
+                    help="under-keel clearance margin [m] on top of draft, squat and "
+                         "wave allowance (default 1.0)")
+    ap.add_argument("--zones", action="append", default=[], metavar="Z.geojson",
+                    help="no-go areas (GeoJSON polygons; property mode hard|penalty, "
+                         "penalty_per_nm); repeatable")
+    ap.add_argument("--clearance-nm", type=float, default=0.0,
+                    help="distance from land [NM] the route check of the plan requires")
+    ap.add_argument("--approach", action="append", default=[], metavar="FILE.rtz",
+                    help="coastal passage from/to a port (RTZ or GeoJSON, e.g. from the "
+                         "ECDIS), sailed as given and checked; repeatable")
     return ap
 
 
@@ -126,7 +143,11 @@ def main(argv: list[str]) -> int:
             budget_s=args.budget, seed=args.seed, stage_hours=args.stage_hours,
             seed_pool_dir=args.seed_pool, progress=_progress,
             persistence_h=args.persistence_hours,
-            climatology=_climatology(args.climatology), ship_model=args.model)
+            climatology=_climatology(args.climatology), ship_model=args.model,
+            bathymetry=args.bathymetry,
+            default_bathymetry=not args.no_default_bathymetry, ukc_margin_m=args.ukc_margin,
+            zones=args.zones, clearance_nm=args.clearance_nm,
+            approaches_given=args.approach)
         print(file=sys.stderr)
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)

@@ -46,3 +46,13 @@ class ExactLand:
             hit = shapely.intersects_xy(geoms, lon[pt_idx], lat[pt_idx])
             out[pt_idx[hit]] = True
         return out.reshape(np.shape(lon_deg))
+
+    def clipped(self, lon_min: float, lat_min: float, lon_max: float, lat_max: float):
+        """Land inside a lon/lat box (-180..180, not across the antimeridian) as one
+        geometry, for distance-to-land tests (clearance)."""
+        ids = self._tree.query(shapely.box(lon_min, lat_min, lon_max, lat_max))
+        if ids.size == 0:
+            return shapely.Polygon()
+        geoms = self._geometry(np.asarray(ids))
+        parts = shapely.clip_by_rect(geoms, lon_min, lat_min, lon_max, lat_max)
+        return shapely.union_all(parts[~shapely.is_empty(parts)])

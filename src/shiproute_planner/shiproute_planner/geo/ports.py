@@ -7,6 +7,7 @@ fall on the GSHHG coastline are moved to the nearest water within `max_snap_km`.
 
 from __future__ import annotations
 
+import difflib
 import functools
 import json
 import re
@@ -17,22 +18,7 @@ import numpy as np
 
 from ..errors import PortNotFoundError, PositionOnLandError
 from .landmask import LandMask
-
-# Modern or common name -> name in searoute's ports.geojson.
-ALIASES: dict[str, str] = {
-    "busan": "pusan",
-    "kolkata": "calcutta",
-    "yangon": "yangon",
-    "rangoon": "yangon",
-    "bombay": "mumbai",
-    "saigon": "ho chi minh city",
-    "los angeles-long beach": "long beach",
-    "new york city": "new york",
-    "nyc": "new york",
-    "gdańsk": "gdansk",
-    "hong kong sar": "hong kong",
-    "lisbon": "lisboa",
-}
+from .port_aliases import ALIASES, RIVER_PORTS
 
 _LATLON = re.compile(r"^\s*([-+]?\d+(?:\.\d*)?)\s*[, ]\s*([-+]?\d+(?:\.\d*)?)\s*$")
 
@@ -46,6 +32,7 @@ class Port:
     lat_deg: float
     lon_deg: float
     snapped_km: float = 0.0  # how far the given position was moved to reach water
+    note: str = ""  # what the plan should say about this port (river port, snapped)
 
 
 @functools.lru_cache(maxsize=1)
@@ -91,14 +78,23 @@ def lookup_port(text: str) -> Port:
         key = ALIASES.get(key, key)
         cands = by_name.get(key)
         if not cands:
-            close = sorted(n for n in by_name if n.startswith(key[:4]))[:5]
+            close = difflib.get_close_matches(key, list(by_name) + list(ALIASES), n=5,
+                                              cutoff=0.75)
+            close += sorted(n for n in by_name if n.startswith(key[:4]) and n not in close)
+            close = close[:5]
             hint = f"; similar names: {', '.join(close)}" if close else ""
             raise PortNotFoundError(
                 f"port {text!r} not found in the searoute gazetteer (use a port name, a "
                 f"UN/LOCODE such as KRPUS, or 'lat,lon'){hint}"
             )
         p = max(cands, key=_rank)
-    return Port(p["name"], p.get("port") or "", float(p["lat"]), float(p["lon"]))
+    code = p.get("port") or ""
+    if code in RIVER_PORTS:
+        channel, lat, lon = RIVER_PORTS[code]
+        return Port(p["name"], code, lat, lon, note=(
+            f"{p['name']} lies up the {channel}: the plan starts/ends at its seaward end "
+            f"({lat:.2f}, {lon:.2f}); the river passage is pilotage and not planned"))
+    return Port(p["name"], code, float(p["lat"]), float(p["lon"]))
 
 
 def snap_to_sea(port: Port, land: LandMask, max_snap_km: float = 25.0) -> Port:
@@ -120,7 +116,10 @@ def snap_to_sea(port: Port, land: LandMask, max_snap_km: float = 25.0) -> Port:
             f"navigable water lies within {max_snap_km:g} km: give a position at sea"
         )
     k = int(np.flatnonzero(wet)[0])
-    return Port(port.name, port.locode, float(lat[k]), float(lon[k]), float(rr.ravel()[k]))
+    moved = float(rr.ravel()[k])
+    note = port.note or (f"{port.name}: the gazetteer position is on land; moved {moved:g} km "
+                         "to the nearest navigable water" if moved > 2.0 else "")
+    return Port(port.name, port.locode, float(lat[k]), float(lon[k]), moved, note)
 
 
 def resolve_port(text: str, land: LandMask, max_snap_km: float = 25.0) -> Port:

@@ -36,7 +36,8 @@ def plan_summary(plan: RoutePlan) -> dict:
                 "lat_deg", "lon_deg", "heading_deg", "shaft_rpm", "stw_kn", "sog_kn",
                 "leg_distance_nm", "leg_duration_s", "leg_fuel_t", "brake_power_kw", "hs_m",
                 "wave_from_deg", "wind_speed_m_s", "wind_from_deg", "p_slamming",
-                "p_deck_wetness", "p_propeller_emergence", "constraint_flags", "port")}})
+                "p_deck_wetness", "p_propeller_emergence", "constraint_flags", "port",
+                "min_depth_m", "ukc_m")}})
     return _clean({
         "plan_id": plan.plan_id, "method": plan.method, "seed_source": plan.seed_source,
         "objective": plan.objective, "ship": plan.ship_name, "cycle_id": plan.cycle_id,

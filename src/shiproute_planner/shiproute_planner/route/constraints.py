@@ -27,6 +27,7 @@ FLAG_IMO_HIGH_WAVE_GROUP = 4096
 FLAG_DEPTH = 8192
 FLAG_ENGINE_LIMIT = 16384
 FLAG_LATITUDE = 32768  # planner-only: a node beyond the latitude bound
+FLAG_NO_GO_ZONE = 65536
 
 FLAG_NAMES = {
     FLAG_LAND: "crosses land",
@@ -45,6 +46,7 @@ FLAG_NAMES = {
     FLAG_DEPTH: "under-keel clearance below limit",
     FLAG_ENGINE_LIMIT: "engine overload",
     FLAG_LATITUDE: "beyond the latitude bound",
+    FLAG_NO_GO_ZONE: "enters a no-go zone",
 }
 
 
@@ -106,6 +108,11 @@ def leg_flags_and_violation(
             add(np.asarray(legs[key], dtype=bool), bit, 1.0)
     if limits.engine_limit:
         add(np.asarray(legs["engine_limit_exceeded"], dtype=bool), FLAG_ENGINE_LIMIT, 1.0)
+    if "ukc_m" in legs:  # metres short of the required depth (NaN: depth unknown)
+        short = np.maximum(0.0, -np.nan_to_num(legs["ukc_m"], nan=0.0))
+        add(short > 0, FLAG_DEPTH, 1.0 + short)
+    if "zone_nm" in legs:  # NM sailed inside hard no-go zones
+        add(legs["zone_nm"] > 0, FLAG_NO_GO_ZONE, 1.0 + legs["zone_nm"])
     lat_ex = np.maximum(0.0, np.abs(legs["lat_end_deg"]) - limits.lat_bound_deg)
     add(lat_ex > 0, FLAG_LATITUDE, lat_ex)
     return flags, viol

@@ -65,12 +65,18 @@ def objective_of(problem: RouteProblem, fuel_t, distance_m, eta_s) -> np.ndarray
     return np.asarray(fuel_t, dtype=float)
 
 
+PILOTAGE_DEPTH_M = 10.0 * 1852.0  # depth next to ports/approach ends: dredged channels
+
+
 def clear_ports(problem: RouteProblem, lon: np.ndarray, lat: np.ndarray,
-                 distance_m: np.ndarray) -> tuple[np.ndarray, ...]:
-    """Leg end points with the first/last `port_clearance_m` next to a port cut off."""
+                 distance_m: np.ndarray, clearance_m: float | None = None
+                 ) -> tuple[np.ndarray, ...]:
+    """Leg end points with the first/last `port_clearance_m` (or `clearance_m`) next to a
+    port cut off."""
     lon0, lat0 = lon[:, :-1].copy(), lat[:, :-1].copy()
     lon1, lat1 = lon[:, 1:].copy(), lat[:, 1:].copy()
-    frac = np.clip(problem.port_clearance_m / np.maximum(distance_m, 1.0), 0.0, 1.0)
+    cut = problem.port_clearance_m if clearance_m is None else clearance_m
+    frac = np.clip(cut / np.maximum(distance_m, 1.0), 0.0, 1.0)
     at_dep = (np.abs(lon0 - problem.dep_lon_deg) < 1e-9) & (
         np.abs(lat0 - problem.dep_lat_deg) < 1e-9)
     at_arr = (np.abs(lon1 - problem.arr_lon_deg) < 1e-9) & (
@@ -103,6 +109,22 @@ def finish(
         legs["land_samples"] = np.where(active, samples, 0)
     else:
         legs["land_samples"] = np.zeros(active.shape, dtype=np.int64)
+    under_keel = problem.limits.under_keel
+    if under_keel is not None:  # not in the pilotage waters next to ports and approach ends
+        ends = clear_ports(problem, lon, lat, legs["distance_m"], PILOTAGE_DEPTH_M)
+        depth, ukc = under_keel.leg_clearance(*ends, legs["stw_m_s"], legs["hs_m"])
+        legs["min_depth_m"] = np.where(active, depth, np.nan)
+        legs["ukc_m"] = np.where(active, ukc, np.nan)
+    penalty = 0.0
+    zones = problem.limits.zones
+    if zones is not None:
+        ends = clear_ports(problem, lon, lat, legs["distance_m"])
+        share = zones.leg_inside(*ends)  # (zone, pop, m)
+        leg_nm = np.where(active, legs["distance_m"], 0.0) / 1852.0
+        hard = np.array([z.hard for z in zones.zones])
+        per_nm = np.array([z.penalty_per_nm for z in zones.zones])
+        legs["zone_nm"] = share[hard].sum(axis=0) * leg_nm
+        penalty = (np.tensordot(per_nm[~hard], share[~hard], axes=1) * leg_nm).sum(axis=1)
     legs["lat_end_deg"] = lat[:, 1:]
     leg_flags, leg_viol = leg_flags_and_violation(legs, problem.limits, active)
     del legs["lat_end_deg"]
@@ -117,5 +139,5 @@ def finish(
     violation = np.where(np.isfinite(violation), violation, 1e12)
     return RouteEvaluation(
         lon, lat, time_s, legs, leg_flags, fuel, dist, eta, flags, violation,
-        objective_of(problem, fuel, dist, eta),
+        objective_of(problem, fuel, dist, eta) + penalty,
     )

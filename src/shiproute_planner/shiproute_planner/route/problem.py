@@ -29,6 +29,10 @@ class RouteLimits:
     # and parametric roll ("synchronous_roll", "high_wave_group" may be added)
     imo_checks: tuple[str, ...] = ("surf_riding", "parametric_roll")
     engine_limit: bool = True
+    # depth constraint (route.under_keel.UnderKeel); None: depth not checked
+    under_keel: object | None = field(default=None, compare=False)
+    # no-go / avoid zones (geo.zones.Zones): hard ones constrain, penalty ones cost
+    zones: object | None = field(default=None, compare=False)
 
 
 @dataclass(frozen=True)

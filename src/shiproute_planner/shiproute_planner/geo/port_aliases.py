@@ -1,0 +1,51 @@
+"""Port names people type that the searoute gazetteer spells otherwise, and ports up rivers
+or channels narrower than the coastline data, which voyages leave and reach at sea.
+
+River ports: the position is the seaward end of the river or channel (the pilot boarding
+area off its mouth, approximate positions read from small-scale charts, about 1 NM), where
+the planned passage begins; the river passage itself is pilotage and is not planned.
+"""
+
+from __future__ import annotations
+
+# common English, local or historical name -> name in searoute's ports.geojson (lower case)
+ALIASES: dict[str, str] = {
+    "busan": "pusan",
+    "kolkata": "calcutta",
+    "rangoon": "yangon",
+    "bombay": "mumbai",
+    "saigon": "ho chi minh city",
+    "los angeles-long beach": "long beach",
+    "new york city": "new york",
+    "nyc": "new york",
+    "gdańsk": "gdansk",
+    "hong kong sar": "hong kong",
+    "lisbon": "lisboa",
+    "genoa": "genova",
+    "naples": "napoli",
+    "antwerp": "antwerpen",
+    "anvers": "antwerpen",
+    "gothenburg": "gotthenburg",
+    "göteborg": "gotthenburg",
+    "goteborg": "gotthenburg",
+    "bermuda": "hamilton",
+    "hamilton, bermuda": "hamilton",
+    "leghorn": "livorno",
+    "venice": "venezia",
+    "copenhagen": "kobenhavn",
+}
+
+
+# UN/LOCODE -> (river or channel, seaward end lat, lon [deg])
+RIVER_PORTS: dict[str, tuple[str, float, float]] = {
+    "USHOU": ("Houston Ship Channel (Galveston Bay entrance, Bolivar Roads)", 29.30, -94.65),
+    "DEHAM": ("Elbe (mouth, Elbe approach west of Cuxhaven)", 53.98, 8.25),
+    "BEANR": ("Scheldt (Westerschelde mouth off Vlissingen)", 51.42, 3.40),
+    "CAMTR": ("St Lawrence (pilot station off Les Escoumins)", 48.30, -69.35),
+    "CAQUE": ("St Lawrence (pilot station off Les Escoumins)", 48.30, -69.35),
+    "NLRTM": ("Nieuwe Waterweg / Maasmond (entrance off Hoek van Holland)", 51.99, 3.95),
+    "DEBRE": ("Weser (mouth, off Bremerhaven approach)", 53.86, 8.05),
+    "GBLON": ("Thames (estuary, Sunk pilot area)", 51.85, 1.60),
+    "USMSY": ("Mississippi (Southwest Pass entrance)", 28.87, -89.45),
+    "USPHL": ("Delaware Bay (entrance, Cape Henlopen pilot area)", 38.78, -75.02),
+}
