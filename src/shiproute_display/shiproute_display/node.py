@@ -52,7 +52,7 @@ PARAMETERS: dict[str, tuple[Any, str]] = {
     "push_rate_hz": (4.0, "ship updates pushed to the pages per second at most"),
     "track_max_points": (5000, "ship track points kept (~1 NM apart)"),
     "forecast_max_cells": (8000, "Hs cells per forecast slice on the page"),
-    "coast_margin_deg": (6.0, "chart margin around plan and track [deg]"),
+    "coast_margin_deg": (6.0, "least coastline margin around plan and track [deg]"),
     "publish_foxglove": (True, "publish the GeoJSON, NavSatFix and planned-RPM topics"),
 }
 
@@ -231,11 +231,18 @@ class DisplayNode(Node):
         box = self.state.chart_box()
         if box is None:
             return WORLD
-        margin = float(self._p("coast_margin_deg"))
+        # the chart shows more than the route's box (screen aspect, panning): coast for a wide
+        # margin so no clipped land edge shows in view
+        margin = max(float(self._p("coast_margin_deg")),
+                     0.4 * max(box.lon_max - box.lon_min, box.lat_max - box.lat_min))
         return box.padded(margin).rounded(5.0)
 
+    def _view_box(self) -> ChartBox:
+        box = self.state.chart_box()
+        return WORLD if box is None else box.padded(2.0)
+
     def _with_box(self, payload: dict[str, Any]) -> dict[str, Any]:
-        b = self._chart_box()
+        b = self._view_box()
         return {**payload, "chart_box": [b.lon_min, b.lon_max, b.lat_min, b.lat_max]}
 
     def _snapshot(self) -> dict[str, Any]:
@@ -256,7 +263,8 @@ class DisplayNode(Node):
     def _health(self) -> dict[str, Any]:
         plan, _ = self.state.current_plan()
         return {"ok": True, "plan_id": plan.plan_id if plan else None,
-                "feed": self.feed.stats(), "url": self.server.url}
+                "feed": self.feed.stats(), "received": self.state.stats()["received"],
+                "url": self.server.url}
 
     def destroy_node(self) -> None:
         """Stop the web server with the node."""

@@ -52,10 +52,10 @@ def schedule_rows(plan: Plan, profile: Profile | None) -> list[dict[str, Any]]:
         rows.append({
             "stage": i + 1, "start_s": s.start_s, "duration_s": num(s.duration_s, 0),
             "zone_h": zone_offset_h(lon), "lat_deg": num(lat, 3), "lon_deg": num(lon, 3),
-            "rpm": num(s.shaft_rpm, 1), "heading_deg": num(s.heading_deg, 1),
-            "sog_kn": num(leg.sog_kn, 2) if leg else None,
-            "fuel_t": num(leg.leg_fuel_t, 2) if leg else None,
-            "hs_m": num(leg.hs_m, 1) if leg else None,
+            "rpm": num(s.shaft_rpm, 3), "heading_deg": num(s.heading_deg, 3),
+            "sog_kn": num(leg.sog_kn, 3) if leg else None,
+            "fuel_t": num(leg.leg_fuel_t, 3) if leg else None,
+            "hs_m": num(leg.hs_m, 3) if leg else None,
             "flags": int(leg.constraint_flags) if leg else 0,
         })
     return rows
@@ -70,21 +70,21 @@ def plan_payload(plan: Plan, profile: Profile | None) -> dict[str, Any]:
         "objective": plan.objective, "ship_name": plan.ship_name, "trigger": plan.trigger,
         "trigger_kind": trigger_kind(plan.trigger), "stamp_s": num(plan.stamp_s),
         "departure_s": num(plan.departure_s), "rta_s": num(plan.rta_s), "eta_s": num(plan.eta_s),
-        "eta_minus_rta_h": num((plan.eta_s - plan.rta_s) / 3600.0, 2),
+        "eta_minus_rta_h": num((plan.eta_s - plan.rta_s) / 3600.0, 4),
         "feasible": plan.feasible, "infeasible_reasons": list(plan.infeasible_reasons),
-        "warnings": list(plan.warnings), "total_fuel_t": num(plan.total_fuel_t, 2),
-        "total_distance_nm": num(plan.total_distance_nm, 1),
-        "baseline_fuel_t": num(plan.baseline_fuel_t, 2), "fuel_saved_t": num(saved, 2),
-        "fuel_saved_pct": num(100.0 * saved / plan.baseline_fuel_t, 2)
+        "warnings": list(plan.warnings), "total_fuel_t": num(plan.total_fuel_t, 4),
+        "total_distance_nm": num(plan.total_distance_nm, 3),
+        "baseline_fuel_t": num(plan.baseline_fuel_t, 4), "fuel_saved_t": num(saved, 4),
+        "fuel_saved_pct": num(100.0 * saved / plan.baseline_fuel_t, 4)
         if math.isfinite(saved) else None,
-        "compute_time_s": num(plan.compute_time_s, 2),
+        "compute_time_s": num(plan.compute_time_s, 4),
         "waypoint_count": len(w),
         "lat": [round(p.lat_deg, 4) for p in w], "lon": [round(p.lon_deg, 4) for p in w],
         "time_s": [p.time_s for p in w],
-        "leg_rpm": [num(p.shaft_rpm, 1) for p in w[:-1]],
+        "leg_rpm": [num(p.shaft_rpm, 3) for p in w[:-1]],
         "leg_fuel_t_per_day": [num(p.leg_fuel_t / p.leg_duration_s * 86400.0, 1)
                                if p.leg_duration_s > 0 else None for p in w[:-1]],
-        "leg_hs_m": [num(p.hs_m, 1) for p in w[:-1]],
+        "leg_hs_m": [num(p.hs_m, 3) for p in w[:-1]],
         "schedule": schedule_rows(plan, profile),
     }
 
@@ -94,10 +94,10 @@ def history_row(plan: Plan, before: Plan | None) -> dict[str, Any]:
     return {
         "plan_id": plan.plan_id, "stamp_s": num(plan.stamp_s), "cycle_id": plan.cycle_id,
         "trigger": plan.trigger, "trigger_kind": trigger_kind(plan.trigger),
-        "eta_s": num(plan.eta_s), "total_fuel_t": num(plan.total_fuel_t, 2),
+        "eta_s": num(plan.eta_s), "total_fuel_t": num(plan.total_fuel_t, 4),
         "feasible": plan.feasible, "warnings": len(plan.warnings),
-        "d_eta_h": num((plan.eta_s - before.eta_s) / 3600.0, 2) if before else None,
-        "d_fuel_t": num(plan.total_fuel_t - before.total_fuel_t, 2) if before else None,
+        "d_eta_h": num((plan.eta_s - before.eta_s) / 3600.0, 4) if before else None,
+        "d_fuel_t": num(plan.total_fuel_t - before.total_fuel_t, 4) if before else None,
     }
 
 

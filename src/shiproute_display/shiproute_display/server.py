@@ -32,6 +32,7 @@ STATIC = {  # URL path -> (package file, content type)
     "/favicon.svg": ("favicon.svg", "image/svg+xml"),
     "/licenses.txt": ("licenses.txt", "text/plain; charset=utf-8"),
 }
+SSE_SNDBUF_BYTES = 256 * 1024
 _BAD_PATH = re.compile(r"(\.\.|%2e|%2f|%5c|\\|//|\x00)", re.IGNORECASE)
 SECURITY_HEADERS = {
     "Content-Security-Policy": "default-src 'self'; img-src 'self' data:; "
@@ -173,6 +174,9 @@ class _Handler(BaseHTTPRequestHandler):
             self.end_headers()
             self.close_connection = True
             self.connection.settimeout(d.client_timeout_s)  # a stalled reader is dropped
+            # a small kernel send buffer: a page that stops reading shows up in its own bounded
+            # queue within a few events instead of after megabytes parked in the kernel
+            self.connection.setsockopt(socket.SOL_SOCKET, socket.SO_SNDBUF, SSE_SNDBUF_BYTES)
             self.wfile.write(b"retry: 2000\n\n")
             self.wfile.write(d.feed.frame("snapshot", d.routes.snapshot()))
             while not d.stopping.is_set() and not client.closed:

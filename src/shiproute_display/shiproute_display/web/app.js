@@ -29,6 +29,7 @@
   }
   const fx = (v, n, unit = "") => (v === null || v === undefined || !isFinite(v)) ? "--" : v.toFixed(n) + unit;
   const sgn = (v, n, unit = "") => (v === null || v === undefined || !isFinite(v)) ? "--" : (v > 0 ? "+" : "") + v.toFixed(n) + unit;
+  const hdg = (h) => (h === null || h === undefined || !isFinite(h)) ? "--" : String(((Math.round(h) % 360) + 360) % 360).padStart(3, "0");
   function dur(s) {
     if (!isFinite(s)) return "--";
     const neg = s < 0; s = Math.abs(s);
@@ -63,10 +64,14 @@
     view.data.plan = p; view.data.previous = ev.previous; view.data.gc = ev.great_circle;
     $("chart-empty").classList.toggle("hidden", !!p);
     if (ev.chart_box) { view.setBox(ev.chart_box, false); ensureCoast(ev.chart_box); }
-    if (!p) { view.render(); return; }
+    if (!p) { view.requestRender(); return; }
     $("plan-ident").textContent = `plan ${p.plan_id} · cycle ${p.cycle_id} · ${p.method} · ${p.ship_name} · ${p.trigger_kind}`;
     $("fuel").textContent = fx(p.total_fuel_t, 1, " t");
-    $("saved").textContent = p.fuel_saved_t === null ? "--" : `${sgn(p.fuel_saved_t, 1, " t")} (${sgn(p.fuel_saved_pct, 1, " %")})`;
+    const sv = $("saved");
+    sv.textContent = p.fuel_saved_t === null ? "no baseline" : p.fuel_saved_t >= 0
+      ? `${fx(p.fuel_saved_t, 1, " t")} (${fx(p.fuel_saved_pct, 1, " %")}) less`
+      : `${fx(-p.fuel_saved_t, 1, " t")} (${fx(-p.fuel_saved_pct, 1, " %")}) more`;
+    sv.className = "big " + (p.fuel_saved_t !== null && p.fuel_saved_t < 0 ? "warn" : "");
     $("eta").textContent = utc(p.eta_s) + " UTC"; $("eta").dataset.etaS = p.eta_s;
     $("eta-rta").textContent = p.eta_minus_rta_h === null ? "--" : `${sgn(p.eta_minus_rta_h, 1, " h")} ${p.eta_minus_rta_h > 0 ? "late" : "early"}`;
     $("eta-rta").className = "big " + (p.eta_minus_rta_h > 0.05 ? "late" : "");
@@ -80,7 +85,7 @@
     const ul = $("warnings"); ul.replaceChildren();
     for (const w of p.warnings) { const li = document.createElement("li"); li.textContent = w; ul.appendChild(li); }
     if (!p.warnings.length) { const li = document.createElement("li"); li.className = "none"; li.textContent = "no warnings"; ul.appendChild(li); }
-    buildSchedule(p); buildHistory(); setupSlider(); updateLegLegend();
+    buildSchedule(p); buildHistory(); setupSlider(true); updateLegLegend();
     S.plansShown += 1;
     Object.assign(window.__display, { plansShown: S.plansShown, lastPlanId: p.plan_id, lastPlanShownAt: Date.now() });
   }
@@ -88,7 +93,7 @@
     const tb = $("schedule").querySelector("tbody"); tb.replaceChildren();
     p.schedule.forEach((r) => {
       const tr = document.createElement("tr"); tr.dataset.start = r.start_s; tr.dataset.rpm = r.rpm;
-      const cells = [r.stage, short(r.start_s), zoneTime(r.start_s, r.zone_h, false), fx(r.rpm, 1), fx(r.heading_deg, 0).padStart(3, "0"),
+      const cells = [r.stage, short(r.start_s), zoneTime(r.start_s, r.zone_h, false), fx(r.rpm, 1), hdg(r.heading_deg),
         fx(r.sog_kn, 1), fx(r.fuel_t, 1), fx(r.hs_m, 1)];
       cells.forEach((c, i) => { const td = document.createElement("td"); td.textContent = c; if (i === 7 && r.flags) td.className = "flag"; tr.appendChild(td); });
       tb.appendChild(tr);
@@ -109,8 +114,8 @@
       const rpm = p.schedule[cur].rpm; let nxt = null;
       for (let k = cur + 1; k < p.schedule.length; k++) if (Math.abs(p.schedule[k].rpm - rpm) >= 0.5) { nxt = p.schedule[k]; break; }
       cd.replaceChildren();
-      cd.append(`Stage ${cur + 1}: hold `, bold(`${fx(rpm, 1)} rpm`), `, ${fx(p.schedule[cur].heading_deg, 0).padStart(3, "0")}°T. `);
-      if (nxt) cd.append("Next RPM change ", bold(`${fx(rpm, 1)} → ${fx(nxt.rpm, 1)}`), ` at ${utc(nxt.start_s, false)} UTC, in `, bold(dur(nxt.start_s - t)));
+      cd.append(`Stage ${cur + 1}: hold `, bold(`${fx(rpm, 1)} rpm`), `, ${hdg(p.schedule[cur].heading_deg)}°T. `);
+      if (nxt) cd.append("Next RPM change ", bold(`${fx(rpm, 1)} → ${fx(nxt.rpm, 1)}`), ` at ${short(nxt.start_s)} UTC, in `, bold(dur(nxt.start_s - t)));
       else cd.append("No RPM change before arrival.");
     }
     const ship = S.ship, zone = ship ? zoneOf(ship.lon_deg) : null;
@@ -123,12 +128,17 @@
     [...S.history].reverse().forEach((h) => {
       const tr = document.createElement("tr");
       const cells = [short(h.stamp_s), h.plan_id, h.trigger_kind, h.cycle_id, sgn(h.d_eta_h, 2), sgn(h.d_fuel_t, 1), fx(h.total_fuel_t, 1), h.feasible ? "ok" : "FLAG"];
-      cells.forEach((c, i) => { const td = document.createElement("td"); td.textContent = c; if (i === 2) { td.className = "trig"; td.title = h.trigger; } if (i === 7 && !h.feasible) td.className = "flag"; tr.appendChild(td); });
+      cells.forEach((c, i) => { const td = document.createElement("td"); td.textContent = c; if (i === 2) { td.className = "trig"; td.title = h.trigger; } if (i === 3) { td.className = "cyc"; td.title = h.cycle_id; } if (i === 7 && !h.feasible) td.className = "flag"; tr.appendChild(td); });
       tb.appendChild(tr);
     });
   }
   function updateLegLegend() {
-    const r = view.legRange; Chart.drawRamp($("leg-ramp"), Chart.rampColour);
+    Chart.drawRamp($("leg-ramp"), Chart.rampColour);
+    const p = S.plan; let r = null;
+    if (p) {
+      const vals = (view.data.legMode === "fuel" ? p.leg_fuel_t_per_day : p.leg_rpm).filter((v) => v !== null && isFinite(v));
+      if (vals.length) r = [Math.min(...vals), Math.max(...vals)];
+    }
     $("leg-min").textContent = r ? fx(r[0], 1) : "--"; $("leg-max").textContent = r ? fx(r[1], 1) : "--";
   }
 
@@ -145,15 +155,15 @@
     const p = S.plan; if (!p) return null;
     return [Math.min(p.time_s[0], now()), p.eta_s];
   }
-  function setupSlider() {
+  function setupSlider(live) {
     const r = timeRange(); if (!r) return;
     const sl = $("time-slider");
     sl.min = Math.floor(r[0] / 3600); sl.max = Math.ceil(r[1] / 3600);
     if (S.follow || S.sliderT === null) S.sliderT = Math.max(r[0], Math.min(r[1], now()));
     sl.value = Math.round(S.sliderT / 3600);
-    applyTime();
+    applyTime(live);
   }
-  function applyTime() {
+  function applyTime(live) {
     const t = S.sliderT; if (t === null || !S.plan) return;
     view.data.planMark = planPositionAt(S.plan, t);
     const c = pickCycle(), lbl = $("time-label");
@@ -165,7 +175,7 @@
       else { txt += ` · forecast valid ${utc(c.times_s[best], false)} UTC`; loadSlice(c.cycle_id, c.indices[best]); }
     } else txt += " · no forecast received";
     lbl.textContent = txt;
-    view.render();
+    if (live) view.requestRender(); else view.render();
   }
   function pickCycle() {
     const cs = S.forecast.cycles.filter((c) => c.received > 0);
@@ -187,7 +197,7 @@
         S.sliceCache.set(key, s);
       } catch (e) { return; }
     }
-    if (S.sliceKey === key) { view.data.slice = s; view.render(); }
+    if (S.sliceKey === key) { view.data.slice = s; view.requestRender(); }
   }
   $("time-slider").addEventListener("input", (e) => { S.follow = false; S.sliderT = +e.target.value * 3600; $("now-btn").classList.remove("on"); applyTime(); });
   $("now-btn").addEventListener("click", () => { S.follow = true; setupSlider(); });
@@ -220,7 +230,7 @@
     S.forecast = f || { cycles: [] };
     const c = pickCycle();
     $("st-forecast").textContent = c ? `forecast ${c.cycle_id}: ${c.received}/${c.slice_count} slices` : "forecast: none";
-    applyTime();
+    applyTime(true);
   }
 
   // ---------- live feed ----------
@@ -240,11 +250,11 @@
     es.addEventListener("snapshot", onEvent("snapshot", (s) => {
       showShip(s.ship, null, s.track || []); showStats(s.stats); S.forecast = s.forecast || { cycles: [] };
       if (s.chart_box) ensureCoast(s.chart_box);
-      if (s.plan) showPlan(s); else view.render();
+      if (s.plan) showPlan(s); else view.requestRender();
       showForecast(s.forecast);
     }));
     es.addEventListener("plan", onEvent("plan", showPlan));
-    es.addEventListener("ship", onEvent("ship", (e) => { showShip(e.fix, e.track_add); showStats(e.stats); if (S.follow) setupSlider(); else view.render(); tickSchedule(); }));
+    es.addEventListener("ship", onEvent("ship", (e) => { showShip(e.fix, e.track_add); showStats(e.stats); if (S.follow) setupSlider(true); else view.requestRender(); tickSchedule(); }));
     es.addEventListener("forecast", onEvent("forecast", showForecast));
     es.addEventListener("stats", onEvent("stats", showStats));
   }

@@ -97,6 +97,11 @@ const Chart = (() => {
       c.addEventListener("dblclick", () => { this.userMoved = false; if (this.box) this.fit(this.box); this.render(); });
     }
     // --- drawing ---
+    requestRender() {  // coalesce bursts of live updates into one redraw per frame
+      if (this._pending) return;
+      this._pending = true;
+      requestAnimationFrame(() => { this._pending = false; this.render(); });
+    }
     render() {
       const ctx = this.canvas.getContext("2d");
       const dpr = window.devicePixelRatio || 1;
