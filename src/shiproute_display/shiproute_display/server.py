@@ -80,6 +80,10 @@ class _Server(ThreadingHTTPServer):
         self.display = display
         super().__init__(addr, _Handler)
 
+    def handle_error(self, request: Any, client_address: Any) -> None:
+        """A connection that fails (reset, timeout, garbage) is counted, not printed."""
+        self.display.count("connection errors")
+
 
 class _Handler(BaseHTTPRequestHandler):
     server: _Server
@@ -235,5 +239,6 @@ class DisplayServer:
     def stop(self) -> None:
         """Stop serving and wake every live-feed writer."""
         self.stopping.set()
-        self._httpd.shutdown()
+        if self._thread is not None:
+            self._httpd.shutdown()
         self._httpd.server_close()
