@@ -377,7 +377,35 @@ def test_clients_that_never_read_do_not_grow_memory(world, browser):
                == "flood-600-599", 10, what="page still live")
 
 
-def test_foxglove_topics_and_layout(world):
+def _check_recording(world: dict, tmp_path: Path) -> None:
+    """`shiproute bag record` stores the GeoJSON topic with Foxglove's schema, valid messages."""
+    from mcap.reader import make_reader
+
+    out = tmp_path / "rec"
+    rec = RosProcess.script("shiproute", "bag", "record", str(out), "/shiproute/display/geojson",
+                            "/shiproute/display/ship_fix", "--duration", "4",
+                            domain_id=world["display"].domain_id, name="record")
+    assert rec.wait(30) == 0, rec.output
+    (mcap_file,) = out.glob("*.mcap")
+    with mcap_file.open("rb") as fh:
+        reader = make_reader(fh)
+        summary = reader.get_summary()
+        schemas = {s.name: s.data.decode() for s in summary.schemas.values()}
+        assert schemas["foxglove_msgs/msg/GeoJSON"].strip().endswith("string geojson")
+        assert "sensor_msgs/msg/NavSatFix" in schemas
+        texts = []
+        topics = ["/shiproute/display/geojson"]
+        for _schema, channel, message in reader.iter_messages(topics=topics):
+            assert channel.message_encoding == "cdr"
+            # CDR of a message with one string: 4-byte encapsulation, uint32 length, bytes + NUL
+            n = int.from_bytes(message.data[4:8], "little")
+            texts.append(message.data[8:8 + n - 1].decode())
+    assert texts, "no GeoJSON message recorded (the topic is latched: one at least)"
+    for text in texts:
+        check_geojson(json.loads(text))
+
+
+def test_foxglove_topics_and_layout(world, tmp_path):
     bridge, (_, p2) = world["bridge"], world["plans"]
     wait_until(lambda: bridge.geojson, 10, what="GeoJSON message")
     wait_until(lambda: bridge.ship_fix and bridge.planned_rpm, 10, what="NavSatFix + RPM")
@@ -399,6 +427,8 @@ def test_foxglove_topics_and_layout(world):
                what="planned RPM of the stage")
     fix = bridge.ship_fix[-1]
     assert abs(fix.latitude - lat) < 1e-9 and abs(fix.longitude - lon) < 1e-9
+
+    _check_recording(world, tmp_path)
 
     layout = json.loads(LAYOUT.read_text())
     topics = {name for name, _ in bridge.node.get_topic_names_and_types()}

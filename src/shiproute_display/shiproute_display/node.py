@@ -15,6 +15,7 @@ from typing import Any
 
 import rclpy
 from rcl_interfaces.msg import ParameterDescriptor, SetParametersResult
+from rclpy.clock import Clock, ClockType
 from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
@@ -115,9 +116,12 @@ class DisplayNode(Node):
             self.pub_ship_fix = self.create_publisher(NavSatFix, TOPIC_SHIP_FIX, reliable)
             self.pub_plan_fix = self.create_publisher(NavSatFix, TOPIC_PLAN_FIX, reliable)
             self.pub_rpm = self.create_publisher(Float64, TOPIC_PLANNED_RPM, reliable)
-        self.create_timer(1.0 / float(self._p("push_rate_hz")), self._push_ship)
-        self.create_timer(1.0, self._push_stats)
-        self.create_timer(5.0, self._publish_geojson_if_dirty)
+        # The page is for people: its timers run on the wall clock even when the node follows
+        # a replay's /clock at thousands of times real time (use_sim_time).
+        wall = Clock(clock_type=ClockType.STEADY_TIME)
+        self.create_timer(1.0 / float(self._p("push_rate_hz")), self._push_ship, clock=wall)
+        self.create_timer(1.0, self._push_stats, clock=wall)
+        self.create_timer(5.0, self._publish_geojson_if_dirty, clock=wall)
         self.server.start()
         self.get_logger().info(f"bridge display on {self.server.url}")
 
