@@ -109,6 +109,7 @@ class Feed:
         self._seq = itertools.count(1)
         self.served = 0
         self.dropped_gone = 0  # frames dropped for clients that have since disconnected
+        self._last_seq = 0
 
     def subscribe(self) -> Client:
         """A new client queue; FeedFullError when `max_clients` pages are connected."""
@@ -129,7 +130,10 @@ class Feed:
 
     def publish(self, name: str, payload: dict[str, Any]) -> bytes:
         """Encode once and offer to every client; returns the frame."""
-        frame = encode_event(name, payload, next(self._seq))
+        with self._lock:
+            self._last_seq = next(self._seq)
+            seq = self._last_seq
+        frame = encode_event(name, payload, seq)
         with self._lock:
             clients = list(self._clients.values())
         for c in clients:
@@ -137,8 +141,11 @@ class Feed:
         return frame
 
     def frame(self, name: str, payload: dict[str, Any]) -> bytes:
-        """An event frame for one client only (the snapshot on connect or resync)."""
-        return encode_event(name, payload, next(self._seq))
+        """An event frame for one client only (the snapshot on connect or resync); it carries
+        the last published sequence number, so pages count gaps in the shared stream only."""
+        with self._lock:
+            seq = self._last_seq
+        return encode_event(name, payload, seq)
 
     def stats(self) -> dict[str, int]:
         """Connected clients, clients served so far, frames dropped for slow clients."""

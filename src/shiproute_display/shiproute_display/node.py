@@ -268,6 +268,8 @@ class DisplayNode(Node):
         plan, _ = self.state.current_plan()
         return {"ok": True, "plan_id": plan.plan_id if plan else None,
                 "feed": self.feed.stats(), "received": self.state.stats()["received"],
+                "forecast_slices": {c["cycle_id"]: [c["received"], c["slice_count"]]
+                                    for c in self.state.snapshot()["forecast"]["cycles"]},
                 "url": self.server.url}
 
     def destroy_node(self) -> None:

@@ -236,7 +236,11 @@
   // ---------- live feed ----------
   function onEvent(name, fn) {
     return (e) => {
-      const seq = +e.lastEventId; if (S.lastSeq && seq > S.lastSeq + 1 && name !== "snapshot") S.missed += seq - S.lastSeq - 1;
+      // a gap in the shared sequence = updates this page did not get (a resync snapshot
+      // carries the last sequence number and replaces what was skipped)
+      const seq = +e.lastEventId;
+      if (S.lastSeq && seq > S.lastSeq + 1 && name !== "snapshot") S.missed += seq - S.lastSeq - 1;
+      else if (S.lastSeq && seq > S.lastSeq && name === "snapshot") S.missed += seq - S.lastSeq;
       S.lastSeq = seq;
       try { fn(JSON.parse(e.data)); } catch (err) { console.error(name, err); }
     };
