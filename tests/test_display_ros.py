@@ -196,8 +196,9 @@ def test_page_live_plan_slider_screenshot(world, browser, tmp_path):
     rows = browser.find_elements(By.CSS_SELECTOR, "#schedule tbody tr")
     assert len(rows) == len(p1.waypoints) - 1
     stage = max(i for i, w in enumerate(p1.waypoints[:-1]) if w.time_s <= last_t)
-    wait_until(lambda: "current" in (browser.find_elements(
-        By.CSS_SELECTOR, "#schedule tbody tr")[stage].get_attribute("class") or ""), 5,
+    wait_until(lambda: browser.execute_script(
+        "const r=document.querySelectorAll('#schedule tbody tr');"
+        f"return r.length > {stage} && r[{stage}].classList.contains('current');"), 5,
         what="current stage highlighted")
     cd = _text(browser, "countdown")
     assert f"Stage {stage + 1}" in cd and ("Next RPM change" in cd or "No RPM change" in cd)
@@ -214,25 +215,27 @@ def test_page_live_plan_slider_screenshot(world, browser, tmp_path):
     assert replace_s <= 2.0, f"new plan took {replace_s:.2f} s to replace the old one"
     assert _text(browser, "wp-count") == str(len(p2.waypoints))
     assert browser.find_elements(By.ID, "previous-plan")
-    hist = browser.find_elements(By.CSS_SELECTOR, "#history tbody tr")
-    assert len(hist) == 2 and "new cycle" in hist[0].text
-    cells = [td.text for td in hist[0].find_elements(By.TAG_NAME, "td")]
+    cells = browser.execute_script(
+        "const r=document.querySelectorAll('#history tbody tr');"
+        "return [r.length, ...[...r[0].querySelectorAll('td')].map(td => td.textContent)];")
+    n_rows, cells = cells[0], cells[1:]
+    assert n_rows == 2 and cells[2] == "new cycle"
     assert cells[1] == p2.plan_id and cells[3] == p2.cycle_id
     assert abs(float(cells[4]) - (p2.eta_s - p1.eta_s) / 3600.0) <= 0.0051  # dETA h
     assert abs(float(cells[5]) - (p2.total_fuel_t - p1.total_fuel_t)) <= 0.051  # dfuel t
 
     # the slider moves the planned-position marker; at its end it sits on the arrival node
-    marker = lambda: tuple(float(browser.find_element(By.ID, "plan-marker").get_attribute(a))  # noqa: E731
-                           for a in ("cx", "cy"))
-    before = marker()
+    read = ("const m=document.getElementById('plan-marker');"
+            "const n=document.querySelectorAll('#layer-plan circle.waypoint'), a=n[n.length-1];"
+            "return [+m.getAttribute('cx'), +m.getAttribute('cy'),"
+            " +a.getAttribute('cx'), +a.getAttribute('cy')];")
+    before = browser.execute_script(read)[:2]
     browser.execute_script(
         "const s=document.getElementById('time-slider'); s.value=s.max;"
         "s.dispatchEvent(new Event('input'));")
-    after = marker()
-    assert math.dist(before, after) > 50
-    nodes = browser.find_elements(By.CSS_SELECTOR, "#layer-plan circle.waypoint")
-    arrival = tuple(float(nodes[-1].get_attribute(a)) for a in ("cx", "cy"))
-    assert math.dist(after, arrival) < 1.5
+    mx, my, ax, ay = browser.execute_script(read)
+    assert math.dist(before, (mx, my)) > 50
+    assert math.dist((mx, my), (ax, ay)) < 1.5  # at the ETA the marker sits on the arrival
     assert "forecast valid" in _text(browser, "time-label") or "no forecast" in _text(
         browser, "time-label")
 
@@ -383,9 +386,9 @@ def _check_recording(world: dict, tmp_path: Path) -> None:
 
     out = tmp_path / "rec"
     rec = RosProcess.script("shiproute", "bag", "record", str(out), "/shiproute/display/geojson",
-                            "/shiproute/display/ship_fix", "--duration", "4",
+                            "/shiproute/display/ship_fix", "--duration", "8",
                             domain_id=world["display"].domain_id, name="record")
-    assert rec.wait(30) == 0, rec.output
+    assert rec.wait(40) == 0, rec.output
     (mcap_file,) = out.glob("*.mcap")
     with mcap_file.open("rb") as fh:
         reader = make_reader(fh)
