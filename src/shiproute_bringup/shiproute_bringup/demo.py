@@ -199,6 +199,8 @@ def main(argv: list[str] | None = None) -> int:
                 ok = True
                 break
         if ok and args.keep_open and bringup.running():
+            from rclpy.executors import ExternalShutdownException
+
             print(f"re-plan done; the nodes and the bridge display ({page.url or 'not running'})"
                   " stay up until Ctrl-C", flush=True)
             try:
@@ -207,7 +209,7 @@ def main(argv: list[str] | None = None) -> int:
                     while seen < len(watcher.plans):
                         print(_line(watcher.plans[seen], t0), flush=True)
                         seen += 1
-            except KeyboardInterrupt:
+            except (KeyboardInterrupt, ExternalShutdownException):  # Ctrl-C, as rclpy reports it
                 print("stopping", flush=True)
     finally:
         watcher.close()
