@@ -1,8 +1,9 @@
 """The chart as GeoJSON (RFC 7946) for Foxglove's Map panel: plan, previous plan, great circle,
 track and ship, lines split at the antimeridian so no line is drawn round the world.
 
-Feature properties carry `name` and a `style` (`color`, `weight`, `opacity`, `dashArray`),
-the styling Foxglove's Map panel reads from GeoJSON properties; other viewers ignore it.
+Feature properties carry `name` and a `style` (`color`, `weight`, `opacity`, `dashArray`:
+Leaflet path options, meant for Foxglove's Leaflet-based Map panel; not checked against
+Foxglove itself here). Viewers that do not read them ignore them.
 """
 
 from __future__ import annotations

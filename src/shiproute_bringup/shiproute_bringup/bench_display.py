@@ -89,14 +89,13 @@ def run(n_plans: int, n_clients: int, screenshot: str | None) -> dict[str, Any]:
     import rclpy
     from rclpy.executors import SingleThreadedExecutor
     from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
-    from shiproute_bringup.rosproc import RosProcess, random_domain_id, wait_until
+    from shiproute_display.convert import plan_from_msg
+    from shiproute_display.geometry import position_at
+    from shiproute_display.samples import load_sample_plan
     from shiproute_planner.convert import plan_to_msg, plan_to_rpm_profile, time_msg
 
+    from shiproute_bringup.rosproc import RosProcess, random_domain_id, wait_until
     from shiproute_msgs.msg import RoutePlan, RpmProfile, ShipState
-
-    from .convert import plan_from_msg
-    from .geometry import position_at
-    from .samples import load_sample_plan
 
     plans = [load_sample_plan(n) for n in ("plan_cycle1", "plan_cycle2")]
     dom, port = random_domain_id(), _free_port()
