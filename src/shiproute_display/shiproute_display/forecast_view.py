@@ -104,5 +104,5 @@ def thin_slice(index: int, valid_s: float, grid: GridSpec, fields: dict[str, np.
         lon_g, lat_g = np.meshgrid(lon, lat)
         ok = np.isfinite(u2) & np.isfinite(v2)
         flat = np.stack([lon_g[ok], lat_g[ok], u2[ok], v2[ok]], axis=1)
-        wind = [round(float(x), 2) for x in flat.ravel()]
+        wind = np.round(flat.astype(np.float64), 2).ravel().tolist()
     return SliceView(index, float(valid_s), hs_grid, codes.tobytes(), tuple(wind))
