@@ -20,7 +20,6 @@ from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from sensor_msgs.msg import NavSatFix
-from shiproute_planner.dds_profile import forget_profile, use_dynamic_slice_buffers
 from std_msgs.msg import Float64
 
 from foxglove_msgs.msg import GeoJSON
@@ -28,6 +27,7 @@ from shiproute_msgs.msg import ForecastCycle, ForecastSlice, RoutePlan, RpmProfi
 
 from . import convert, geometry
 from .coastline import ChartBox, coastline_json
+from .dds_profile import forget_profile, use_windowed_slice_reader
 from .errors import DisplayError, MalformedMessageError
 from .feed import Feed
 from .page_payload import stages_of
@@ -290,8 +290,8 @@ def _return_freed_memory() -> None:
 
 def main(args: list[str] | None = None) -> int:
     """Console script `shiproute_display_node`."""
-    # Slice payloads are freed once taken instead of pooled by Fast DDS (the planner's setting).
-    profile = use_dynamic_slice_buffers(TOPIC_SLICES)
+    # A forecast cycle is taken a few slices at a time, not held whole (see dds_profile).
+    profile = use_windowed_slice_reader(TOPIC_SLICES)
     rclpy.init(args=args if args is not None else sys.argv)
     try:
         node = DisplayNode()
