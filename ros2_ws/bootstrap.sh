@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # Idempotent set-up of the shiproute workspace (Debian 12, Python 3.10-3.12, no system ROS):
-#   1. missing Debian packages (compiler, cmake, ninja, Python headers/venv, python-grib-doc)
+#   1. missing Debian packages (compiler, cmake, ninja, Python headers/venv, python-grib-doc,
+#      chromium + chromium-driver for the display page tests)
 #   2. ros2_ws/.venv with the pinned ROS 2 Kilted wheels and Python requirements
 #      (an existing venv is adopted: only what is missing gets installed)
 #   3. the CMake path fix for the ROS message wheels
-#   4. src/shiproute_msgs built with CMake + Ninja (build dir ros2_ws/.build) into the venv
-#   5. the four Python packages installed editable (--no-deps)
+#   4. src/shiproute_msgs and src/foxglove_msgs built with CMake + Ninja (build dir ros2_ws/.build)
+#      into the venv
+#   5. the Python packages installed editable (--no-deps)
 # A stamp of all inputs (requirements, interface files, build files, pyproject/package.xml)
 # makes a second run with nothing changed a no-op that takes milliseconds.
 # Env: SHIPROUTE_PYTHON (interpreter for a new venv, default python3),
@@ -19,7 +21,10 @@ BUILD="$WS/.build"
 STAMPS="$VENV/.shiproute-stamps"
 LOG="$BUILD/bootstrap.log"
 PY_BASE="${SHIPROUTE_PYTHON:-python3}"
-PY_PACKAGES=(shiproute_weather shiproute_planner shiproute_ais_replay shiproute_bringup)
+PY_PACKAGES=(shiproute_weather shiproute_planner shiproute_ais_replay shiproute_bringup shiproute_display)
+# Interface packages built with rosidl into the venv (foxglove_msgs: the Foxglove GeoJSON schema,
+# which no PyPI wheel carries).
+MSG_PACKAGES=(shiproute_msgs foxglove_msgs)
 
 say() { printf '[bootstrap] %s\n' "$*" >&2; }
 die() { printf '[bootstrap] ERROR: %s\n' "$*" >&2; exit 1; }
@@ -37,7 +42,8 @@ list_rel() { (cd "$REPO" && find "$@" -type f 2>/dev/null | LC_ALL=C sort); }
 
 REQ_FILES=(ros2_ws/requirements.txt ros2_ws/constraints.txt ros2_ws/requirements-extra.txt
            ros2_ws/tools/fix_cmake_paths.py)
-mapfile -t MSG_FILES < <(list_rel src/shiproute_msgs -name '*.msg' -o -name '*.srv' -o -name '*.action' \
+MSG_DIRS=(); for p in "${MSG_PACKAGES[@]}"; do MSG_DIRS+=("src/$p"); done
+mapfile -t MSG_FILES < <(list_rel "${MSG_DIRS[@]}" -name '*.msg' -o -name '*.srv' -o -name '*.action' \
                            -o -name CMakeLists.txt -o -name package.xml)
 PKG_FILES=()
 for p in "${PY_PACKAGES[@]}"; do PKG_FILES+=("src/$p/pyproject.toml" "src/$p/package.xml"); done
@@ -90,6 +96,9 @@ deb_installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q 'insta
 if command -v dpkg-query >/dev/null; then
   deb_installed python-grib-doc || missing+=(python-grib-doc)  # real GRIB examples for tests
   deb_installed ferret-datasets || missing+=(ferret-datasets)  # ETOPO5 global depth (5 arc-min), default bathymetry
+  # headless browser for the bridge display's page tests (selenium drives /usr/bin/chromium)
+  deb_installed chromium || missing+=(chromium)
+  deb_installed chromium-driver || missing+=(chromium-driver)
 fi
 PY_REAL="$(command -v "$PY_BASE" || true)"
 [[ -n "$PY_REAL" ]] || missing+=(python3)
@@ -136,32 +145,34 @@ if ! stamp_ok req "$H_REQ"; then
 fi
 
 # ---- 3./4. shiproute_msgs into the venv ---------------------------------------------------
-msgs_importable() { (cd "$BUILD" && "$VENV/bin/python" -c 'import shiproute_msgs.msg, shiproute_msgs.srv, shiproute_msgs.action') >/dev/null 2>&1; }
+msgs_importable() { (cd "$BUILD" && "$VENV/bin/python" -c 'import shiproute_msgs.msg, shiproute_msgs.srv, shiproute_msgs.action, foxglove_msgs.msg') >/dev/null 2>&1; }
 if ! stamp_ok msgs "$H_MSGS" || ! msgs_importable; then
-  say "building shiproute_msgs (CMake + Ninja, ~1 min)"
+  say "building ${MSG_PACKAGES[*]} (CMake + Ninja, ~1 min)"
   run_logged "$VENV/bin/python" "$WS/tools/fix_cmake_paths.py" "$VENV"
-  MB="$BUILD/shiproute_msgs"
   export AMENT_PREFIX_PATH="$VENV" PATH="$VENV/bin:$PATH"
-  configure() {
-    cmake -S "$REPO/src/shiproute_msgs" -B "$MB" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=OFF \
-      -DCMAKE_PREFIX_PATH="$VENV" -DCMAKE_INSTALL_PREFIX="$VENV" -DPython3_EXECUTABLE="$VENV/bin/python" >> "$LOG" 2>&1
-  }
   # A build dir made for another venv (recreated, other Python) is discarded: its CMake cache
   # would point at stale interpreter paths.
   VENV_ID="$({ cat "$VENV/pyvenv.cfg"; readlink -f "$VENV/bin/python"; } 2>/dev/null | sha256sum | cut -c1-64)"
-  if [[ -d "$MB" && "$(cat "$MB/.venv-id" 2>/dev/null)" != "$VENV_ID" ]]; then rm -rf "$MB"; fi
-  mkdir -p "$MB" && printf '%s\n' "$VENV_ID" > "$MB/.venv-id"
-  # A cache from an earlier failed configure is discarded and configured afresh.
-  if ! configure; then
-    say "configure failed; retrying with a clean build directory"
-    rm -rf "$MB" && mkdir -p "$MB" && printf '%s\n' "$VENV_ID" > "$MB/.venv-id"
-    run_logged configure
-  fi
-  run_logged cmake --build "$MB"
-  run_logged cmake --install "$MB"
-  msgs_importable || { tail -n 20 "$LOG" >&2; die "shiproute_msgs built but does not import"; }
+  for MPKG in "${MSG_PACKAGES[@]}"; do
+    MB="$BUILD/$MPKG"
+    configure() {
+      cmake -S "$REPO/src/$MPKG" -B "$MB" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=OFF \
+        -DCMAKE_PREFIX_PATH="$VENV" -DCMAKE_INSTALL_PREFIX="$VENV" -DPython3_EXECUTABLE="$VENV/bin/python" >> "$LOG" 2>&1
+    }
+    if [[ -d "$MB" && "$(cat "$MB/.venv-id" 2>/dev/null)" != "$VENV_ID" ]]; then rm -rf "$MB"; fi
+    mkdir -p "$MB" && printf '%s\n' "$VENV_ID" > "$MB/.venv-id"
+    # A cache from an earlier failed configure is discarded and configured afresh.
+    if ! configure; then
+      say "configure of $MPKG failed; retrying with a clean build directory"
+      rm -rf "$MB" && mkdir -p "$MB" && printf '%s\n' "$VENV_ID" > "$MB/.venv-id"
+      run_logged configure
+    fi
+    run_logged cmake --build "$MB"
+    run_logged cmake --install "$MB"
+  done
+  msgs_importable || { tail -n 20 "$LOG" >&2; die "${MSG_PACKAGES[*]} built but do not import"; }
   stamp_set msgs "$H_MSGS"
-  say "  shiproute_msgs done ($((SECONDS - T0)) s so far)"
+  say "  interfaces done ($((SECONDS - T0)) s so far)"
 fi
 
 # ---- 5. Python packages, editable ------------------------------------------------------

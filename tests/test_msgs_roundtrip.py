@@ -124,6 +124,7 @@ def build_messages() -> dict[str, Any]:
         eta=_time(1_773_460_000, 999_999_999), feasible=False,
         infeasible_reasons=["leg 3: slamming probability 0.031 > 0.03", "RTA missed by 0 s"],
         warnings=["depth not checked: no bathymetry given"],
+        trigger="new forecast cycle storm-2026030312",
         total_fuel_t=812.75, total_distance_nm=5_120.4, total_time_s=935_200.0,
         baseline_fuel_t=math.nan, compute_time_s=0.842, waypoints=waypoints)
     return {"ForecastField": fields[3], "ForecastSlice": forecast_slice, "ForecastCycle": cycle,

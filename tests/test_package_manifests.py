@@ -12,7 +12,7 @@ catkin_pkg = pytest.importorskip("catkin_pkg.package")
 
 REPO = Path(__file__).resolve().parents[1]
 PYTHON_PACKAGES = ("shiproute_weather", "shiproute_planner", "shiproute_ais_replay",
-                   "shiproute_bringup")
+                   "shiproute_bringup", "shiproute_display")
 
 
 def _ros_packages_installed() -> set[str]:
@@ -34,13 +34,13 @@ def _imported_top_modules(package_dir: Path) -> set[str]:
     return names
 
 
-@pytest.mark.parametrize("name", ["shiproute_msgs", *PYTHON_PACKAGES])
+@pytest.mark.parametrize("name", ["shiproute_msgs", "foxglove_msgs", *PYTHON_PACKAGES])
 def test_manifest_is_valid_format_3(name: str) -> None:
     """catkin_pkg parses and validates the manifest; build type matches the package kind."""
     pkg = catkin_pkg.parse_package(str(REPO / "src" / name / "package.xml"))
     pkg.validate()
     assert pkg.package_format == 3 and pkg.name == name
-    expected = "ament_cmake" if name == "shiproute_msgs" else "ament_python"
+    expected = "ament_cmake" if name in ("shiproute_msgs", "foxglove_msgs") else "ament_python"
     assert pkg.get_build_type() == expected
 
 
@@ -49,7 +49,7 @@ def test_imported_ros_packages_are_declared(name: str) -> None:
     """Each ROS package (or sibling shiproute package) the code imports is an exec dependency."""
     pkg = catkin_pkg.parse_package(str(REPO / "src" / name / "package.xml"))
     declared = {d.name for d in pkg.exec_depends}
-    ros = _ros_packages_installed() | {"shiproute_msgs", *PYTHON_PACKAGES}
+    ros = _ros_packages_installed() | {"shiproute_msgs", "foxglove_msgs", *PYTHON_PACKAGES}
     imported = _imported_top_modules(REPO / "src" / name / name) & ros
     missing = sorted(imported - declared - {name})
     assert not missing, f"src/{name}/package.xml lacks <exec_depend> for {missing}"

@@ -1,14 +1,16 @@
 """Run the end-to-end demo: replay Busan -> Long Beach on sim time, plan, re-plan on a new cycle.
 
-The weather, replay and planner nodes run as separate processes under `shiproute bringup`, a
-recorder writes every topic to MCAP, and this process watches the plans: one line per plan,
-then it drops the next forecast cycle into the weather node's watched directory part-way
-through the voyage and finishes once the re-plan on that cycle has arrived.
+The weather, replay, planner and bridge display nodes run as separate processes under
+`shiproute bringup`, a recorder writes every topic to MCAP, and this process watches the plans:
+the page's URL, one line per plan, then it drops the next forecast cycle into the weather node's
+watched directory part-way through the voyage and finishes once the re-plan on that cycle has
+arrived (or, with --keep-open, keeps everything running until Ctrl-C).
 """
 
 from __future__ import annotations
 
 import argparse
+import re
 import shutil
 import sys
 import time
@@ -29,6 +31,11 @@ def _parser() -> argparse.ArgumentParser:
     p.add_argument("--second-cycle-after-h", type=float, default=12.0,
                    help="sim hours after departure when the next forecast cycle appears")
     p.add_argument("--timeout", type=float, default=110.0, help="give up after this [s]")
+    p.add_argument("--display-port", type=int, default=8765,
+                   help="port of the bridge display page on 127.0.0.1 (0: any free port)")
+    p.add_argument("--no-display", action="store_true", help="run without the bridge display")
+    p.add_argument("--keep-open", action="store_true",
+                   help="after the re-plan keep every node (and the page) running until Ctrl-C")
     return p
 
 
@@ -52,7 +59,10 @@ def _params(args: argparse.Namespace, data: demo_data.DemoData, out: Path) -> di
                             # The recorded voyage sailed its own route, not our plan: re-plan on
                             # forecast cycles here, not on every departure from the plan.
                             "replan_cross_track_nm": 1000.0, "replan_schedule_h": 72.0}},
-        ],
+        ] + ([] if args.no_display else [
+            {"name": "shiproute_display", "executable": "shiproute_display_node",
+             "parameters": {"port": int(args.display_port), "bind_address": "127.0.0.1"}},
+        ]),
     }
 
 
@@ -96,6 +106,35 @@ class _Watcher:
         rclpy.try_shutdown()
 
 
+class _PageWatch:
+    """Finds the bridge display's URL (or its failure) in the node output and says it once."""
+
+    _URL = re.compile(r"\[shiproute_display\].*bridge display on (http://\S+)")
+
+    def __init__(self) -> None:
+        self.url = ""
+        self.failure = ""
+        self._said = False
+
+    def see(self, line: str) -> None:
+        m = self._URL.search(line)
+        if m:
+            self.url = m.group(1)
+        elif "[shiproute_display]" in line and ("rror" in line or "display_node:" in line):
+            self.failure = line
+
+    def report(self) -> None:
+        if self._said:
+            return
+        if self.url:
+            print(f"bridge display: {self.url} (open it in a browser; live while the demo runs)",
+                  flush=True)
+            self._said = True
+        elif self.failure:
+            print(f"bridge display not available: {self.failure}", flush=True)
+            self._said = True
+
+
 def _line(msg, t0: float) -> str:
     def iso(t) -> str:
         return datetime.fromtimestamp(t.sec, UTC).strftime("%m-%d %H:%M")
@@ -123,8 +162,14 @@ def main(argv: list[str] | None = None) -> int:
     params = out / "bringup.yaml"
     params.write_text(yaml.safe_dump(_params(args, data, out), sort_keys=False))
     log = (out / "nodes.log").open("w")
+    page = _PageWatch()
+
+    def node_line(_stream: str, line: str) -> None:
+        log.write(line + "\n")
+        page.see(line)
+
     bringup = RosProcess([console_script("shiproute"), "bringup", str(params)], name="bringup",
-                         on_line=lambda _s, line: log.write(line + "\n"))
+                         on_line=node_line)
     record = RosProcess([console_script("shiproute"), "bag", "record", str(out / "recording")],
                         name="record",
                         on_line=lambda _s, line: log.write("[record] " + line + "\n"))
@@ -136,6 +181,7 @@ def main(argv: list[str] | None = None) -> int:
     try:
         while time.monotonic() - t0 < args.timeout:
             watcher.spin_for(0.1)
+            page.report()
             while seen < len(watcher.plans):
                 print(_line(watcher.plans[seen], t0), flush=True)
                 seen += 1
@@ -152,6 +198,19 @@ def main(argv: list[str] | None = None) -> int:
             if second_dropped and len(cycles) >= 2:
                 ok = True
                 break
+        if ok and args.keep_open and bringup.running():
+            from rclpy.executors import ExternalShutdownException
+
+            print(f"re-plan done; the nodes and the bridge display ({page.url or 'not running'})"
+                  " stay up until Ctrl-C", flush=True)
+            try:
+                while bringup.running():
+                    watcher.spin_for(0.2)
+                    while seen < len(watcher.plans):
+                        print(_line(watcher.plans[seen], t0), flush=True)
+                        seen += 1
+            except (KeyboardInterrupt, ExternalShutdownException):  # Ctrl-C, as rclpy reports it
+                print("stopping", flush=True)
     finally:
         watcher.close()
         record.stop()

@@ -133,10 +133,11 @@ def test_bad_files_are_rejected_with_reason(tmp_path: Path) -> None:
 
 
 def test_default_demo_file_is_valid() -> None:
-    """The bundled ros2_ws/params/demo.yaml lists the three suite nodes."""
+    """The bundled ros2_ws/params/demo.yaml lists the suite's nodes and the bridge display."""
     nodes = load_bringup(default_params_file())
     assert [Path(n.executable).name for n in nodes] == [
-        "shiproute_weather_node", "shiproute_replay_node", "shiproute_planner_node"]
+        "shiproute_weather_node", "shiproute_replay_node", "shiproute_planner_node",
+        "shiproute_display_node"]
     for node in nodes:
         argv = node.argv(Path("/tmp/p.yaml"))
         assert argv[argv.index("--ros-args") + 1:][:4] == [

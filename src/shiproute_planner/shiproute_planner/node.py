@@ -471,7 +471,9 @@ class PlannerNode(Node):
         stamp = self.get_clock().now().to_msg()
         self._pub_path.publish(plan_to_path(plan, stamp))
         self._pub_rpm.publish(plan_to_rpm_profile(plan, stamp))
-        self._pub_plan.publish(plan_to_msg(plan, stamp))
+        plan_msg = plan_to_msg(plan, stamp)
+        plan_msg.trigger = inputs.reason  # shown in the bridge display's re-plan history
+        self._pub_plan.publish(plan_msg)
         self._plan, self._plan_wall = plan, time.monotonic()
         self._plans_made += 1
         saved = plan.fuel_saving_t
