@@ -15,15 +15,26 @@ LEARNING = {
     "drift": "ISO 19030 performance indicator of records vs a model: RECORDS... --model M.nc",
     "synth-records": "records (bag + CSV) of a fouled, re-trimmed ship for tests: OUT_DIR",
 }
+# Records live in the replay package (bags, simulation), which depends on this one: its
+# `ship` subcommands are found through this entry-point group, never imported by name.
+SHIP_COMMANDS_GROUP = "shiproute.ship_commands"
+
+
+def _learning_main(name: str):
+    """The `main(argv)` registered for a records subcommand, or None when none is installed."""
+    from importlib.metadata import entry_points
+
+    for ep in entry_points(group=SHIP_COMMANDS_GROUP, name=name):
+        return ep.load()
+    return None
 
 
 def main(argv: list[str]) -> int:
     """``shiproute ship list | show NAME | profile NAME OUT.nc | learn | drift | synth-records``."""
-    if argv and argv[0] in LEARNING:  # records live in the replay package (bags, simulation)
-        try:
-            from shiproute_ais_replay.learning.cli import main as learning_main
-        except ImportError as exc:
-            print(f"shiproute ship {argv[0]}: needs shiproute_ais_replay ({exc})")
+    if argv and argv[0] in LEARNING:
+        learning_main = _learning_main(argv[0])
+        if learning_main is None:
+            print(f"shiproute ship {argv[0]}: needs the shiproute_ais_replay package")
             return 2
         return learning_main(argv)
     ap = argparse.ArgumentParser(prog="shiproute ship", description=__doc__)
