@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 
 from .approach import Approach, CoastalPassage, approach_length_m, lane_approaches, sail_approach
+from .checks.parameters import require_number
 from .errors import InvalidVoyageError, PlanCancelledError
 from .ga.loop import GAConfig
 from .ga.pool import Seed, SeedPool, pool_key
@@ -183,6 +184,7 @@ def plan_voyage(
     between the approaches' sea ends.
     """
     t0 = time.perf_counter()
+    require_number("stage_hours", stage_hours)
     land = land or default_land_mask()
     env, spec = make_environment(ship, forecast)
     if cycle_id:
@@ -201,6 +203,11 @@ def plan_voyage(
     if not rta_s > depart_s:
         raise InvalidVoyageError("the RTA must be after the departure time")
     leg_rtas = _leg_rtas(ports, depart_s, rta_s, via_rta)
+    rta_warning, earliest_s = _rta_warning(ports, depart_s, rta_s, spec)
+    # an RTA beyond reach is searched best effort: over the time the great circle takes at
+    # full speed (a lower bound), lateness being a violation the search minimises
+    search_rtas = (_leg_rtas(ports, depart_s, earliest_s, via_rta) if rta_warning
+                   else leg_rtas)
     is_cancelled = _cancel_fn(cancel)
     rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
     pool = SeedPool(seed_pool_dir) if seed_pool_dir is not None else None
@@ -213,7 +220,7 @@ def plan_voyage(
     leg_depart = depart_s
     for k, (a, b) in enumerate(itertools.pairwise(ports)):
         under_way = k == 0 and position is not None
-        leg = leg_setup(a, b, env, lim, land, leg_depart, leg_rtas[k], approach_nm=approach_nm,
+        leg = leg_setup(a, b, env, lim, land, leg_depart, search_rtas[k], approach_nm=approach_nm,
                         approach_rpm=approach_rpm, coastal_passage=coastal_passage,
                         stage_hours=stage_hours, objective=objective,
                         under_way=under_way, previous_plan=previous_plan if under_way else None,
@@ -250,9 +257,32 @@ def plan_voyage(
             leg_depart = float(post.eta_s[0])
         approaches.append((pre, post))
     land.fine_coast.save()  # coastal cells this plan resolved: later processes start with them
-    return _assemble(ports, problems, results, baselines, sources, approaches, env, spec,
+    plan = _assemble(ports, problems, results, baselines, sources, approaches, env, spec,
                      method, objective, depart_s, rta_s, leg_rtas, gens, evals,
                      time.perf_counter() - t0)
+    if rta_warning:
+        plan = dataclasses.replace(plan, warnings=(*plan.warnings, rta_warning))
+    return plan
+
+
+def _rta_warning(ports: list[Port], depart_s: float, rta_s: float,
+                 spec: Any) -> tuple[str, float]:
+    """Why the RTA cannot be met even on great circles at full calm-water speed ('' when it
+    can, or without a ship file), and the arrival time at that speed [POSIX s]."""
+    if spec is None:
+        return "", rta_s
+    from .checks.voyage import max_calm_speed_kn
+
+    dist_nm = sum(float(inverse(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)[1])
+                  for a, b in itertools.pairwise(ports)) / 1852.0
+    need_kn = dist_nm / ((rta_s - depart_s) / 3600.0)
+    top_kn = max_calm_speed_kn(spec)
+    earliest_s = depart_s + dist_nm / top_kn * 3600.0
+    if need_kn <= top_kn:
+        return "", rta_s
+    return (f"RTA unreachable: {dist_nm:.0f} NM (great circle, the shortest possible) in "
+            f"{(rta_s - depart_s) / 3600:.1f} h needs {need_kn:.1f} kn, the ship makes at most "
+            f"{top_kn:.1f} kn in calm water; best-effort plan (earliest arrival)"), earliest_s
 
 
 @dataclasses.dataclass(frozen=True)
@@ -351,13 +381,15 @@ def _lane_rpm(env: Environment, a: Port, b: Port, ap_dep, ap_arr, depart_s: floa
     model = env.model
     if hasattr(model, "rpm_for_speed"):
         from .ship import SeaState
+        from .ship.errors import ShipModelError
 
         try:
-            rpm = float(model.rpm_for_speed(np.array([speed]), np.array([0.0]),
+            rpm = float(model.rpm_for_speed(np.array([min(speed, 30.0)]), np.array([0.0]),
                                             SeaState.calm(1))[0])
             return float(np.clip(rpm, lim.rpm_min, lim.rpm_max))
-        except (ValueError, ArithmeticError):
-            pass  # outside the model's range: fall back to mid-range
+        except (ValueError, ArithmeticError, ShipModelError):
+            # outside the model's range: an RTA beyond reach is sailed at full RPM
+            return lim.rpm_max if speed > 10.0 else 0.5 * (lim.rpm_min + lim.rpm_max)
     return 0.5 * (lim.rpm_min + lim.rpm_max)
 
 
