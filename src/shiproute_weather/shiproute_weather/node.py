@@ -11,6 +11,7 @@ import queue
 import sys
 import threading
 import time
+import uuid
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -111,10 +112,16 @@ class WeatherNode(Node):
             self.create_timer(self.publish_period_s, self._republish, callback_group=timers)
 
         self.lock = threading.Lock()
+        # each load is one publication: (this process's session, load number); subscribers
+        # assemble slices per publication, so a reload is new and a restart never merges
+        self.session = uuid.uuid4().hex[:12]
+        self.loads = 0
         self.state: dict[str, str] = {"cycle_id": "", "slices": "0", "slice_encoding": "",
                                       "bytes_per_slice": "0",
                                       "source_files": "", "load_s": "", "last_error": "",
-                                      "notes": "", "cycles_published": "0"}
+                                      "notes": "", "cycles_published": "0",
+                                      "publication_id": "", "loads_refused": "0",
+                                      "loads_refused_last_reason": "none"}
         self.level = DiagnosticStatus.WARN
         self.message = "no forecast cycle loaded yet"
         self.current: tuple[ForecastCycle, list[ForecastSlice]] | None = None
@@ -203,11 +210,15 @@ class WeatherNode(Node):
             cycle = cycle_to_msg(info)
         except Exception as exc:  # a bad file must never stop the node
             return self._failed(req, exc)
+        self.loads += 1
+        publication = f"{self.session}-{self.loads}"
+        cycle.publication_id = publication
         cycle.header.stamp = self.get_clock().now().to_msg()  # publication time
         self.cycle_pub.publish(cycle)
         stamp = self.get_clock().now().to_msg()
         for m in kept:
             m.header.stamp = stamp
+            m.publication_id = publication
             self.slice_pub.publish(m)
         if self.publish_period_s <= 0:
             kept = []
@@ -219,7 +230,7 @@ class WeatherNode(Node):
                               slice_encoding=encoding, bytes_per_slice=str(nbytes),
                               source_files=", ".join(req.paths),
                               load_s=f"{dt:.3f}", last_error="", notes="; ".join(notes),
-                              cycles_published=str(n))
+                              cycles_published=str(n), publication_id=publication)
             self.level = DiagnosticStatus.WARN if notes else DiagnosticStatus.OK
             self.message = f"serving cycle {info.cycle_id} ({info.slice_count} slices)"
         self.get_logger().info(f"published cycle {info.cycle_id}: {info.slice_count} slices "
@@ -233,6 +244,8 @@ class WeatherNode(Node):
         self.get_logger().error(f"forecast load failed, previous cycle stays in force: {text}")
         with self.lock:
             self.state["last_error"] = text
+            self.state["loads_refused"] = str(int(self.state["loads_refused"]) + 1)
+            self.state["loads_refused_last_reason"] = text
             self.level = DiagnosticStatus.ERROR
             kept = self.state["cycle_id"] or "none"
             self.message = f"load failed ({exc}); serving cycle {kept}"
