@@ -122,6 +122,11 @@ class CycleAssembler(Generic[SliceT]):
             sink = self._complete(cycle_id)
         return None if sink is None else sink.result()
 
+    def discard(self, cycle_id: str) -> None:
+        """Drop a cycle refused elsewhere (its slices and announcement are ignored from now)."""
+        with self._lock:
+            self._close(cycle_id)
+
     def missing(self, cycle_id: str) -> int | None:
         """Number of slices still missing (None if the cycle was never announced)."""
         entry = self._pending.get(cycle_id)
@@ -142,5 +147,11 @@ class CycleAssembler(Generic[SliceT]):
             return None
         if any(i not in entry.received for i in range(entry.slice_count)):
             return None
+        older = self._order[: self._order.index(cycle_id)]
         self._close(cycle_id)  # finished: later copies of it are ignored
+        for old_id in older:  # announced before it and still incomplete: superseded
+            old = self._pending.pop(old_id, None)
+            self._order.remove(old_id)
+            if old is not None and self._on_evict is not None:
+                self._on_evict(old_id, len(old.received))
         return entry.sink

@@ -71,6 +71,14 @@ SLICES = QoSProfile(
     reliability=ReliabilityPolicy.RELIABLE,
     durability=DurabilityPolicy.TRANSIENT_LOCAL,
 )
+# the reader keeps several announcements: with depth 1 one that arrives while the intake is
+# busy packing the previous cycle's slices is overwritten, and its cycle never completes
+ANNOUNCEMENTS = QoSProfile(
+    depth=8,
+    history=HistoryPolicy.KEEP_LAST,
+    reliability=ReliabilityPolicy.RELIABLE,
+    durability=DurabilityPolicy.TRANSIENT_LOCAL,
+)
 STATE = QoSProfile(depth=10, reliability=ReliabilityPolicy.RELIABLE)
 SLICES_TOPIC = "/shiproute/forecast/slices"
 _ANNOUNCEMENT = -1  # the slice index `_feed` takes for a cycle announcement
@@ -218,7 +226,7 @@ class PlannerNode(Node):
             context=self.context, use_global_arguments=False)  # not renamed like this node
         self.intake.create_subscription(
             ForecastCycle, self.resolve_topic_name("/shiproute/forecast/cycle"), self._on_cycle,
-            LATCHED)
+            ANNOUNCEMENTS)
         self.intake.create_subscription(ForecastSlice, self.resolve_topic_name(SLICES_TOPIC),
                                         self._on_slice, SLICES)
         self.create_subscription(ShipState, "/shiproute/ship_state", self._on_ship_state, STATE,
@@ -375,6 +383,7 @@ class PlannerNode(Node):
         """A bad slice or cycle is reported and counted; the cycle in force stays."""
         self._cycle_timing.pop(key, None)
         self._rejected.add(key, str(err))
+        self._assembler.discard(key)  # not also counted as incomplete later
         kept = self._cycle_id or "none"
         self._last_error = f"forecast cycle {cycle_id!r} refused ({kept} stays in force): {err}"
         self._last_cycle_refusal = self._last_error

@@ -229,3 +229,16 @@ def test_stage_hours_bounded_in_the_library(land_mask) -> None:
         plan_voyage("Busan", "Long Beach", REF_S, REF_S + 13 * 86400, "container_4600teu", None,
                     stage_hours=1000.0, land=land_mask)
 
+
+
+def test_completed_cycle_supersedes_older_incomplete_ones() -> None:
+    """An older publication still incomplete when a newer one completes is dropped at once
+    (its sampler array would otherwise stay resident until evicted)."""
+    evicted: list[tuple[str, int]] = []
+    asm: CycleAssembler[SliceFields] = CycleAssembler(on_evict=lambda k, n: evicted.append((k, n)))
+    asm.announce("old", 2)
+    asm.add_slice("old", 0, 2, _slice(index=0, count=2))
+    asm.announce("new", 1)
+    assert asm.add_slice("new", 0, 1, _slice()) is not None
+    assert evicted == [("old", 1)]
+    assert asm.missing("old") is None
