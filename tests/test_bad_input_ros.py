@@ -288,19 +288,27 @@ def test_bad_cycle_refused_and_good_plan_follows(nodes: Any, case: str) -> None:
     peer.spin_for(1.5)
     _assert_alive(weather, planner)
     assert all(p.cycle_id != cid for p in peer.plans)
-    diag = peer.spin_until(lambda: peer.planner_diag().get("forecast_cycle_in_force") == good
-                           and peer.planner_diag(), 5, "diagnostics")
-    if case not in ("partial", "dead_publisher_half"):
-        n0 = int(before.get("forecast_cycles_dropped", "0"))
-        assert int(diag["forecast_cycles_dropped"]) > n0
-        assert cid in diag["forecast_last_refusal"]
+    n0 = int(before.get("forecast_cycles_dropped", "0"))
+    refused = case not in ("partial", "dead_publisher_half")
+
+    def settled() -> dict[str, str] | None:
+        d = peer.planner_diag()
+        if d.get("forecast_cycle_in_force") != good:
+            return None
+        if refused and not (int(d.get("forecast_cycles_dropped", "0")) > n0
+                            and cid in d.get("forecast_last_refusal", "")):
+            return None
+        return d
+
+    diag = peer.spin_until(settled, 20, "diagnostics naming the refused cycle")
+    assert diag["forecast_cycle_in_force"] == good
     plan = _good_plan_check(peer, good)
     assert plan.cycle_id == good
 
 
 def test_reloading_the_same_file_plans_again(nodes: Any) -> None:
     peer, good, _ref, forecast, weather, planner = nodes
-    for _ in range(2):
+    for _ in range(1):  # loaded at start, then again: same file, same cycle id
         n = len(peer.plans)
         ans = peer.call(peer.load, peer.types["LoadForecast"].Request(paths=[str(forecast)]),
                         timeout_s=60)
