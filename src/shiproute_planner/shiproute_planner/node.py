@@ -187,8 +187,10 @@ class PlannerNode(Node):
         self._lock = threading.Lock()
         self._wake = threading.Condition(self._lock)
         self._drops = DropLog(DROP_KINDS)
+        # at most two cycles in flight (a superseded one's tail and its successor): each holds
+        # a sampler array being filled beside the one in force
         self._assembler: CycleAssembler[SliceFields] = CycleAssembler(
-            sink=self._new_packer, on_evict=self._on_evict)
+            max_pending_cycles=2, sink=self._new_packer, on_evict=self._on_evict)
         self._rejected = RejectedKeys()
         self._forecast = None
         self._cycle_id = ""
