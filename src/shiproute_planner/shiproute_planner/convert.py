@@ -154,7 +154,8 @@ def slice_fields(msg: ForecastSlice) -> SliceFields:
             problems.append(str(err))
             fields.append((f.name, np.frombuffer(f.data, dtype=np.float32)))
     return SliceFields(msg.cycle_id, int(msg.slice_index), int(msg.slice_count),
-                       posix_s(msg.valid_time), grid, tuple(fields), tuple(problems))
+                       posix_s(msg.valid_time), grid, tuple(fields), tuple(problems),
+                       posix_s(msg.reference_time), str(msg.publication_id))
 
 
 def cycle_record(msg: Any) -> dict:

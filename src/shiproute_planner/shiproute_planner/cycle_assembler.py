@@ -62,12 +62,14 @@ class CycleAssembler(Generic[SliceT]):
     """
 
     def __init__(self, max_pending_cycles: int = 3,
-                 sink: Callable[[str, SliceT], CycleSink[SliceT]] | None = None) -> None:
+                 sink: Callable[[str, SliceT], CycleSink[SliceT]] | None = None,
+                 on_evict: Callable[[str, int], None] | None = None) -> None:
         self._pending: dict[str, _PendingCycle] = {}
         self._order: list[str] = []
         self._done: set[str] = set()
         self._max_pending = max_pending_cycles
         self._sink = sink or (lambda _cycle_id, _first: SliceList())
+        self._on_evict = on_evict  # (cycle id, slices received) of an incomplete cycle dropped
         self._lock = threading.Lock()
 
     def _entry(self, cycle_id: str) -> _PendingCycle:
@@ -75,7 +77,10 @@ class CycleAssembler(Generic[SliceT]):
             self._pending[cycle_id] = _PendingCycle()
             self._order.append(cycle_id)
             while len(self._order) > self._max_pending:
-                self._pending.pop(self._order.pop(0), None)
+                old_id = self._order.pop(0)
+                old = self._pending.pop(old_id, None)
+                if old is not None and self._on_evict is not None:
+                    self._on_evict(old_id, len(old.received))
         return self._pending[cycle_id]
 
     def announce(self, cycle_id: str, slice_count: int) -> Any | None:
@@ -117,6 +122,11 @@ class CycleAssembler(Generic[SliceT]):
             sink = self._complete(cycle_id)
         return None if sink is None else sink.result()
 
+    def discard(self, cycle_id: str) -> None:
+        """Drop a cycle refused elsewhere (its slices and announcement are ignored from now)."""
+        with self._lock:
+            self._close(cycle_id)
+
     def missing(self, cycle_id: str) -> int | None:
         """Number of slices still missing (None if the cycle was never announced)."""
         entry = self._pending.get(cycle_id)
@@ -137,5 +147,11 @@ class CycleAssembler(Generic[SliceT]):
             return None
         if any(i not in entry.received for i in range(entry.slice_count)):
             return None
+        older = self._order[: self._order.index(cycle_id)]
         self._close(cycle_id)  # finished: later copies of it are ignored
+        for old_id in older:  # announced before it and still incomplete: superseded
+            old = self._pending.pop(old_id, None)
+            self._order.remove(old_id)
+            if old is not None and self._on_evict is not None:
+                self._on_evict(old_id, len(old.received))
         return entry.sink

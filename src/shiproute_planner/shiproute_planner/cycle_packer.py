@@ -41,6 +41,8 @@ class SliceFields:
     # (CF name, n_lat * n_lon values: float32, or 16-bit wire codes with their scaling)
     fields: tuple[tuple[str, FieldValues], ...]
     problems: tuple[str, ...] = ()  # malformed fields found while reading the message
+    reference_time_s: float = 0.0  # forecast reference time (POSIX s); 0 = not stated
+    publication_id: str = ""  # the publisher's publication of the cycle ('' = not stated)
 
 
 class CyclePacker:
@@ -52,6 +54,7 @@ class CyclePacker:
     def __init__(self, first: SliceFields, keep_from_s: Callable[[], float] = lambda: -math.inf,
                  dtype: Any = np.float16) -> None:
         self.cycle_id, self.count, self.grid = first.cycle_id, first.count, first.grid
+        self.reference_time_s = first.reference_time_s
         present = {name for name, _ in first.fields}
         self.variables = [n for n in CANONICAL_ORDER if n in present]
         if not self.variables:
@@ -74,6 +77,9 @@ class CyclePacker:
                                      f"expected {self.count}")
         if s.problems:
             raise ForecastCycleError(f"{where}: {'; '.join(s.problems)}")
+        if s.reference_time_s != self.reference_time_s:
+            raise ForecastCycleError(f"{where}: reference time {s.reference_time_s} differs from "
+                                     f"{self.reference_time_s} of the cycle's first slice")
         if s.grid != self.grid:
             raise ForecastCycleError(f"{where}: grid {s.grid} differs from {self.grid}")
         if [name for name, _ in s.fields] != self._names:
@@ -99,7 +105,9 @@ class CyclePacker:
                                      "strictly ascending with the slice index")
         missing = np.flatnonzero(~self._stored)
         k0 = int(missing[-1]) + 1 if missing.size else 0
-        return ForecastSampler.from_packed(self._data[k0:], t[k0:], self.grid, self.variables)
+        sampler = ForecastSampler.from_packed(self._data[k0:], t[k0:], self.grid, self.variables)
+        sampler.reference_time_s = self.reference_time_s  # the model run, for the staleness check
+        return sampler
 
 
 def hs_field_at(sampler: ForecastSampler, time_s: float) -> Any:

@@ -53,3 +53,14 @@ class ZoneFileError(PlannerError):
 
 class RouteFileError(PlannerError):
     """A route file (RTZ, GeoJSON) to check cannot be read or has too few waypoints."""
+# ---- input validation at the planner's boundaries (issue 16) ------------------------------
+class StaleForecastError(ForecastCycleError):
+    """A forecast cycle comes from an older model run than the cycle in force."""
+
+
+class ShipStateError(PlannerError, ValueError):
+    """A ship state (fix) is not finite, out of range or stamped outside the accepted window."""
+
+
+class ParameterError(PlannerError, ValueError):
+    """A planner parameter is outside its range (the message names it, the range and why)."""

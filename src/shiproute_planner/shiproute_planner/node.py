@@ -37,6 +37,9 @@ from shiproute_msgs.msg import ForecastCycle, ForecastSlice, RpmProfile, ShipSta
 from shiproute_msgs.msg import RoutePlan as RoutePlanMsg
 from shiproute_msgs.srv import SetVoyage
 
+from .checks.forecast_wire import check_not_older, check_slice_count, check_slice_fields
+from .checks.parameters import check_number
+from .checks.ship_state import check_ship_state
 from .convert import (
     cycle_record,
     plan_to_msg,
@@ -49,9 +52,13 @@ from .convert import (
 from .cycle_assembler import CycleAssembler
 from .cycle_packer import CyclePacker, SliceFields, hs_field_at
 from .dds_profile import forget_profile, use_dynamic_slice_buffers
+from .drop_log import DropLog
+from .errors import PlannerError
+from .intake_keys import RejectedKeys, assembly_key
 from .plan_types import RoutePlan
 from .replan_policy import ReplanThresholds, track_deviation
 from .voyage_params import check_parameter, parse_utc
+from .voyage_request import VoyageRequest, check_voyage_request
 
 LATCHED = QoSProfile(
     depth=1,
@@ -61,6 +68,14 @@ LATCHED = QoSProfile(
 )
 SLICES = QoSProfile(
     depth=512,
+    history=HistoryPolicy.KEEP_LAST,
+    reliability=ReliabilityPolicy.RELIABLE,
+    durability=DurabilityPolicy.TRANSIENT_LOCAL,
+)
+# the reader keeps several announcements: with depth 1 one that arrives while the intake is
+# busy packing the previous cycle's slices is overwritten, and its cycle never completes
+ANNOUNCEMENTS = QoSProfile(
+    depth=8,
     history=HistoryPolicy.KEEP_LAST,
     reliability=ReliabilityPolicy.RELIABLE,
     durability=DurabilityPolicy.TRANSIENT_LOCAL,
@@ -96,7 +111,13 @@ PARAMETERS: dict[str, tuple[object, str]] = {
     "zones_files": ("", "no-go / avoid zone GeoJSON files, comma-separated"),
     "clearance_nm": (0.0, "distance from land the route check of each plan requires [NM]"),
     "approach_files": ("", "coastal passages from/to ports (RTZ/GeoJSON), comma-separated"),
+    "accept_older_forecasts": (False, "let a cycle of an older model run replace the one in "
+                               "force (e.g. to go back after a bad run)"),
+    "ship_state_max_age_h": (366 * 24.0, "drop ship states older than this behind the clock [h]"),
+    "ship_state_max_lead_h": (1.0, "drop ship states further ahead of the clock than this [h]"),
 }
+DROP_KINDS = ("ship_states", "forecast_slices", "forecast_cycles", "voyage_requests",
+              "plan_requests")
 
 
 def _paths(text: str) -> list[str]:
@@ -164,6 +185,8 @@ class _Inputs:
     position: tuple[float, float, float] | None
     previous: RoutePlan | None
     reason: str
+    budget_s: float | None = None  # a PlanRoute goal's own budget (None: the parameter)
+    request_seq: int = 0  # the latest request this run answers
 
 
 class PlannerNode(Node):
@@ -177,10 +200,24 @@ class PlannerNode(Node):
 
         self._lock = threading.Lock()
         self._wake = threading.Condition(self._lock)
+        self._drops = DropLog(DROP_KINDS)
+        # at most two cycles in flight (a superseded one's tail and its successor): each holds
+        # a sampler array being filled beside the one in force
         self._assembler: CycleAssembler[SliceFields] = CycleAssembler(
-            sink=lambda _cycle_id, first: CyclePacker(first, self._ship_time_s))
+            max_pending_cycles=2, sink=self._new_packer, on_evict=self._on_evict)
+        self._rejected = RejectedKeys()
         self._forecast = None
         self._cycle_id = ""
+        self._cycle_reference_s = 0.0  # reference time of the cycle in force (0: unknown)
+        self._cycles_accepted = 0
+        self._last_cycle_refusal = ""
+        # requests and their outcomes, so a PlanRoute goal waits for the run that answers it
+        self._request_seq = 0
+        self._pending_budget_s: float | None = None
+        self._answered_seq = 0
+        self._answer_ok = False
+        self._answer_text = ""
+        self._plans_failed = 0
         self._ship: ShipState | None = None
         self._plan: RoutePlan | None = None
         self._plan_wall = 0.0
@@ -205,7 +242,7 @@ class PlannerNode(Node):
             context=self.context, use_global_arguments=False)  # not renamed like this node
         self.intake.create_subscription(
             ForecastCycle, self.resolve_topic_name("/shiproute/forecast/cycle"), self._on_cycle,
-            LATCHED)
+            ANNOUNCEMENTS)
         self.intake.create_subscription(ForecastSlice, self.resolve_topic_name(SLICES_TOPIC),
                                         self._on_slice, SLICES)
         self.create_subscription(ShipState, "/shiproute/ship_state", self._on_ship_state, STATE,
@@ -249,85 +286,152 @@ class PlannerNode(Node):
     def _on_set_parameters(self, params) -> SetParametersResult:
         for p in params:
             reason = check_parameter(p.name, p.value)
+            if reason is None and p.name == "method":
+                reason = _method_reason(str(p.value))
             if reason is not None:
                 self.get_logger().warning(f"rejected parameter: {reason}")
                 return SetParametersResult(successful=False, reason=reason)
         return SetParametersResult(successful=True)
 
     def _on_set_voyage(self, req: SetVoyage.Request, res: SetVoyage.Response):
-        dest = req.destination.strip() or f"{req.destination_lat_deg},{req.destination_lon_deg}"
-        rta_s = posix_s(req.rta)
-        from datetime import UTC, datetime
-
-        updates = [rclpy.parameter.Parameter("destination", value=dest)]
-        if rta_s > 0:
-            rta_iso = datetime.fromtimestamp(rta_s, UTC).isoformat().replace("+00:00", "Z")
-            updates.append(rclpy.parameter.Parameter("rta", value=rta_iso))
-        if req.ship:
-            updates.append(rclpy.parameter.Parameter("ship", value=req.ship))
-        if req.objective:
-            updates.append(rclpy.parameter.Parameter("objective", value=req.objective))
-        result = self.set_parameters_atomically(updates)
+        """Check the whole voyage first; answer accepted=false with the reason when it is
+        invalid, accepted=true (with the RTA warning when it cannot be met) otherwise."""
+        request = VoyageRequest(
+            destination=req.destination, destination_lat_deg=float(req.destination_lat_deg),
+            destination_lon_deg=float(req.destination_lon_deg), rta_s=posix_s(req.rta),
+            ship=req.ship, objective=req.objective)
+        try:
+            checked = check_voyage_request(
+                request, origin=str(self._p("origin")), ship=str(self._p("ship")),
+                objective=str(self._p("objective")), method=str(self._p("method")),
+                rta=str(self._p("rta")), position=self._fix(),
+                departure_time=str(self._p("departure_time")), clock_s=self._clock_s())
+        except Exception as err:  # every refusal is an answer, never an exception
+            reason = str(err) if isinstance(err, PlannerError | ValueError) else repr(err)
+            self._drops.drop("voyage_requests", reason)
+            self.get_logger().warning(f"voyage refused: {reason}")
+            res.accepted, res.message = False, reason
+            return res
+        result = self.set_parameters_atomically(
+            [rclpy.parameter.Parameter(k, value=v) for k, v in checked.parameters.items()])
         res.accepted = bool(result.successful)
-        res.message = result.reason if not result.successful else f"voyage to {dest} set"
-        if res.accepted:
-            self._request("voyage set")
+        if not res.accepted:
+            self._drops.drop("voyage_requests", result.reason)
+            res.message = result.reason
+            return res
+        res.message = checked.message
+        self.get_logger().info(f"voyage set: {checked.message}")
+        self._request("voyage set")
         return res
 
     # ----------------------------------------------------------------- inputs
     def _on_cycle(self, msg: ForecastCycle) -> None:
+        key = assembly_key(msg.cycle_id, msg.publication_id)
+        try:
+            check_slice_count(msg.cycle_id, int(msg.slice_count))
+        except PlannerError as err:
+            self._reject_cycle(key, msg.cycle_id, err)
+            return
         # what the cycle holds and where from: stated by every plan made on it
-        self._cycle_records = {msg.cycle_id: cycle_record(msg)}
-        self._feed(msg.cycle_id, _ANNOUNCEMENT, int(msg.slice_count), None)
+        records = getattr(self, "_cycle_records", {})
+        records[msg.cycle_id] = cycle_record(msg)
+        self._cycle_records = dict(list(records.items())[-8:])
+        self._feed(key, msg.cycle_id, _ANNOUNCEMENT, int(msg.slice_count), None)
 
     def _on_slice(self, msg: ForecastSlice) -> None:
         # a zero-copy view: packed straight from the message's buffers
-        self._cycle_timing.setdefault(msg.cycle_id, [time.monotonic(), 0.0])
-        self._feed(msg.cycle_id, int(msg.slice_index), int(msg.slice_count), slice_fields(msg))
+        key = assembly_key(msg.cycle_id, msg.publication_id)
+        self._cycle_timing.setdefault(key, [time.monotonic(), 0.0])
+        self._feed(key, msg.cycle_id, int(msg.slice_index), int(msg.slice_count),
+                   slice_fields(msg))
 
-    def _feed(self, cycle_id: str, index: int, count: int, item: SliceFields | None) -> None:
+    def _feed(self, key: str, cycle_id: str, index: int, count: int,
+              item: SliceFields | None) -> None:
         """An announcement or a slice into the assembler, on the forecast intake's one thread
         (the only one that touches it; the packing kernel runs without the GIL), and the
-        cycle it completes, if any, into planning. Packing here, not on a thread of its own,
-        spares a GIL hand-over per slice (a packer thread took 2.5-3.6 ms per slice against
-        0.9 ms of work)."""
+        cycle it completes, if any, into planning. Every slice is checked before anything is
+        allocated for it; the slices of a refused cycle are counted and dropped. Packing here,
+        not on a thread of its own, spares a GIL hand-over per slice (a packer thread took
+        2.5-3.6 ms per slice against 0.9 ms of work)."""
+        if key in self._rejected:
+            if item is not None:
+                self._drops.drop("forecast_slices", f"cycle {cycle_id!r} was refused: "
+                                 f"{self._rejected.reason(key)}")
+            return
         t0 = time.monotonic()
         try:
             if index == _ANNOUNCEMENT:
-                sampler = self._assembler.announce(cycle_id, count)
+                sampler = self._assembler.announce(key, count)
             else:
-                sampler = self._assembler.add_slice(cycle_id, index, count, item)
+                assert item is not None
+                check_slice_fields(item)
+                sampler = self._assembler.add_slice(key, index, count, item)
         except Exception as err:  # a bad slice or cycle must not stop the intake
-            self._reject_cycle(cycle_id, err)
+            self._reject_cycle(key, cycle_id, err, slices=0 if item is None else 1)
             return
         finally:
-            timing = self._cycle_timing.get(cycle_id)
+            timing = self._cycle_timing.get(key)
             if timing is not None:
                 timing[1] += time.monotonic() - t0
-        self._take(sampler, cycle_id)
+        self._take(sampler, key, cycle_id)
+
+    def _new_packer(self, _key: str, first: SliceFields) -> CyclePacker:
+        """The sampler array of a new cycle, made from its first (checked) slice once it is
+        known not to be older than the cycle in force."""
+        self._check_fresh(first.cycle_id, first.reference_time_s)
+        return CyclePacker(first, self._ship_time_s)
+
+    def _check_fresh(self, cycle_id: str, reference_s: float) -> None:
+        if not self._p("accept_older_forecasts"):
+            check_not_older(cycle_id, reference_s, self._cycle_id, self._cycle_reference_s)
+
+    def _on_evict(self, key: str, received: int) -> None:
+        """An incomplete cycle pushed out by newer ones: its slices are dropped, counted."""
+        self._cycle_timing.pop(key, None)
+        reason = f"cycle {key!r} incomplete ({received} slice(s)) when newer cycles arrived"
+        self._drops.drop("forecast_cycles", reason)
+        if received:
+            self._drops.drop("forecast_slices", reason, received)
+        self._last_cycle_refusal = reason
 
     def _ship_time_s(self) -> float:
         """Time of the last ship state (-inf before the first): older slices are not kept."""
         pos = ship_position(self._ship) if self._ship is not None else None
         return pos[2] if pos is not None else -math.inf
 
-    def _reject_cycle(self, cycle_id: str, err: Exception) -> None:
-        """A bad slice or cycle is reported; planning goes on with the last good cycle."""
-        self._cycle_timing.pop(cycle_id, None)
-        self._last_error = f"forecast cycle {cycle_id!r} unusable: {err}"
+    def _reject_cycle(self, key: str, cycle_id: str, err: Exception, slices: int = 0) -> None:
+        """A bad slice or cycle is reported and counted; the cycle in force stays."""
+        self._cycle_timing.pop(key, None)
+        self._rejected.add(key, str(err))
+        self._assembler.discard(key)  # not also counted as incomplete later
+        kept = self._cycle_id or "none"
+        self._last_error = f"forecast cycle {cycle_id!r} refused ({kept} stays in force): {err}"
+        self._last_cycle_refusal = self._last_error
+        self._drops.drop("forecast_cycles", str(err))
+        if slices:
+            self._drops.drop("forecast_slices", str(err), slices)
         self.get_logger().error(self._last_error)
 
-    def _take(self, sampler, cycle_id: str) -> None:
-        """A complete cycle's sampler replaces the current one and triggers a re-plan."""
+    def _take(self, sampler, key: str, cycle_id: str) -> None:
+        """A complete cycle's sampler replaces the current one and triggers a re-plan (unless
+        a newer model run came into force while it streamed in)."""
         if sampler is None:
             return
         sampler.record = getattr(self, "_cycle_records", {}).get(cycle_id)
+        reference_s = float(getattr(sampler, "reference_time_s", 0.0))
+        try:
+            self._check_fresh(cycle_id, reference_s)
+        except PlannerError as err:
+            self._reject_cycle(key, cycle_id, err)
+            return
         with self._lock:
             self._forecast, self._cycle_id = sampler, cycle_id
+            self._cycle_reference_s = reference_s
+            self._cycles_accepted += 1
             if self._planning:
                 self._cancel.set()  # supersede the running plan
         self._request(f"new forecast cycle {cycle_id}")
-        first_s, pack_s = self._cycle_timing.pop(cycle_id, (time.monotonic(), 0.0))
+        first_s, pack_s = self._cycle_timing.pop(key, (time.monotonic(), 0.0))
         self.get_logger().info(
             f"forecast cycle {cycle_id} complete: {sampler.times_s.size} slices kept "
             f"({sampler.nbytes / 2**20:.0f} MiB), received over {time.monotonic() - first_s:.2f} s"
@@ -335,8 +439,30 @@ class PlannerNode(Node):
         _return_freed_memory(collect=False)  # the slice buffers: freed, not yet returned
         self._trim_memory = True
 
+    def _clock_s(self) -> float:
+        """The node's clock [POSIX s] (0 with simulated time before the first /clock)."""
+        return self.get_clock().now().nanoseconds * 1e-9
+
+    def _fix(self) -> tuple[float, float, float] | None:
+        """(lat, lon, time) of the last accepted ship state, None before one."""
+        return ship_position(self._ship) if self._ship is not None else None
+
     def _on_ship_state(self, msg: ShipState) -> None:
-        if ship_position(msg) is None:
+        """Checked before it is taken: a refused fix is counted with its reason and logged
+        (throttled); the last good one stays."""
+        optional = {name: float(getattr(msg, name)) for name in (
+            "sog_kn", "cog_deg", "heading_deg", "stw_kn", "shaft_rpm", "draft_fore_m",
+            "draft_aft_m", "fuel_rate_t_per_h")}
+        try:
+            check_ship_state(
+                float(msg.latitude_deg), float(msg.longitude_deg), posix_s(msg.header.stamp),
+                optional, clock_s=self._clock_s(),
+                max_age_s=float(self._p("ship_state_max_age_h")) * 3600.0,
+                max_lead_s=float(self._p("ship_state_max_lead_h")) * 3600.0)
+        except PlannerError as err:
+            n = self._drops.drop("ship_states", str(err))
+            self.get_logger().warning(f"ship state dropped ({n} so far): {err}",
+                                      throttle_duration_sec=5.0)
             return
         first = self._ship is None
         self._ship = msg
@@ -344,10 +470,15 @@ class PlannerNode(Node):
             self._request("first ship state")
 
     # ----------------------------------------------------------------- triggers
-    def _request(self, reason: str) -> None:
+    def _request(self, reason: str, budget_s: float | None = None) -> int:
+        """Ask the worker for a plan; returns the request's number (a goal waits for it)."""
         with self._wake:
             self._pending = reason
+            self._request_seq += 1
+            if budget_s is not None:
+                self._pending_budget_s = budget_s  # kept until a run takes it
             self._wake.notify()
+            return self._request_seq
 
     def _tick(self) -> None:
         self._check_off_plan()
@@ -373,13 +504,22 @@ class PlannerNode(Node):
             self._request("off plan: " + "; ".join(reasons))
 
     # ----------------------------------------------------------------- planning
-    def _snapshot(self, reason: str) -> _Inputs | None:
+    def _snapshot(self, reason: str) -> _Inputs | str:
+        """What to plan on, or why nothing can be planned yet."""
         if self._forecast is None:
-            return None
-        pos = ship_position(self._ship) if self._ship is not None else None
+            return "no plan: no complete forecast cycle received yet"
+        pos = self._fix()
         if pos is None and not self._p("plan_without_ship_state"):
-            return None
-        return _Inputs(self._forecast, self._cycle_id, pos, self._plan, reason)
+            return "no plan: no valid ship state received yet"
+        budget, self._pending_budget_s = self._pending_budget_s, None
+        return _Inputs(self._forecast, self._cycle_id, pos, self._plan, reason, budget,
+                       self._request_seq)
+
+    def _answer(self, seq: int, ok: bool, text: str) -> None:
+        """Record the outcome of the run that served requests up to `seq`."""
+        with self._done_event:
+            self._answered_seq, self._answer_ok, self._answer_text = seq, ok, text
+            self._done_event.notify_all()
 
     def _work(self) -> None:
         while True:
@@ -390,21 +530,27 @@ class PlannerNode(Node):
                     return
                 reason, self._pending = self._pending, None
                 inputs = self._snapshot(reason)
-                if inputs is None:
+                if isinstance(inputs, str):
+                    self._answer(self._request_seq, False, inputs)
                     continue
                 self._planning = True
                 self._cancel.clear()
             try:
-                self._plan_once(inputs)
+                if self._plan_once(inputs):
+                    self._answer(inputs.request_seq, True, self._plan.plan_id if self._plan
+                                 else "")
             except Exception as err:  # the node never dies on input
                 self._last_error = f"planning failed ({inputs.reason}): {err}"
+                self._plans_failed += 1
                 self.get_logger().error(self._last_error)
+                self._answer(inputs.request_seq, False, self._last_error)
             finally:
                 with self._done_event:
                     self._planning = False
                     self._done_event.notify_all()
 
-    def _plan_once(self, inputs: _Inputs) -> None:
+    def _plan_once(self, inputs: _Inputs) -> bool:
+        """Plan and publish; False when the run was superseded by a newer cycle."""
         from .planning import plan_voyage
 
         origin = str(self._p("origin"))
@@ -423,7 +569,8 @@ class PlannerNode(Node):
             origin, str(self._p("destination")), depart, parse_utc(str(self._p("rta"))),
             str(self._p("ship")), inputs.forecast, cycle_id=inputs.cycle_id,
             objective=str(self._p("objective")), method=str(self._p("method")),
-            budget_s=float(self._p("budget_s")), seed=int(self._p("rng_seed")),
+            budget_s=inputs.budget_s if inputs.budget_s is not None
+            else float(self._p("budget_s")), seed=int(self._p("rng_seed")),
             stage_hours=float(self._p("stage_hours")), previous_plan=inputs.previous,
             position=position, seed_pool_dir=pool, progress=self._on_progress,
             cancel=self._cancel, ship_model=str(self._p("ship_model")),
@@ -436,7 +583,7 @@ class PlannerNode(Node):
         )
         if self._cancel.is_set():
             self.get_logger().info(f"plan on {inputs.cycle_id} superseded by a newer cycle")
-            return
+            return False
         self._publish(plan, inputs)
         # after publishing: files, then the freed buffers of a new cycle back to the OS
         self._write_outputs(plan, inputs.forecast)
@@ -446,6 +593,7 @@ class PlannerNode(Node):
             _freeze_long_lived()  # after the first plan, which loaded all planning needs
             rss, peak = _memory_mb()
             self.get_logger().info(f"planner memory: {rss:.0f} MiB resident, peak {peak:.0f} MiB")
+        return True
 
     def _near_origin(self, origin: str, pos: tuple[float, float, float]) -> bool:
         """Whether the ship is still at the departure port (within departure_radius_nm)."""
@@ -500,25 +648,37 @@ class PlannerNode(Node):
 
     # ----------------------------------------------------------------- action
     def _execute_goal(self, goal_handle):
-        before = self._plans_made
-        if goal_handle.request.budget_s > 0:
-            self.set_parameters([rclpy.parameter.Parameter(
-                "budget_s", value=float(goal_handle.request.budget_s))])
-        self._request(goal_handle.request.reason or "plan requested")
+        """Plan for this goal (with its own budget, the parameter untouched) and end as soon
+        as the run that answers it ends: succeeded with the plan, or aborted with the reason."""
         result = PlanRoute.Result()
+        budget = float(goal_handle.request.budget_s)
+        reason = check_number("budget_s", budget) if budget != 0.0 else None
+        if reason is not None:
+            self._drops.drop("plan_requests", reason)
+            goal_handle.abort()
+            result.message = f"goal refused: {reason}"
+            return result
+        goal_budget = budget if budget > 0 else float(self._p("budget_s"))
+        seq = self._request(goal_handle.request.reason or "plan requested",
+                            budget if budget > 0 else None)
         start = time.monotonic()
-        deadline = start + 10.0 * float(self._p("budget_s")) + 30.0
+        deadline = start + 10.0 * goal_budget + 60.0  # a stuck run (never seen) still ends
         while time.monotonic() < deadline:
             if goal_handle.is_cancel_requested:
                 self._cancel.set()
                 goal_handle.canceled()
                 result.message = "cancelled"
                 return result
-            if self._plans_made > before and not self._planning:
-                goal_handle.succeed()
-                result.success = True
-                result.plan_id = self._plan.plan_id if self._plan else ""
-                result.message = "planned"
+            with self._done_event:
+                answered, ok, text = self._answered_seq, self._answer_ok, self._answer_text
+            if answered >= seq:
+                result.success, result.message = ok, "planned" if ok else text
+                result.plan_id = text if ok else ""
+                if ok:
+                    goal_handle.succeed()
+                else:
+                    self._drops.drop("plan_requests", text)
+                    goal_handle.abort()
                 return result
             fb = PlanRoute.Feedback()
             fb.generation = int(self._progress.get("generation", 0))
@@ -529,7 +689,7 @@ class PlannerNode(Node):
             with self._done_event:
                 self._done_event.wait(0.2)
         goal_handle.abort()
-        result.message = self._last_error or "no plan: waiting for a forecast cycle or ship state"
+        result.message = f"no answer within {deadline - start:.0f} s: {self._last_error}"
         return result
 
     # ----------------------------------------------------------------- diagnostics
@@ -538,9 +698,15 @@ class PlannerNode(Node):
         status = DiagnosticStatus(name="shiproute_planner", hardware_id="shiproute")
         values = {
             "forecast_cycle": self._cycle_id or "none",
+            "forecast_cycle_in_force": self._cycle_id or "none",
+            "forecast_reference_time_s": f"{self._cycle_reference_s:.0f}",
+            "forecast_cycles_accepted": str(self._cycles_accepted),
+            "forecast_last_refusal": self._last_cycle_refusal or "none",
             "planning": str(self._planning),
             "plans_made": str(self._plans_made),
+            "plans_failed": str(self._plans_failed),
             "last_error": self._last_error,
+            **self._drops.values(),
         }
         if plan is None:
             status.level = DiagnosticStatus.WARN
@@ -571,6 +737,18 @@ class PlannerNode(Node):
             self._cancel.set()
             self._wake.notify()
         self._worker.join(timeout=5.0)
+
+
+def _method_reason(name: str) -> str | None:
+    """Why `name` is not a route-finding method (None when it is)."""
+    from .errors import UnknownMethodError
+    from .methods import get_method
+
+    try:
+        get_method(name)
+    except UnknownMethodError as err:
+        return str(err)
+    return None
 
 
 def _spin_quietly(executor: SingleThreadedExecutor) -> None:

@@ -21,6 +21,7 @@ import numpy as np
 
 from .approach import Approach, CoastalPassage, approach_length_m, lane_approaches, sail_approach
 from .canals import route_canals, sail_canal
+from .checks.parameters import require_number
 from .depth_setup import depth_limits, with_depth_report
 from .errors import InvalidVoyageError, PlanCancelledError
 from .forecast_statement import forecast_statement, prepare_forecast
@@ -221,6 +222,7 @@ def plan_voyage(
     files (RTZ/GeoJSON) of coastal passages from a port or to one, used as given.
     """
     t0 = time.perf_counter()
+    require_number("stage_hours", stage_hours)
     land = land or default_land_mask()
     ship, model_notes = _chosen_model(ship, ship_model)
     env, spec = make_environment(ship, forecast)
@@ -249,6 +251,11 @@ def plan_voyage(
     leg_rtas = _leg_rtas(ports, depart_s, rta_s, via_rta)
     env = dataclasses.replace(env, sampler=prepare_forecast(env.sampler, depart_s, rta_s,
                                                             persistence_h, climatology))
+    rta_warning, earliest_s = _rta_warning(ports, depart_s, rta_s, spec)
+    # an RTA beyond reach is searched best effort: over the time the great circle takes at
+    # full speed (a lower bound), lateness being a violation the search minimises
+    search_rtas = (_leg_rtas(ports, depart_s, earliest_s, via_rta) if rta_warning
+                   else leg_rtas)
     is_cancelled = _cancel_fn(cancel)
     rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
     pool = SeedPool(seed_pool_dir) if seed_pool_dir is not None else None
@@ -274,7 +281,7 @@ def plan_voyage(
             leg_depart = float((lead_out or ev).eta_s[0])
             continue
         under_way = k == 0 and position is not None
-        leg = leg_setup(a, b, env, lim, land, leg_depart, leg_rtas[k], approach_nm=approach_nm,
+        leg = leg_setup(a, b, env, lim, land, leg_depart, search_rtas[k], approach_nm=approach_nm,
                         approach_rpm=approach_rpm, coastal_passage=coastal_passage,
                         stage_hours=stage_hours, objective=objective,
                         under_way=under_way, previous_plan=previous_plan if under_way else None,
@@ -319,6 +326,8 @@ def plan_voyage(
 
         notes = model_notes + plan_warnings(env.model, plan)
         plan = dataclasses.replace(plan, warnings=plan.warnings + notes)
+    if rta_warning:
+        plan = dataclasses.replace(plan, warnings=(*plan.warnings, rta_warning))
     plan = checked_plan(with_depth_report(plan, lim.under_keel, warnings), land, lim,
                         clearance_nm)
     block, said = forecast_statement(env.sampler, plan, persistence_h)
@@ -344,6 +353,27 @@ def _chosen_model(ship: Any, ship_model: str) -> tuple[Any, tuple[str, ...]]:
         return resolve_model(spec, ship_model)
     except ShipModelError as exc:  # wrong ship, unreadable model file, unknown choice
         raise InvalidVoyageError(f"ship model: {exc}") from exc
+
+
+
+def _rta_warning(ports: list[Port], depart_s: float, rta_s: float,
+                 spec: Any) -> tuple[str, float]:
+    """Why the RTA cannot be met even on great circles at full calm-water speed ('' when it
+    can, or without a ship file), and the arrival time at that speed [POSIX s]."""
+    if spec is None:
+        return "", rta_s
+    from .checks.voyage import max_calm_speed_kn
+
+    dist_nm = sum(float(inverse(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)[1])
+                  for a, b in itertools.pairwise(ports)) / 1852.0
+    need_kn = dist_nm / ((rta_s - depart_s) / 3600.0)
+    top_kn = max_calm_speed_kn(spec)
+    earliest_s = depart_s + dist_nm / top_kn * 3600.0
+    if need_kn <= top_kn:
+        return "", rta_s
+    return (f"RTA unreachable: {dist_nm:.0f} NM (great circle, the shortest possible) in "
+            f"{(rta_s - depart_s) / 3600:.1f} h needs {need_kn:.1f} kn, the ship makes at most "
+            f"{top_kn:.1f} kn in calm water; best-effort plan (earliest arrival)"), earliest_s
 
 
 @dataclasses.dataclass(frozen=True)
@@ -450,13 +480,15 @@ def _lane_rpm(env: Environment, a: Port, b: Port, ap_dep, ap_arr, depart_s: floa
     model = env.model
     if hasattr(model, "rpm_for_speed"):
         from .ship import SeaState
+        from .ship.errors import ShipModelError
 
         try:
-            rpm = float(model.rpm_for_speed(np.array([speed]), np.array([0.0]),
+            rpm = float(model.rpm_for_speed(np.array([min(speed, 30.0)]), np.array([0.0]),
                                             SeaState.calm(1))[0])
             return float(np.clip(rpm, lim.rpm_min, lim.rpm_max))
-        except (ValueError, ArithmeticError):
-            pass  # outside the model's range: fall back to mid-range
+        except (ValueError, ArithmeticError, ShipModelError):
+            # outside the model's range: an RTA beyond reach is sailed at full RPM
+            return lim.rpm_max if speed > 10.0 else 0.5 * (lim.rpm_min + lim.rpm_max)
     return 0.5 * (lim.rpm_min + lim.rpm_max)
 
 

@@ -6,10 +6,12 @@ bad value and keep running with the old one.
 
 from __future__ import annotations
 
-import math
 from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
+
+from .checks.forecast_wire import EARLIEST_TIME_S, LATEST_TIME_S
+from .checks.parameters import check_number
 
 OBJECTIVES = ("fuel", "distance", "eta")
 
@@ -22,31 +24,24 @@ def parse_utc(text: str) -> float:
     return value.timestamp()
 
 
-def _positive(name: str, value: Any) -> str | None:
-    if not isinstance(value, int | float) or not math.isfinite(value) or value <= 0:
-        return f"{name} must be a positive number, got {value!r}"
-    return None
-
-
 def check_parameter(name: str, value: Any) -> str | None:
     """Reason why `value` is not acceptable for parameter `name`, or None when it is."""
     if name in ("rta", "departure_time"):
         if value == "" and name == "departure_time":
             return None
         try:
-            parse_utc(str(value))
-        except ValueError:
+            t = parse_utc(str(value))
+        except (ValueError, OverflowError):
             return f"{name} must be an ISO 8601 UTC time like 2026-03-16T18:00:00Z, got {value!r}"
+        if not EARLIEST_TIME_S <= t <= LATEST_TIME_S:
+            return f"{name} = {value!r} is outside 1990..2100"
         return None
     if name == "objective" and value not in OBJECTIVES:
         return f"objective must be one of {', '.join(OBJECTIVES)}, got {value!r}"
-    if name in ("budget_s", "stage_hours", "replan_cross_track_nm", "replan_schedule_h",
-                "min_replan_interval_s", "departure_radius_nm"):
-        return _positive(name, value)
-    if name == "stage_hours" and value > 48:
-        return f"stage_hours must be <= 48, got {value!r}"
-    if name == "destination" and not str(value).strip():
-        return "destination must name a port, a UN/LOCODE or 'lat,lon'"
+    if name in ("destination", "origin") and not str(value).strip():
+        return f"{name} must name a port, a UN/LOCODE or 'lat,lon'"
+    if name == "ship" and not str(value).strip():
+        return "ship must name a bundled ship or a ship file"
     if name == "ship_model":
         return _ship_model_reason(str(value))
     if name in ("ukc_margin_m", "clearance_nm") and (
@@ -57,9 +52,7 @@ def check_parameter(name: str, value: Any) -> str | None:
                    and not Path(p.strip()).is_file()]
         if missing:
             return f"{name}: no such file {', '.join(missing)}"
-    if name == "rng_seed" and (not isinstance(value, int) or value < 0):
-        return f"rng_seed must be a non-negative integer, got {value!r}"
-    return None
+    return check_number(name, value)
 
 
 def _ship_model_reason(value: str) -> str | None:

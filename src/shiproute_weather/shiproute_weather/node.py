@@ -11,6 +11,7 @@ import queue
 import sys
 import threading
 import time
+import uuid
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -37,6 +38,7 @@ from .convert import (
 )
 from .cycle_builder import MAX_SLICE_BYTES, MAX_SLICES, CycleConfig, build_cycle, corridor_box
 from .errors import WeatherError
+from .heap import return_freed_memory, return_large_blocks_at_once
 from .scenarios import scenario_path
 from .stream import load_slices, streamable
 from .watch import DirectoryWatcher
@@ -112,10 +114,16 @@ class WeatherNode(Node):
             self.create_timer(self.publish_period_s, self._republish, callback_group=timers)
 
         self.lock = threading.Lock()
+        # each load is one publication: (this process's session, load number); subscribers
+        # assemble slices per publication, so a reload is new and a restart never merges
+        self.session = uuid.uuid4().hex[:12]
+        self.loads = 0
         self.state: dict[str, str] = {"cycle_id": "", "slices": "0", "slice_encoding": "",
                                       "bytes_per_slice": "0",
                                       "source_files": "", "load_s": "", "last_error": "",
-                                      "notes": "", "cycles_published": "0"}
+                                      "notes": "", "cycles_published": "0",
+                                      "publication_id": "", "loads_refused": "0",
+                                      "loads_refused_last_reason": "none"}
         self.level = DiagnosticStatus.WARN
         self.message = "no forecast cycle loaded yet"
         self.current: tuple[ForecastCycle, list[ForecastSlice]] | None = None
@@ -204,12 +212,20 @@ class WeatherNode(Node):
             cycle = cycle_to_msg(info)
         except Exception as exc:  # a bad file must never stop the node
             return self._failed(req, exc)
+        self.loads += 1
+        publication = f"{self.session}-{self.loads}"
+        cycle.publication_id = publication
+        if self.publish_period_s <= 0:
+            self._fresh_slice_publisher()
         cycle.header.stamp = self.get_clock().now().to_msg()  # publication time
         self.cycle_pub.publish(cycle)
         stamp = self.get_clock().now().to_msg()
-        for m in kept:
+        for k, m in enumerate(kept):
             m.header.stamp = stamp
+            m.publication_id = publication
             self.slice_pub.publish(m)
+            if self.publish_period_s <= 0:
+                kept[k] = None  # type: ignore[call-overload]  # in the DDS history now: free it
         if self.publish_period_s <= 0:
             kept = []
         dt = time.monotonic() - t0
@@ -220,20 +236,34 @@ class WeatherNode(Node):
                               slice_encoding=encoding, bytes_per_slice=str(nbytes),
                               source_files=", ".join(req.paths),
                               load_s=f"{dt:.3f}", last_error="", notes="; ".join(notes),
-                              cycles_published=str(n))
+                              cycles_published=str(n), publication_id=publication)
             self.level = DiagnosticStatus.WARN if notes else DiagnosticStatus.OK
             self.message = f"serving cycle {info.cycle_id} ({info.slice_count} slices)"
+        return_freed_memory()  # the loaded dataset and encoded slices: back to the OS
         self.get_logger().info(f"published cycle {info.cycle_id}: {info.slice_count} slices "
                                f"({encoding}, {nbytes} B of field values each) in {dt:.2f} s "
                                f"from {req.paths}")
         self._publish_diagnostics()
         return True, info.cycle_id, "; ".join(notes)
 
+    def _fresh_slice_publisher(self) -> None:
+        """Replace the slice publisher before a new cycle goes out: its transient-local history
+        (up to max_slices slices, 143 MB at 200 storm slices, most of them the old cycle's)
+        is freed at once instead of sitting beside the new cycle while it is published, the
+        peak of every load. Subscribers match the new writer and get the whole new cycle."""
+        old = self.slice_pub
+        self.slice_pub = self.create_publisher(ForecastSlice, SLICES_TOPIC,
+                                               latched(self.max_slices))
+        self.destroy_publisher(old)
+
     def _failed(self, req: LoadRequest, exc: Exception) -> tuple[bool, str, str]:
+        return_freed_memory()
         text = f"{req.origin}: {exc}"
         self.get_logger().error(f"forecast load failed, previous cycle stays in force: {text}")
         with self.lock:
             self.state["last_error"] = text
+            self.state["loads_refused"] = str(int(self.state["loads_refused"]) + 1)
+            self.state["loads_refused_last_reason"] = text
             self.level = DiagnosticStatus.ERROR
             kept = self.state["cycle_id"] or "none"
             self.message = f"load failed ({exc}); serving cycle {kept}"
@@ -266,6 +296,7 @@ class WeatherNode(Node):
 
 def main(argv: list[str] | None = None) -> int:
     """Console script `shiproute_weather_node`; runs until SIGINT/SIGTERM."""
+    return_large_blocks_at_once(1 << 15)  # a packed field of a slice is ~55 kB
     rclpy.init(args=argv if argv is not None else sys.argv)
     node = WeatherNode()
     executor = MultiThreadedExecutor(num_threads=3)

@@ -1,0 +1,74 @@
+"""Ranges of the planner's numeric parameters, each with the reason for its bounds.
+
+`check_number` returns the reason a value is refused (None when accepted); `require_number`
+raises `ParameterError`. The node, the CLI and the fleet runner share these bounds.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from ..errors import ParameterError
+
+
+@dataclass(frozen=True)
+class Range:
+    """Accepted closed interval of one parameter and why it is bounded so."""
+
+    lowest: float
+    highest: float
+    unit: str
+    why: str
+    integer: bool = False
+
+
+RANGES: dict[str, Range] = {
+    "stage_hours": Range(
+        1.0, 24.0, "h", "forecasts are 1-6 hourly and a storm crosses a 12 h stage in 12 h; "
+        "longer stages sample the weather too sparsely to see it (and under 1 h a 13-day "
+        "voyage has over 300 genes)"),
+    "budget_s": Range(
+        0.05, 3600.0, "s", "a plan needs a few generations (> 50 ms) and must arrive before "
+        "the next forecast cycle (< 1 h)"),
+    "rng_seed": Range(0, 2**63 - 1, "", "numpy's generator takes a non-negative integer",
+                      integer=True),
+    "replan_cross_track_nm": Range(
+        0.1, 500.0, "NM", "below 0.1 NM GNSS noise re-plans; above 500 NM the ship is on "
+        "another route"),
+    "replan_schedule_h": Range(
+        0.05, 240.0, "h", "3 minutes is the resolution of the schedule; 10 days the length "
+        "of an ocean passage"),
+    "min_replan_interval_s": Range(
+        0.0, 7 * 86400.0, "s", "0 re-plans at every deviation; more than a week never"),
+    "departure_radius_nm": Range(
+        0.0, 100.0, "NM", "a port's approaches lie within 100 NM of it"),
+    "ship_state_max_age_h": Range(
+        0.01, 366 * 24.0, "h", "a fix older than a year (a replayed voyage at most) is a "
+        "corrupt or unset stamp"),
+    "ship_state_max_lead_h": Range(
+        0.0, 24.0, "h", "a fix from the future is a clock error; an hour covers clock skew"),
+}
+
+
+def check_number(name: str, value: object) -> str | None:
+    """Why `value` is refused for numeric parameter `name` (None: accepted or not numeric)."""
+    rule = RANGES.get(name)
+    if rule is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        return f"{name} must be a number, got {value!r}"
+    if rule.integer and not isinstance(value, int):
+        return f"{name} must be an integer, got {value!r}"
+    if not (math.isfinite(value) and rule.lowest <= value <= rule.highest):
+        return (f"{name} = {value!r} is outside {rule.lowest:g}..{rule.highest:g} "
+                f"{rule.unit}".rstrip() + f": {rule.why}")
+    return None
+
+
+def require_number(name: str, value: object) -> float:
+    """`value` as a float, or ParameterError with the range and its reason."""
+    reason = check_number(name, value)
+    if reason is not None:
+        raise ParameterError(reason)
+    return float(value)  # type: ignore[arg-type]

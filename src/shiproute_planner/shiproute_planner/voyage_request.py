@@ -1,0 +1,82 @@
+"""A SetVoyage request checked against the node's current voyage (ROS-free).
+
+The request's empty fields keep the current values; the result is the parameters to set and
+the answer's message, or the package's error naming what is wrong (`checks.voyage`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from datetime import UTC, datetime
+
+from .checks.voyage import VoyageCheck, check_position, check_voyage
+from .errors import InvalidVoyageError
+from .geo.ports import Port
+from .voyage_params import parse_utc
+
+
+@dataclass(frozen=True)
+class VoyageRequest:
+    """What a SetVoyage request asks for (empty text / zero RTA = keep the current one)."""
+
+    destination: str
+    destination_lat_deg: float
+    destination_lon_deg: float
+    rta_s: float
+    ship: str
+    objective: str
+
+
+@dataclass(frozen=True)
+class CheckedVoyage:
+    """A valid voyage: the node parameters to set and the answer's message."""
+
+    parameters: dict[str, object]
+    message: str
+    check: VoyageCheck
+
+
+def _parse(name: str, text: str) -> float:
+    """An ISO 8601 UTC time, or InvalidVoyageError naming the input."""
+    try:
+        return parse_utc(text)
+    except (ValueError, OverflowError) as err:
+        raise InvalidVoyageError(f"{name} {text!r} is not an ISO 8601 UTC time: {err}") from err
+
+
+def _iso(t_s: float) -> str:
+    return datetime.fromtimestamp(t_s, UTC).isoformat().replace("+00:00", "Z")
+
+
+def check_voyage_request(req: VoyageRequest, *, origin: str, ship: str, objective: str,
+                         method: str, rta: str, position: tuple[float, float, float] | None,
+                         departure_time: str, clock_s: float) -> CheckedVoyage:
+    """Check `req` with the current voyage's values for what it leaves empty. The voyage
+    starts at the ship's position and time when one is known, else at `origin` at
+    `departure_time` (or the clock)."""
+    dest = req.destination.strip() or check_position(
+        "destination", req.destination_lat_deg, req.destination_lon_deg)
+    rta_s = req.rta_s if req.rta_s != 0.0 else _parse("rta", rta)
+    start: str | Port = origin
+    depart_s: float | None = None
+    if position is not None:
+        start = Port("ship position", "", position[0], position[1])
+        depart_s = position[2]
+    elif departure_time.strip():
+        depart_s = _parse("departure_time", departure_time)
+    elif clock_s > 0:
+        depart_s = clock_s
+    check = check_voyage(start, dest, depart_s, rta_s, req.ship.strip() or ship,
+                         objective=req.objective.strip() or objective, method=method)
+    params: dict[str, object] = {"destination": dest}
+    if req.rta_s != 0.0:
+        params["rta"] = _iso(rta_s)
+    if req.ship.strip():
+        params["ship"] = req.ship.strip()
+    if req.objective.strip():
+        params["objective"] = req.objective.strip()
+    text = (f"voyage to {check.destination.name} set: RTA {_iso(rta_s)}, "
+            f"{check.great_circle_nm:.0f} NM great circle from {check.origin.name}")
+    if check.rta_warning:
+        text += f"; {check.rta_warning}, flagged FLAG_RTA"
+    return CheckedVoyage(params, text, check)
