@@ -5,27 +5,19 @@ from __future__ import annotations
 import argparse
 import re
 import sys
-from datetime import timedelta
 from pathlib import Path
 
 from ..errors import PlannerError
 from ..methods import Progress, method_names
-from ..planning import load_forecast, plan_voyage, to_posix_s
-
-_DUR = re.compile(r"^\s*(\d+(?:\.\d*)?)\s*([smhd])\s*$")
-_UNIT_S = {"s": 1.0, "m": 60.0, "h": 3600.0, "d": 86400.0}
-
+from ..plan_request import build_request, duration_s, run_request
+from ..planning import load_forecast
 
 def parse_duration_s(text: str) -> float:
     """'13d', '36h', '90m', '3s' or plain seconds -> seconds."""
-    m = _DUR.match(text)
-    if m:
-        return float(m.group(1)) * _UNIT_S[m.group(2)]
     try:
-        return float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(
-            f"duration {text!r}: use a number with s, m, h or d (e.g. 13d, 3s)") from None
+        return duration_s(text)
+    except PlannerError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -39,11 +31,14 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--rta", required=True,
                     help="required time of arrival: ISO time or duration after departure (13d)")
     ap.add_argument("--ship", default="container_4600teu", help="bundled ship or YAML path")
+    ap.add_argument("--model", choices=("fast", "physics", "kwon"), default="fast",
+                    help="ship performance model (fast = tabulated physics, the default)")
     ap.add_argument("--forecast", default=None,
                     help="forecast file (GRIB2/NetCDF) or bundled scenario; omit for calm water")
     ap.add_argument("--objective", choices=("fuel", "distance", "eta"), default="fuel")
     ap.add_argument("--method", default="seed_ga", help="planning method (see --list-methods)")
-    ap.add_argument("--budget", type=parse_duration_s, default=3.0, help="wall time, e.g. 3s")
+    ap.add_argument("--budget", default="3s",
+                    help="wall time (3s) or route evaluations (4000ev: reproducible)")
     ap.add_argument("--seed", type=int, default=0, help="random seed")
     ap.add_argument("--stage-hours", type=float, default=12.0)
     ap.add_argument("--seed-pool", default=None, help="seed pool directory")
@@ -52,12 +47,6 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--no-plot", action="store_true")
     ap.add_argument("--list-methods", action="store_true")
     return ap
-
-
-def _rta(text: str, depart_s: float):
-    if re.match(r"^\s*\d+(\.\d*)?\s*[smhd]?\s*$", text):
-        return timedelta(seconds=parse_duration_s(text))
-    return to_posix_s(text)
 
 
 def _progress(p: Progress) -> None:
@@ -76,12 +65,10 @@ def main(argv: list[str]) -> int:
     from ..io.summary import write_geojson, write_json
 
     try:
-        depart_s = to_posix_s(args.depart)
-        via, via_rta = [], []
-        for v in args.via:
-            name, _, when = v.partition("@")
-            via.append(name)
-            via_rta.append(to_posix_s(when) if when else None)
+        req = build_request(
+            origin=args.origin, destination=args.destination, depart=args.depart, rta=args.rta,
+            via=args.via, ship=args.ship, objective=args.objective, method=args.method,
+            model=args.model, budget=args.budget, seed=args.seed, stage_hours=args.stage_hours)
         forecast = load_forecast(args.forecast) if args.forecast else None
         # build the sampler outside the budget: --budget is planning time, not file loading
         env_forecast = None
@@ -89,12 +76,9 @@ def main(argv: list[str]) -> int:
             from shiproute_weather.sampling import ForecastSampler
 
             env_forecast = ForecastSampler(forecast)
-        plan = plan_voyage(
-            args.origin, args.destination, depart_s, _rta(args.rta, depart_s), args.ship,
-            env_forecast, via=via, via_rta=via_rta, objective=args.objective, method=args.method,
-            cycle_id=str(forecast.attrs.get("cycle_id", "")) if forecast is not None else "",
-            budget_s=args.budget, seed=args.seed, stage_hours=args.stage_hours,
-            seed_pool_dir=args.seed_pool, progress=_progress)
+        plan = run_request(
+            req, env_forecast, seed_pool_dir=args.seed_pool, progress=_progress,
+            cycle_id=str(forecast.attrs.get("cycle_id", "")) if forecast is not None else "")
         print(file=sys.stderr)
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)
