@@ -11,8 +11,8 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from .errors import InvalidVoyageError
-from .planning import plan_voyage, to_posix_s
 from .plan_types import RoutePlan
+from .planning import plan_voyage, to_posix_s
 
 OBJECTIVES = ("fuel", "distance", "eta")
 SHIP_MODELS = ("fast", "physics", "kwon")  # tabulated (the hot path), direct physics, Kwon

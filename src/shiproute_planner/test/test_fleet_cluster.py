@@ -23,16 +23,31 @@ from shiproute_planner.fleet.voyages import VoyageSpec  # noqa: E402
 from shiproute_planner.plan_request import build_request, run_request  # noqa: E402
 from shiproute_planner.threads import set_planner_threads  # noqa: E402
 
-FORECAST = "storm_march"
-SHORT = (("Shanghai", "Busan", 2.0), ("Busan", "Yokohama", 3.0), ("Hong Kong", "Kaohsiung", 2.0),
+SHORT = (("Shanghai", "Busan", 2.0), ("Busan", "Yokohama", 3.0), ("Kaohsiung", "Shanghai", 2.5),
          ("Tokyo", "32.0,150.0", 2.0))  # short passages: cheap plans, a fast test
+DEPART0 = datetime(2026, 3, 3, 12, tzinfo=UTC)  # storm_march's reference time
+
+
+@pytest.fixture(scope="module")
+def forecast_file(tmp_path_factory) -> str:
+    """storm_march cut to the test passages (20-45 N, 115-155 E, 6 days) as a NetCDF file: the
+    forecast-file path of the fleet, and quick for every worker to load."""
+    import xarray as xr
+    from shiproute_weather.scenarios import scenario_path
+
+    path = tmp_path_factory.mktemp("forecast") / "storm_march_cut.nc"
+    with xr.open_dataset(scenario_path("storm_march")) as ds:
+        cut = ds.sel(latitude=slice(20.0, 45.0), longitude=slice(115.0, 155.0),
+                     time=slice("2026-03-03T12:00", "2026-03-09T12:00"))
+        cut.load().to_netcdf(path)
+    return str(path)
 
 
 def _voyages(n: int, budget: str = "300ev") -> list[VoyageSpec]:
     out = []
     for k in range(n):
         a, b, days = SHORT[k % len(SHORT)]
-        dep = datetime(2026, 3, 3, tzinfo=UTC) + timedelta(hours=15 * (k // len(SHORT)))
+        dep = DEPART0 + timedelta(hours=15 * (k // len(SHORT)))
         req = build_request(origin=a, destination=b, depart=dep.isoformat(), rta=f"{days}d",
                             budget=budget, seed=100 + k)
         out.append(VoyageSpec(f"v{k:02d}", f"vessel{k % 7}", k + 2, req, None, f"v{k:02d}"))
@@ -49,15 +64,17 @@ def cluster():
         yield c
 
 
-def test_cluster_plans_equal_one_by_one(cluster, tmp_path):
+def test_cluster_plans_equal_one_by_one(cluster, forecast_file, tmp_path):
     voyages = _voyages(20)
-    opts = FleetOptions(out_dir=str(tmp_path), forecasts=(FORECAST,), scheduler=cluster.scheduler_address)
+    opts = FleetOptions(out_dir=str(tmp_path), forecasts=(forecast_file,),
+                        scheduler=cluster.scheduler_address)
     run = run_fleet(voyages, opts, show_progress=False)
     by_id = {r["voyage_id"]: r for r in run.records}
     assert all(r["status"] == "planned" for r in run.records), run.records
     assert len({r["worker"] for r in run.records}) == 2  # both workers planned
+    assert not any(r["warnings"] for r in run.records)  # all inside the forecast, in time
     set_planner_threads(1)
-    fc = cached_forecast(FORECAST, forecast_key(FORECAST))
+    fc = cached_forecast(forecast_file, forecast_key(forecast_file))
     for v in voyages:
         alone = run_request(v.request, fc.sampler, cycle_id=fc.cycle_id)
         assert by_id[v.voyage_id]["fuel_t"] == alone.total_fuel_t  # bit for bit
@@ -82,9 +99,10 @@ def test_cluster_plans_equal_one_by_one(cluster, tmp_path):
     assert len(list((tmp_path / VOYAGES_DIR).glob("v19--*"))) == 1
 
 
-def test_killed_worker_every_voyage_one_output(cluster, tmp_path):
+def test_killed_worker_every_voyage_one_output(cluster, forecast_file, tmp_path):
     voyages = _voyages(12, budget="600ev")
-    opts = FleetOptions(out_dir=str(tmp_path), forecasts=(FORECAST,), scheduler=cluster.scheduler_address)
+    opts = FleetOptions(out_dir=str(tmp_path), forecasts=(forecast_file,),
+                        scheduler=cluster.scheduler_address)
     client = distributed.Client(cluster)
     client.wait_for_workers(2)
     victims: list[int] = []
@@ -116,16 +134,16 @@ def test_killed_worker_every_voyage_one_output(cluster, tmp_path):
     assert len(list((tmp_path / VOYAGES_DIR).iterdir())) == len(voyages)
 
 
-def test_cli_bad_rows_and_unreachable_scheduler(cluster, tmp_path, capsys):
+def test_cli_bad_rows_and_unreachable_scheduler(cluster, forecast_file, tmp_path, capsys):
     from shiproute_planner.cli.fleet import main
 
     f = tmp_path / "fleet.csv"
     f.write_text("vessel,from,to,depart,rta,budget\n"
-                 "A,Shanghai,Busan,2026-03-03T00:00Z,2d,150ev\n"
+                 "A,Shanghai,Busan,2026-03-04T00:00Z,2d,150ev\n"
                  "B,Shanghai,Nowhere Port,2026-03-03T00:00Z,2d,150ev\n"
                  "C,Shanghai,Busan,2026-03-03T00:00Z,2026-03-02T00:00Z,150ev\n")
     out = tmp_path / "out"
-    code = main([str(f), "--forecast", FORECAST, "--scheduler", cluster.scheduler_address,
+    code = main([str(f), "--forecast", forecast_file, "--scheduler", cluster.scheduler_address,
                  "--out", str(out), "--quiet"])
     err = capsys.readouterr().err
     assert code == 1  # two rows skipped

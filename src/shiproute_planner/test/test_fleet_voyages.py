@@ -46,7 +46,7 @@ def test_bad_rows_are_skipped_with_line_and_reason(tmp_path):
 def test_missing_column_is_a_file_error(tmp_path):
     f = tmp_path / "fleet.csv"
     f.write_text("vessel,from,depart,rta\nA,Busan,2026-03-03T18:00Z,13d\n")
-    with pytest.raises(VoyageFileError, match="missing column.*to"):
+    with pytest.raises(VoyageFileError, match=r"missing column.*to"):
         read_voyages(f)
 
 

@@ -1,4 +1,4 @@
-"""Plan a fleet on Dask: every voyage of a CSV/YAML file x forecast -> per-voyage files + summary."""
+"""Plan a fleet on Dask: voyages file (CSV/YAML) x forecasts -> per-voyage files + a summary."""
 
 from __future__ import annotations
 

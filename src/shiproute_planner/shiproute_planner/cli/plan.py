@@ -12,6 +12,7 @@ from ..methods import Progress, method_names
 from ..plan_request import build_request, duration_s, run_request
 from ..planning import load_forecast
 
+
 def parse_duration_s(text: str) -> float:
     """'13d', '36h', '90m', '3s' or plain seconds -> seconds."""
     try:

@@ -19,9 +19,8 @@ _CHUNK = 1 << 20
 def code_version() -> str:
     """Hash of the planner's and the weather package's sources and bundled data files: any
     change to the code that makes plans changes it."""
-    import shiproute_weather
-
     import shiproute_planner
+    import shiproute_weather
 
     h = hashlib.sha256()
     for pkg in (shiproute_planner, shiproute_weather):

@@ -64,5 +64,7 @@ class FleetProgress:
 
 
 def _mmss(s: float) -> str:
-    s = max(int(round(s)), 0)
-    return f"{s // 3600}:{s // 60 % 60:02d}:{s % 60:02d}" if s >= 3600 else f"{s // 60}:{s % 60:02d}"
+    s = max(round(s), 0)
+    if s >= 3600:
+        return f"{s // 3600}:{s // 60 % 60:02d}:{s % 60:02d}"
+    return f"{s // 60}:{s % 60:02d}"

@@ -17,8 +17,8 @@ from itertools import pairwise
 
 import numpy as np
 
-from . import fast_kernel as fk
 from ..threads import planner_threads
+from . import fast_kernel as fk
 from .errors import InputRangeError, ShipModelError
 from .fast_inverse import rpm_kernel
 from .hull import ShipConstants
