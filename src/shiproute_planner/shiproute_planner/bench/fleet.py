@@ -75,6 +75,29 @@ def alone(voyages: list, forecast: str) -> tuple[list[float], list[float]]:
     return secs, fuel
 
 
+def makespan_s(durations: list[float], workers: int) -> float:
+    """Batch time when each task goes to the first idle worker in submission order (what the
+    Dask scheduler does with equal-priority independent tasks)."""
+    import heapq
+
+    free = [0.0] * workers
+    for d in durations:
+        heapq.heapreplace(free, free[0] + d)
+    return max(free)
+
+
+def extrapolate(per_voyage_s: list[float], setup_s: float, n: int = 1000,
+                workers: tuple[int, ...] = (2, 8, 32, 128)) -> dict:
+    """Simulated cycle time of `n` voyages drawn (seeded) from the measured per-voyage
+    times (planning + overhead on a worker) on clusters of `workers` single-thread workers,
+    plus the measured worker set-up (in parallel on every worker, once per cycle)."""
+    import numpy as np
+
+    rng = np.random.default_rng(0)
+    sample = rng.choice(np.asarray(per_voyage_s), size=n).tolist()
+    return {f"{w}w": round(setup_s + makespan_s(sample, w), 1) for w in workers}
+
+
 def run(n: int, budget: str, forecast: str) -> dict:
     """The benchmark's JSON result."""
     voyages = bench_voyages(n, budget)
@@ -105,6 +128,9 @@ def run(n: int, budget: str, forecast: str) -> dict:
         "cluster_start_and_setup_s_2w": round(two["run"].start_s, 2),
         "worker_setup_s": [round(s, 2) for s in setup],
         "cpus": os.cpu_count(), "load_avg_1m": round(os.getloadavg()[0], 2),
+        "extrapolated_1000_voyages_s": extrapolate(
+            [r["wall_s"] for r in one["run"].records if "wall_s" in r],
+            max(setup) if setup else 0.0),
     }
 
 

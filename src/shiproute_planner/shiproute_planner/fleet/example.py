@@ -25,10 +25,12 @@ PASSAGES = (  # North Pacific passages: from, to, RTA days, ship, via
     ("Tokyo", "Honolulu", 9, "container_4600teu", ""),
     ("Vancouver", "Honolulu", 7, "bulk_supramax", ""),
     ("Busan", "Yokohama", 3, "container_4600teu", ""),
-    ("Qingdao", "Seattle", 14, "vlcc_270k", ""),
+    ("Qingdao", "USSEA", 14, "vlcc_270k", ""),
     ("Busan", "Long Beach", 15, "container_348m", "Honolulu"),
     ("Hong Kong", "Yokohama", 5, "bulk_supramax", ""),
 )
+# lane port names the searoute gazetteer spells otherwise: written as their UN/LOCODE
+LOCODES = {"Antwerp": "BEANR", "Gothenburg": "SEGOT"}
 COLUMNS = ("voyage", "vessel", "ship", "from", "to", "via", "depart", "rta", "objective",
            "budget", "seed", "forecast")
 
@@ -48,6 +50,8 @@ def example_rows(n: int = 50, budget: str = "3000ev") -> list[dict[str, str]]:
     with LANES_FILE.open(newline="") as fh:
         lanes = list(csv.DictReader(fh))
     for k, lane in enumerate(lanes):
+        lane = {**lane, "from": LOCODES.get(lane["from"], lane["from"]),
+                "to": LOCODES.get(lane["to"], lane["to"])}
         dep = STORM_DEPART + timedelta(hours=6 * (k % 4))
         inside = _inside(lane["from"]) and _inside(lane["to"])
         rows.append({"voyage": lane["name"], "vessel": f"lane{k + 1:02d}", "ship": lane["ship"],
