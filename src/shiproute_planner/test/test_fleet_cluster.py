@@ -73,6 +73,11 @@ def test_cluster_plans_equal_one_by_one(cluster, forecast_file, tmp_path):
     assert all(r["status"] == "planned" for r in run.records), run.records
     assert len({r["worker"] for r in run.records}) == 2  # both workers planned
     assert not any(r["warnings"] for r in run.records)  # all inside the forecast, in time
+    from shiproute_planner.fleet.forecasts import loads
+
+    key = forecast_key(forecast_file)
+    with distributed.Client(cluster) as client:  # the forecast was loaded once per worker
+        assert list(client.run(loads).values()) == [[key], [key]]
     set_planner_threads(1)
     fc = cached_forecast(forecast_file, forecast_key(forecast_file))
     for v in voyages:

@@ -127,6 +127,8 @@ def run(n: int, budget: str, forecast: str) -> dict:
         "cluster_start_and_setup_s_1w": round(one["run"].start_s, 2),
         "cluster_start_and_setup_s_2w": round(two["run"].start_s, 2),
         "worker_setup_s": [round(s, 2) for s in setup],
+        "task_cpu_s_1w": round(sum(r.get("cpu_s", 0.0) for r in one["run"].records), 2),
+        "task_cpu_s_2w": round(sum(r.get("cpu_s", 0.0) for r in two["run"].records), 2),
         "cpus": os.cpu_count(), "load_avg_1m": round(os.getloadavg()[0], 2),
         "extrapolated_1000_voyages_s": extrapolate(
             [r["wall_s"] for r in one["run"].records if "wall_s" in r],

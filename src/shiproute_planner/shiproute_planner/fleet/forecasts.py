@@ -12,6 +12,7 @@ from .keys import forecast_files
 
 _CACHE: dict[str, LoadedForecast] = {}
 _LOCK = threading.Lock()
+_LOADS: list[str] = []  # keys loaded by this process, in order (a statistic for tests/bench)
 MAX_HELD = 8  # forecasts one process keeps (a cycle's members); the oldest is dropped
 
 
@@ -46,13 +47,14 @@ def cached_forecast(spec: str | None, key: str) -> LoadedForecast | None:
         hit = _CACHE.get(key)
         if hit is None:
             hit = load_forecast_spec(spec)
+            _LOADS.append(key)
             if len(_CACHE) >= MAX_HELD:
                 _CACHE.pop(next(iter(_CACHE)))
             _CACHE[key] = hit
         return hit
 
 
-def held_keys() -> list[str]:
-    """Keys of the forecasts this process holds (for tests and the bench)."""
+def loads(dask_worker: Any = None) -> list[str]:
+    """Keys of every forecast load this process made, in order (for tests and the bench)."""
     with _LOCK:
-        return list(_CACHE)
+        return list(_LOADS)

@@ -105,7 +105,7 @@ def plan_record(task: VoyageTask, plan: Any, dataset: Any = None) -> dict[str, A
 def plan_task(task: VoyageTask) -> dict[str, Any]:
     """Plan one voyage and publish its outputs; returns its record (never raises for a
     voyage's own failure: status 'failed' and the reason)."""
-    t0 = time.perf_counter()
+    t0, cpu0 = time.perf_counter(), time.process_time()
     where = f"{socket.gethostname()}:{os.getpid()}"
     done = existing_result(task.out_dir, task.voyage_id, task.key)
     if done is not None:  # a re-run of a task whose first run had already published
@@ -131,4 +131,5 @@ def plan_task(task: VoyageTask) -> dict[str, Any]:
         record = {**base_record(task), "status": "failed",
                   "reason": f"internal error {type(exc).__name__}: {exc} "
                             f"({Path(tb.filename).name}:{tb.lineno})"}
-    return {**record, "worker": where, "wall_s": time.perf_counter() - t0}
+    return {**record, "worker": where, "wall_s": time.perf_counter() - t0,
+            "cpu_s": time.process_time() - cpu0}
