@@ -146,16 +146,24 @@ def test_cli_bad_rows_and_unreachable_scheduler(cluster, forecast_file, tmp_path
     f.write_text("vessel,from,to,depart,rta,budget\n"
                  "A,Shanghai,Busan,2026-03-04T00:00Z,2d,150ev\n"
                  "B,Shanghai,Nowhere Port,2026-03-03T00:00Z,2d,150ev\n"
-                 "C,Shanghai,Busan,2026-03-03T00:00Z,2026-03-02T00:00Z,150ev\n")
+                 "C,Shanghai,Busan,2026-03-03T00:00Z,2026-03-02T00:00Z,150ev\n"
+                 'D,"36.2,138.2",Busan,2026-03-04T00:00Z,2d,150ev\n')  # inland Japan
     out = tmp_path / "out"
     code = main([str(f), "--forecast", forecast_file, "--scheduler", cluster.scheduler_address,
                  "--out", str(out), "--quiet"])
     err = capsys.readouterr().err
-    assert code == 1  # two rows skipped
+    assert code == 1  # two rows skipped, one voyage failed
     assert f"{f}:3: B: skipped:" in err and "Nowhere Port" in err
     assert f"{f}:4: C: skipped:" in err and "RTA must be after" in err
-    rows = (out / "fleet_summary.csv").read_text().splitlines()
-    assert len(rows) == 4 and rows[1].startswith("A,")
+    assert "D: failed:" in err and "on land" in err  # failed on a worker, the rest planned
+    import csv
+
+    with (out / "fleet_summary.csv").open() as fh:
+        rows = {r["voyage_id"]: r for r in csv.DictReader(fh)}
+    assert {k: r["status"] for k, r in rows.items()} == {
+        "A": "planned", "B": "invalid", "C": "invalid", "D": "failed"}
+    assert rows["B"]["reason"].startswith("line 3: ") and "on land" in rows["D"]["reason"]
+    assert float(rows["A"]["fuel_t"]) > 0 and rows["A"]["out_dir"]
     assert (out / "fleet_summary.png").stat().st_size > 10_000
     t0 = time.monotonic()
     code = main([str(f), "--scheduler", "tcp://127.0.0.1:9", "--connect-timeout", "2",

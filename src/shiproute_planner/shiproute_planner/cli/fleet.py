@@ -90,18 +90,23 @@ def main(argv: list[str]) -> int:
 
 def format_fleet(records: list[dict], run) -> str:
     """Totals of a batch."""
+    from ..fleet import summary
+
     planned = [r for r in records if r.get("status") == "planned"]
     fresh = [r for r in planned if not r.get("already_planned")]
     fuel = sum(float(r.get("fuel_t") or 0.0) for r in planned)
-    saved = sum(float(r.get("fuel_saved_t") or 0.0) for r in planned
-                if r.get("best_candidate") in ("", None, True))
+    both = [r for r in planned if summary.comparable(r)]
+    saved = sum(float(r["fuel_saved_t"]) for r in both)
+    base = sum(float(r["baseline_fuel_t"]) for r in both)
     late = sum(1 for r in planned if float(r.get("eta_margin_h") or 0.0) < -0.01)
     lines = [
         f"voyages   {len(records)}: planned {len(fresh)}, already planned "
         f"{len(planned) - len(fresh)}, failed "
         f"{sum(1 for r in records if r.get('status') == 'failed')}, invalid rows "
         f"{sum(1 for r in records if r.get('status') == 'invalid')}",
-        f"fuel      {fuel:.1f} t planned, {saved:+.1f} t saved against constant RPM",
+        f"fuel      {fuel:.1f} t planned; {saved:.1f} t saved against constant RPM "
+        f"({100 * saved / base if base else 0.0:.1f} %) on the {len(both)} voyages where plan "
+        "and baseline are feasible",
         f"flags     {sum(1 for r in planned if not r.get('feasible'))} infeasible, "
         f"{late} late",
     ]

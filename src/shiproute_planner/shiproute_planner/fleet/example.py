@@ -23,9 +23,9 @@ PASSAGES = (  # North Pacific passages: from, to, RTA days, ship, via
     ("Kaohsiung", "Oakland", 16, "container_348m", ""),
     ("Shanghai", "Busan", 2, "bulk_supramax", ""),
     ("Tokyo", "Honolulu", 9, "container_4600teu", ""),
-    ("Vancouver", "Honolulu", 7, "bulk_supramax", ""),
+    ("Vancouver", "Honolulu", 9, "bulk_supramax", ""),
     ("Busan", "Yokohama", 3, "container_4600teu", ""),
-    ("Qingdao", "USSEA", 14, "vlcc_270k", ""),
+    ("Qingdao", "USSEA", 16, "vlcc_270k", ""),
     ("Busan", "Long Beach", 15, "container_348m", "Honolulu"),
     ("Hong Kong", "Yokohama", 5, "bulk_supramax", ""),
 )

@@ -13,7 +13,7 @@ from .keys import forecast_files
 _CACHE: dict[str, LoadedForecast] = {}
 _LOCK = threading.Lock()
 _LOADS: list[str] = []  # keys loaded by this process, in order (a statistic for tests/bench)
-MAX_HELD = 8  # forecasts one process keeps (a cycle's members); the oldest is dropped
+MAX_HELD = 4  # forecasts one process keeps (a day's cycles); the oldest is dropped
 
 
 @dataclass(frozen=True)

@@ -15,10 +15,16 @@ from ..plan_request import PlanRequest
 _CHUNK = 1 << 20
 
 
+# sources that do not make plans or their files: command lines, benchmarks, the ROS shells,
+# and the fleet's client side (reading voyages, running the batch, the summary)
+_NOT_PLANNING = {"cli", "bench", "node.py", "convert.py", "runner.py", "progress.py",
+                 "summary.py", "example.py", "voyages.py", "plugin.py", "test"}
+
+
 @functools.cache
 def code_version() -> str:
-    """Hash of the planner's and the weather package's sources and bundled data files: any
-    change to the code that makes plans changes it."""
+    """Hash of the planner's and the weather package's sources and bundled data files that
+    make plans and their files: any change to them changes it."""
     import shiproute_planner
     import shiproute_weather
 
@@ -27,7 +33,8 @@ def code_version() -> str:
         root = Path(pkg.__file__).parent
         files = sorted(p for p in root.rglob("*")
                        if p.is_file() and p.suffix in (".py", ".yaml", ".json", ".nc")
-                       and "__pycache__" not in p.parts)
+                       and "__pycache__" not in p.parts
+                       and not _NOT_PLANNING.intersection(p.relative_to(root).parts))
         for p in files:
             h.update(str(p.relative_to(root.parent)).encode())
             h.update(_file_digest(p).encode())

@@ -27,6 +27,11 @@ class FleetProgress:
         self.log_every_s = log_every_s
         self._last_log = -1e9
 
+    def restart_clock(self) -> None:
+        """Measure elapsed time and ETA from now (the first voyage submitted), not from the
+        cluster's start and worker set-up."""
+        self.t0 = time.perf_counter()
+
     def eta_s(self) -> float | None:
         """Seconds until the batch ends at the rate so far (None before the first result)."""
         finished = self.done + self.failed

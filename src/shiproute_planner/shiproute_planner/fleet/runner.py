@@ -147,6 +147,7 @@ def run_fleet(voyages: Sequence[VoyageSpec], opts: FleetOptions, *, force: bool 
                                 "already_planned": True})
         else:
             todo.append(t)
+    specs_order = {s: k for k, s in enumerate(opts.forecasts)}
     progress = FleetProgress(len(tasks), cached=len(tasks) - len(todo), stream=stream)
     t0 = time.perf_counter()
     if todo:
@@ -165,8 +166,11 @@ def run_fleet(voyages: Sequence[VoyageSpec], opts: FleetOptions, *, force: bool 
                 dask_worker, "shiproute_setup", {}))
             run.start_s = time.perf_counter() - t0
             t1 = time.perf_counter()
+            progress.restart_clock()
             from .worker import plan_task
 
+            # forecast by forecast: a worker holds a few forecasts, not every one at once
+            todo.sort(key=lambda t: specs_order.get(t.forecast, 0))
             futures = {client.submit(plan_task, t, key=f"voyage-{safe_name(t.voyage_id)}-{t.key}",
                                      pure=False, retries=opts.retries): t for t in todo}
             pending = set(futures)

@@ -36,6 +36,15 @@ def mark_best_candidates(records: list[dict[str, Any]]) -> None:
             r["best_candidate"] = r is best if len(members) > 1 else ""
 
 
+def comparable(r: dict[str, Any]) -> bool:
+    """A planned voyage whose saving means something: plan and baseline both feasible (an
+    infeasible baseline, e.g. across land, is cheap for the wrong reason), one candidate
+    per row (the best), finite fuel."""
+    return (r.get("status") == "planned" and bool(r.get("feasible"))
+            and bool(r.get("baseline_feasible")) and r.get("best_candidate") in ("", None, True)
+            and math.isfinite(float(r.get("fuel_saved_t") or math.nan)))
+
+
 def skipped_records(errors: list[RowError]) -> list[dict[str, Any]]:
     """Rows of the voyages file that were not planned, as summary records."""
     return [{"voyage_id": e.voyage, "line": e.line, "status": "invalid",
@@ -82,8 +91,7 @@ def write_plot(records: list[dict[str, Any]], path: Path) -> Path:
     planned = [r for r in records if r.get("status") == "planned"]
     saved: dict[str, float] = defaultdict(float)
     for r in planned:
-        if r.get("best_candidate") in ("", None, True) and math.isfinite(
-                float(r.get("fuel_saved_t") or math.nan)):
+        if comparable(r):
             saved[str(r.get("vessel"))] += float(r["fuel_saved_t"])
     flags: Counter[str] = Counter()
     for r in records:
@@ -99,7 +107,7 @@ def write_plot(records: list[dict[str, Any]], path: Path) -> Path:
     names = sorted(saved)
     axes[0].barh(names, [saved[n] for n in names],
                  color=["tab:green" if saved[n] >= 0 else "tab:red" for n in names])
-    axes[0].set_xlabel("fuel saved vs constant-RPM baseline (t)")
+    axes[0].set_xlabel("fuel saved vs constant-RPM baseline (t; plan and baseline feasible)")
     axes[0].set_title("fuel saved per vessel")
     ids = [str(r["voyage_id"]) for r in planned]
     margins = [float(r.get("eta_margin_h") or 0.0) for r in planned]
