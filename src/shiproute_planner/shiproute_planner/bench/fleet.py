@@ -55,8 +55,8 @@ def run_batch(voyages: list, workers: int, forecast: str, out_dir: str) -> dict:
     return {"run": run, "peak_rss_mb": peak}
 
 
-def alone(voyages: list, forecast: str) -> tuple[list[float], list[float]]:
-    """Plan each voyage in this process (one thread, warmed): (plan seconds, fuel t)."""
+def alone(voyages: list, forecast: str) -> tuple[list[float], list[float], list[float]]:
+    """Plan each voyage in this process (one thread, warmed): (wall s, CPU s, fuel t)."""
     from ..fleet.forecasts import cached_forecast
     from ..fleet.keys import forecast_key
     from ..fleet.plugin import warm_planner
@@ -66,13 +66,14 @@ def alone(voyages: list, forecast: str) -> tuple[list[float], list[float]]:
     set_planner_threads(1)
     fc = cached_forecast(forecast, forecast_key(forecast))
     warm_planner(fc.sampler, fc.cycle_id)
-    secs, fuel = [], []
+    secs, cpu, fuel = [], [], []
     for v in voyages:
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         plan = run_request(v.request, fc.sampler, cycle_id=fc.cycle_id)
         secs.append(time.perf_counter() - t0)
+        cpu.append(time.process_time() - c0)
         fuel.append(plan.total_fuel_t)
-    return secs, fuel
+    return secs, cpu, fuel
 
 
 def makespan_s(durations: list[float], workers: int) -> float:
@@ -104,7 +105,7 @@ def run(n: int, budget: str, forecast: str) -> dict:
     with tempfile.TemporaryDirectory() as tmp:
         one = run_batch(voyages, 1, forecast, os.path.join(tmp, "w1"))
         two = run_batch(voyages, 2, forecast, os.path.join(tmp, "w2"))
-    secs, fuel_alone = alone(voyages, forecast)
+    secs, cpu_alone, fuel_alone = alone(voyages, forecast)
 
     def fuels(batch: dict) -> dict:
         return {r["voyage_id"]: r.get("fuel_t") for r in batch["run"].records}
@@ -127,6 +128,15 @@ def run(n: int, budget: str, forecast: str) -> dict:
         "cluster_start_and_setup_s_1w": round(one["run"].start_s, 2),
         "cluster_start_and_setup_s_2w": round(two["run"].start_s, 2),
         "worker_setup_s": [round(s, 2) for s in setup],
+        # load-robust parts of the overhead: CPU a voyage costs on a worker beyond planning
+        # it alone (files, forecast look-up, task (de)serialisation), and the time the lone
+        # worker waited between tasks (scheduler round trip)
+        "overhead_cpu_per_voyage_s": round(
+            sum(r.get("cpu_s", 0.0) for r in one["run"].records) / n - statistics.fmean(
+                cpu_alone), 4),
+        "idle_between_tasks_per_voyage_s_1w": round(
+            (w1 - sum(r.get("wall_s", 0.0) for r in one["run"].records)) / n, 4),
+        "plan_alone_cpu_mean_s": round(statistics.fmean(cpu_alone), 4),
         "task_cpu_s_1w": round(sum(r.get("cpu_s", 0.0) for r in one["run"].records), 2),
         "task_cpu_s_2w": round(sum(r.get("cpu_s", 0.0) for r in two["run"].records), 2),
         "cpus": os.cpu_count(), "load_avg_1m": round(os.getloadavg()[0], 2),
