@@ -111,8 +111,11 @@ def fleet_client(opts: FleetOptions) -> Iterator[tuple[Any, str]]:
         raise FleetError(f"fleet planning needs dask.distributed ({exc}): "
                          "run ros2_ws/shiproute env to install the pinned requirements") from None
 
+    # the worker's statistical profiler samples the planning thread every 10 ms: its CPU is
+    # taken from the voyages (the nanny hands this configuration to the worker processes)
     with dask.config.set({"distributed.scheduler.allowed-failures": ALLOWED_FAILURES,
-                          "distributed.worker.daemon": False}):
+                          "distributed.worker.daemon": False,
+                          "distributed.worker.profile.enabled": False}):
         if opts.scheduler:
             try:
                 client = Client(opts.scheduler, timeout=f"{opts.connect_timeout_s}s")
