@@ -102,7 +102,7 @@ def write_plot(records: list[dict[str, Any]], path: Path) -> Path:
             flags[f] += 1
         if r.get("feasible"):
             flags["all constraints met"] += 1
-    fig, axes = plt.subplots(1, 3, figsize=(16, max(4.0, 0.22 * max(len(saved), 10))),
+    fig, axes = plt.subplots(1, 3, figsize=(16, min(max(4.0, 0.16 * max(len(planned), 10)), 60)),
                              gridspec_kw={"width_ratios": [1.2, 1.2, 1.0]})
     names = sorted(saved)
     axes[0].barh(names, [saved[n] for n in names],
