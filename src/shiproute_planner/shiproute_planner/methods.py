@@ -225,7 +225,9 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
             parts = ga.parts() if isinstance(ga, IslandGA) else [(slice(0, len(x)), ga)]
             for sl, isl in parts:
                 _rpm_scaled_best(x[sl], isl.best[0], n, lo, hi, ctx.rng)
-        if ctx.max_evaluations:  # an evaluation budget is exact
+        if ctx.max_evaluations and ga.pop is not None:
+            # an evaluation budget is exact once every island has its first population (a
+            # budget smaller than that still evaluates the whole first population)
             x = x[: max(ctx.max_evaluations - ga.evaluations, 1)]
         ev = evaluate(x)
         ga.tell(x, ev.violation, ev.objective)

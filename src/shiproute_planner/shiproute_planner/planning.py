@@ -176,6 +176,7 @@ def plan_voyage(
     ga_config: GAConfig | None = None,
     stall_generations: int = 0,
     max_generations: int = 100_000,
+    max_evaluations: int = 0,
     with_baseline: bool = True,
     approach_nm: float = 25.0,
     approach_rpm: float | None = None,
@@ -198,7 +199,9 @@ def plan_voyage(
     callable returning True or an object with `is_set()` (threading.Event); a cancelled run
     returns the best plan so far. `budget_s` is the wall time of the whole call (the search
     keeps at least half of it, so a cold process may overrun by the loading time); with
-    `max_generations` (and an ample budget) a run is reproducible for a given `seed`.
+    `max_generations` or `max_evaluations` (route evaluations of the whole voyage, shared
+    between legs by distance; 0 = none) and an ample (or infinite) `budget_s` a run is
+    reproducible for a given `seed`.
     The first and last `approach_nm` at each port follow the sea lane at `approach_rpm`
     (default: the calm-water RPM of the mean speed that meets the RTA), and with
     `coastal_passage` on through the straits and past the capes next to each port until the
@@ -294,12 +297,13 @@ def plan_voyage(
         # the search keeps at least half its share even when a cold process spent the
         # budget on loading (sea-lane graph, coastline polygons, compiled kernels)
         leg_budget = max((budget_s - used) * share, 0.5 * budget_s * share, 0.0)
+        leg_evals = max(round((max_evaluations - evals) * share), 1) if max_evaluations else 0
         need = with_baseline or (method == "seed_ga" and not seeds)
         base = compute_baseline(problem, env, land) if need else None
         ctx = MethodContext(problem, env, land, rng, leg_budget, seeds, progress, is_cancelled,
                             k, time.perf_counter(), ga_config, stall_generations=stall_generations,
                             baseline=base, max_generations=max_generations,
-                            gene_seeds=gene_seeds)
+                            gene_seeds=gene_seeds, max_evaluations=leg_evals)
         res = fn(ctx)
         if res.evaluation is None:
             raise PlanCancelledError("planning was cancelled before a route was found")

@@ -5,27 +5,20 @@ from __future__ import annotations
 import argparse
 import re
 import sys
-from datetime import timedelta
 from pathlib import Path
 
 from ..errors import InvalidVoyageError, PlannerError
 from ..methods import Progress, method_names
-from ..planning import load_forecast, plan_voyage, to_posix_s
-
-_DUR = re.compile(r"^\s*(\d+(?:\.\d*)?)\s*([smhd])\s*$")
-_UNIT_S = {"s": 1.0, "m": 60.0, "h": 3600.0, "d": 86400.0}
+from ..plan_request import build_request, duration_s, run_request
+from ..planning import load_forecast
 
 
 def parse_duration_s(text: str) -> float:
     """'13d', '36h', '90m', '3s' or plain seconds -> seconds."""
-    m = _DUR.match(text)
-    if m:
-        return float(m.group(1)) * _UNIT_S[m.group(2)]
     try:
-        return float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(
-            f"duration {text!r}: use a number with s, m, h or d (e.g. 13d, 3s)") from None
+        return duration_s(text)
+    except PlannerError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -40,8 +33,9 @@ def build_parser() -> argparse.ArgumentParser:
                     help="required time of arrival: ISO time or duration after departure (13d)")
     ap.add_argument("--ship", default="container_4600teu", help="bundled ship or YAML path")
     ap.add_argument("--model", default="",
-                    help="ship model: physics, kwon, profile:FILE.nc or learned:FILE.nc "
-                         "(default: the ship file's performance_model entry, else physics)")
+                    help="ship model: physics (tabulated, the fast path), physics-direct, kwon, "
+                         "profile:FILE.nc or learned:FILE.nc (default: the ship file's "
+                         "performance_model entry, else physics)")
     ap.add_argument("--forecast", action="append", default=[],
                     help="forecast file (GRIB1/2, NetCDF) or bundled scenario; repeat to make "
                          "one cycle of several files (e.g. wind, waves, currents); omit for "
@@ -57,7 +51,8 @@ def build_parser() -> argparse.ArgumentParser:
                          "time, then assume calm water (default 24)")
     ap.add_argument("--objective", choices=("fuel", "distance", "eta"), default="fuel")
     ap.add_argument("--method", default="seed_ga", help="planning method (see --list-methods)")
-    ap.add_argument("--budget", type=parse_duration_s, default=3.0, help="wall time, e.g. 3s")
+    ap.add_argument("--budget", default="3s",
+                    help="wall time (3s) or route evaluations (4000ev: reproducible)")
     ap.add_argument("--seed", type=int, default=0, help="random seed")
     ap.add_argument("--stage-hours", type=float, default=12.0)
     ap.add_argument("--seed-pool", default=None, help="seed pool directory")
@@ -98,12 +93,6 @@ def _climatology(path: str | None):
         raise InvalidVoyageError(f"climatology refused: {exc}") from exc
 
 
-def _rta(text: str, depart_s: float):
-    if re.match(r"^\s*\d+(\.\d*)?\s*[smhd]?\s*$", text):
-        return timedelta(seconds=parse_duration_s(text))
-    return to_posix_s(text)
-
-
 def _progress(p: Progress) -> None:
     best = f"{p.best_objective:.1f}" if p.best_objective == p.best_objective else "none feasible"
     print(f"\rleg {p.leg} gen {p.generation:4d} evals {p.evaluations:7d} best {best} "
@@ -120,12 +109,10 @@ def main(argv: list[str]) -> int:
     from ..io.summary import write_geojson, write_json
 
     try:
-        depart_s = to_posix_s(args.depart)
-        via, via_rta = [], []
-        for v in args.via:
-            name, _, when = v.partition("@")
-            via.append(name)
-            via_rta.append(to_posix_s(when) if when else None)
+        req = build_request(
+            origin=args.origin, destination=args.destination, depart=args.depart, rta=args.rta,
+            via=args.via, ship=args.ship, objective=args.objective, method=args.method,
+            model=args.model, budget=args.budget, seed=args.seed, stage_hours=args.stage_hours)
         if args.persistence_hours < 0:
             raise InvalidVoyageError("--persistence-hours must be >= 0")
         forecast = (load_forecast(args.forecast, waves_from_wind=not args.no_wave_estimate)
@@ -136,17 +123,12 @@ def main(argv: list[str]) -> int:
             from shiproute_weather.sampling import ForecastSampler
 
             env_forecast = ForecastSampler(forecast)
-        plan = plan_voyage(
-            args.origin, args.destination, depart_s, _rta(args.rta, depart_s), args.ship,
-            env_forecast, via=via, via_rta=via_rta, objective=args.objective, method=args.method,
+        plan = run_request(
+            req, env_forecast, seed_pool_dir=args.seed_pool, progress=_progress,
             cycle_id=str(forecast.attrs.get("cycle_id", "")) if forecast is not None else "",
-            budget_s=args.budget, seed=args.seed, stage_hours=args.stage_hours,
-            seed_pool_dir=args.seed_pool, progress=_progress,
-            persistence_h=args.persistence_hours,
-            climatology=_climatology(args.climatology), ship_model=args.model,
-            bathymetry=args.bathymetry,
-            default_bathymetry=not args.no_default_bathymetry, ukc_margin_m=args.ukc_margin,
-            zones=args.zones, clearance_nm=args.clearance_nm,
+            persistence_h=args.persistence_hours, climatology=_climatology(args.climatology),
+            bathymetry=args.bathymetry, default_bathymetry=not args.no_default_bathymetry,
+            ukc_margin_m=args.ukc_margin, zones=args.zones, clearance_nm=args.clearance_nm,
             approaches_given=args.approach)
         print(file=sys.stderr)
         out = Path(args.out)

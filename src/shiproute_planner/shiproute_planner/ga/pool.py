@@ -3,14 +3,21 @@
 A seed is stored as its track (node positions) and per-leg RPMs, not as genes, so it can seed
 a problem with a different number of stages or a departure shifted along the route. The
 better of the planner's result and the stored seed is kept (thesis sec. 5.2, fig. 23); the
-file is replaced atomically so a crash never leaves a half-written pool.
+file is replaced atomically so a crash never leaves a half-written pool, and every offer merges
+under an exclusive lock on `seed_pool.json.lock` (read, compare, write, rename), so processes
+sharing one pool (fleet workers, several nodes) never lose each other's seeds.
 """
 
 from __future__ import annotations
 
+import contextlib
+import fcntl
 import json
 import os
+import threading
 import time
+import uuid
+from collections.abc import Iterator
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
@@ -75,20 +82,40 @@ class SeedPool:
         except (TypeError, KeyError) as exc:
             raise SeedPoolError(f"seed {key!r} in {self.path} is malformed: {exc}") from exc
 
+    @contextlib.contextmanager
+    def _locked(self) -> Iterator[None]:
+        """Exclusive lock of the pool across processes (flock) and threads of one process."""
+        self.path.parent.mkdir(parents=True, exist_ok=True)
+        lock_path = self.path.with_name(self.path.name + ".lock")
+        with _THREAD_LOCK:
+            try:
+                fd = os.open(lock_path, os.O_RDWR | os.O_CREAT, 0o644)
+            except OSError as exc:
+                raise SeedPoolError(f"cannot lock seed pool {self.path}: {exc}") from exc
+            try:
+                fcntl.flock(fd, fcntl.LOCK_EX)
+                yield
+            finally:
+                os.close(fd)  # releases the flock
+
     def offer(self, seed: Seed) -> bool:
         """Store `seed` if the pool has none for its key or it beats the stored one."""
-        seeds = self._read()
-        old = seeds.get(seed.key)
-        if old is not None and old.get("objective") == seed.objective and not is_better(
-            seed.violation, seed.objective_value, old["violation"], old["objective_value"]
-        ):
-            return False
-        seeds[seed.key] = {**asdict(seed), "stored_at": time.time()}
-        self.path.parent.mkdir(parents=True, exist_ok=True)
-        tmp = self.path.with_suffix(f".{os.getpid()}.tmp")
-        try:
-            tmp.write_text(json.dumps({"version": 1, "seeds": seeds}, indent=1))
-            os.replace(tmp, self.path)
-        except OSError as exc:
-            raise SeedPoolError(f"cannot write seed pool {self.path}: {exc}") from exc
-        return True
+        with self._locked():
+            seeds = self._read()
+            old = seeds.get(seed.key)
+            if old is not None and old.get("objective") == seed.objective and not is_better(
+                seed.violation, seed.objective_value, old["violation"], old["objective_value"]
+            ):
+                return False
+            seeds[seed.key] = {**asdict(seed), "stored_at": time.time()}
+            tmp = self.path.with_suffix(f".{os.getpid()}.{uuid.uuid4().hex[:8]}.tmp")
+            try:
+                tmp.write_text(json.dumps({"version": 1, "seeds": seeds}, indent=1))
+                os.replace(tmp, self.path)
+            except OSError as exc:
+                tmp.unlink(missing_ok=True)
+                raise SeedPoolError(f"cannot write seed pool {self.path}: {exc}") from exc
+            return True
+
+
+_THREAD_LOCK = threading.Lock()  # flock is per open file: threads of one process queue here

@@ -180,8 +180,8 @@ def polyline_eta(track_lon, track_lat, rpm, depart_s, has_wx, data, times_s, lat
 @njit(cache=True, nogil=True)
 def ga_land_hits(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, raster, sea_dist,
                  cell_deg, spacing_deg, fine_keys, fine, missing, out):
-    """Land samples per segment for the GA loop. A segment found clear so far that met a
-    coastal cell not yet resolved gets -1, to be scanned again once
+    """Land samples per segment for the GA loop. A segment that met a coastal cell not yet
+    resolved before its first land sample gets -1, to be scanned again once
     `geo.fine_coast.FineCoast.add` has resolved the cells written to `missing` (returns how
     many; when `missing` is full, later cells are left for the next scan).
 
@@ -241,5 +241,8 @@ def ga_land_hits(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, raster, 
                 k += 1 + int(d * cell_deg * cos_lat / per_step)
                 continue
             k += 1
-        out[s] = -1 if count == 0 and unresolved else count
+        # an unresolved cell met before the first hit may be land: the count (a graded
+        # violation) would then start later than once the cell is known, so the segment is
+        # scanned again in either case and a plan never depends on what was resolved before
+        out[s] = -1 if unresolved else count
     return n_miss

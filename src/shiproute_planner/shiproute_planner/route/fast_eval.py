@@ -20,6 +20,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 from ..geo.landmask import LandMask
+from ..threads import planner_threads
 from . import _fast_kernels as fk
 from . import _route_kernel as rk
 from .encoding import split_genes
@@ -43,7 +44,7 @@ _POOL = ThreadPoolExecutor(max_workers=N_THREADS, thread_name_prefix="shiproute-
 
 def in_chunks(n: int, work: Callable[[int, int], None]) -> None:
     """Run work(a, b) over 0..n in one chunk per core (the kernels release the GIL)."""
-    k = max(1, min(N_THREADS, n // MIN_CHUNK))
+    k = max(1, min(planner_threads(), N_THREADS, n // MIN_CHUNK))
     if k == 1:
         work(0, n)
         return

@@ -17,6 +17,7 @@ from itertools import pairwise
 
 import numpy as np
 
+from ..threads import planner_threads
 from . import fast_kernel as fk
 from .errors import InputRangeError, ShipModelError
 from .fast_inverse import rpm_kernel
@@ -138,8 +139,9 @@ class FastModel:
         out_f = np.empty((11, n))
         out_b = np.empty((5, n), dtype=np.bool_)
         chunks = [(0, n)]
-        if n >= _THREAD_MIN_LEGS and _N_THREADS >= 2:
-            bounds = np.linspace(0, n, _N_THREADS + 1).astype(int)
+        n_threads = min(planner_threads(), _N_THREADS)
+        if n >= _THREAD_MIN_LEGS and n_threads >= 2:
+            bounds = np.linspace(0, n, n_threads + 1).astype(int)
             chunks = [(int(a), int(b)) for a, b in pairwise(bounds)]
         self._check(flat, chunks)
         args = (*flat, self._par, *self._tables, out_f, out_b)

@@ -1,0 +1,165 @@
+"""One voyage to plan as a typed request, built from the text a user gives (CLI arguments, a
+fleet CSV/YAML row) and run through `planning.plan_voyage`: `shiproute plan` and `shiproute
+fleet` build and run their plans here, so the same words mean the same plan in both."""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from .errors import InvalidVoyageError
+from .plan_types import RoutePlan
+from .planning import plan_voyage, to_posix_s
+
+OBJECTIVES = ("fuel", "distance", "eta")
+# "" = the ship file's performance_model entry, else physics; "physics" (alias "fast") is the
+# ship file's physics tabulated for the hot path, "physics-direct" solves it on every leg
+SHIP_MODELS = ("", "physics", "fast", "physics-direct", "kwon")
+FILE_MODELS = ("profile", "learned")  # "profile:FILE.nc", "learned:FILE.nc"
+_DUR = re.compile(r"^\s*(\d+(?:\.\d*)?)\s*([smhd])\s*$")
+_EVALS = re.compile(r"^\s*(\d+)\s*(?:ev|evals?|evaluations?)\s*$", re.IGNORECASE)
+_UNIT_S = {"s": 1.0, "m": 60.0, "h": 3600.0, "d": 86400.0}
+
+
+def duration_s(text: str) -> float:
+    """'13d', '36h', '90m', '3s' or plain seconds -> seconds."""
+    m = _DUR.match(str(text))
+    if m:
+        return float(m.group(1)) * _UNIT_S[m.group(2)]
+    try:
+        value = float(text)
+    except ValueError:
+        raise InvalidVoyageError(
+            f"duration {text!r}: use a number with s, m, h or d (e.g. 13d, 3s)") from None
+    if not math.isfinite(value):
+        raise InvalidVoyageError(f"duration {text!r} is not a finite number")
+    return value
+
+
+@dataclass(frozen=True)
+class Budget:
+    """Search budget: wall time of the whole plan, or a fixed number of route evaluations
+    (equal work whatever the machine: reproducible with a fixed seed)."""
+
+    wall_s: float = 3.0
+    evaluations: int = 0  # 0 = stop on wall time
+
+    @staticmethod
+    def parse(text: str) -> Budget:
+        """'3s' / '90' (seconds of wall time) or '4000ev' / '4000 evals' (route evaluations)."""
+        m = _EVALS.match(str(text))
+        if m:
+            n = int(m.group(1))
+            if n < 1:
+                raise InvalidVoyageError(f"budget {text!r}: at least 1 evaluation")
+            return Budget(math.inf, n)
+        wall = duration_s(text)
+        if wall <= 0:
+            raise InvalidVoyageError(f"budget {text!r} must be positive")
+        return Budget(wall, 0)
+
+    def label(self) -> str:
+        """The budget as the user writes it."""
+        return f"{self.evaluations}ev" if self.evaluations else f"{self.wall_s:g}s"
+
+
+def parse_rta_s(text: str, depart_s: float) -> float:
+    """RTA as an ISO 8601 UTC time or a duration after departure ('13d') -> POSIX s."""
+    if re.match(r"^\s*\d+(\.\d*)?\s*[smhd]?\s*$", str(text)):
+        return depart_s + duration_s(text)
+    return parse_time_s(text, "RTA")
+
+
+def parse_time_s(text: str, what: str) -> float:
+    """ISO 8601 UTC time ('Z' or an offset; naive = UTC) -> POSIX s, naming `what` on error."""
+    try:
+        return to_posix_s(str(text))
+    except ValueError:
+        raise InvalidVoyageError(
+            f"{what} {text!r} is not an ISO 8601 time such as 2026-03-03T18:00Z") from None
+
+
+def parse_vias(items: Sequence[str]) -> tuple[tuple[str, ...], tuple[float | None, ...]]:
+    """'PORT' or 'PORT@TIME' items -> (port names, RTA per via or None)."""
+    names, rtas = [], []
+    for item in items:
+        name, _, when = str(item).partition("@")
+        if not name.strip():
+            raise InvalidVoyageError(f"via {item!r} names no port")
+        names.append(name.strip())
+        rtas.append(parse_time_s(when.strip(), f"via {name.strip()} RTA") if when.strip()
+                    else None)
+    return tuple(names), tuple(rtas)
+
+
+@dataclass(frozen=True)
+class PlanRequest:
+    """Everything that decides a plan except the forecast (times POSIX s UTC)."""
+
+    origin: str
+    destination: str
+    depart_s: float
+    rta_s: float
+    ship: str = "container_4600teu"  # bundled ship name or ship YAML path
+    via: tuple[str, ...] = ()
+    via_rta_s: tuple[float | None, ...] = ()
+    objective: str = "fuel"
+    method: str = "seed_ga"
+    model: str = ""
+    budget: Budget = field(default_factory=Budget)
+    seed: int = 0
+    stage_hours: float = 12.0
+
+    def __post_init__(self) -> None:
+        if self.objective not in OBJECTIVES:
+            raise InvalidVoyageError(
+                f"objective {self.objective!r}: use one of {', '.join(OBJECTIVES)}")
+        kind, sep, path = self.model.partition(":")
+        if not (self.model in SHIP_MODELS or (kind in FILE_MODELS and sep and path.strip())):
+            raise InvalidVoyageError(
+                f"ship model {self.model!r}: use physics, physics-direct, kwon, "
+                "profile:FILE.nc or learned:FILE.nc")
+        if not self.rta_s > self.depart_s:
+            raise InvalidVoyageError("the RTA must be after the departure time")
+        if not 0 < self.stage_hours <= 48:
+            raise InvalidVoyageError(f"stage hours must be in (0, 48], got {self.stage_hours}")
+
+
+def build_request(*, origin: str, destination: str, depart: str, rta: str,
+                  via: Sequence[str] = (), ship: str = "container_4600teu",
+                  objective: str = "fuel", method: str = "seed_ga", model: str = "",
+                  budget: str = "3s", seed: int = 0, stage_hours: float = 12.0) -> PlanRequest:
+    """A request from user text (raises InvalidVoyageError naming the bad input)."""
+    depart_s = parse_time_s(depart, "departure")
+    names, rtas = parse_vias(via)
+    return PlanRequest(origin.strip(), destination.strip(), depart_s, parse_rta_s(rta, depart_s),
+                       ship.strip(), names, rtas, objective, method, model, Budget.parse(budget),
+                       int(seed), float(stage_hours))
+
+
+def ship_and_model(ship: str, model: str) -> tuple[Any, str]:
+    """The (ship, ship_model) arguments of `plan_voyage`: the ship with the model choice that
+    the planner resolves and states (`learned.select.resolve_model`), or the direct physics
+    model of that ship for "physics-direct"."""
+    if model == "physics-direct":
+        from .ship import PhysicsModel, load_ship
+
+        return PhysicsModel(load_ship(ship)), ""
+    return ship, "physics" if model == "fast" else model
+
+
+def run_request(req: PlanRequest, forecast: Any = None, *, cycle_id: str = "",
+                seed_pool_dir: Any = None, progress: Callable[[Any], None] | None = None,
+                **extra: Any) -> RoutePlan:
+    """Plan `req` on `forecast` (a ForecastSampler, a canonical Dataset or None for calm
+    water); `extra` passes further `plan_voyage` keywords (land mask, cancel, ...)."""
+    ship, model = ship_and_model(req.ship, req.model)
+    return plan_voyage(
+        req.origin, req.destination, req.depart_s, req.rta_s, ship, forecast,
+        ship_model=model, via=req.via, via_rta=req.via_rta_s, objective=req.objective, method=req.method,
+        cycle_id=cycle_id, budget_s=req.budget.wall_s, max_evaluations=req.budget.evaluations,
+        seed=req.seed, stage_hours=req.stage_hours, seed_pool_dir=seed_pool_dir,
+        progress=progress, **extra)
