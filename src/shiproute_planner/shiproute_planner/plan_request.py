@@ -159,7 +159,8 @@ def run_request(req: PlanRequest, forecast: Any = None, *, cycle_id: str = "",
     ship, model = ship_and_model(req.ship, req.model)
     return plan_voyage(
         req.origin, req.destination, req.depart_s, req.rta_s, ship, forecast,
-        ship_model=model, via=req.via, via_rta=req.via_rta_s, objective=req.objective, method=req.method,
+        ship_model=model, via=req.via, via_rta=req.via_rta_s, objective=req.objective,
+        method=req.method,
         cycle_id=cycle_id, budget_s=req.budget.wall_s, max_evaluations=req.budget.evaluations,
         seed=req.seed, stage_hours=req.stage_hours, seed_pool_dir=seed_pool_dir,
         progress=progress, **extra)
