@@ -25,6 +25,7 @@ from rosproc import RosProcess, random_domain_id, ros_context, spin_until  # noq
 from shiproute_weather.convert import msgs_to_dataset  # noqa: E402
 from shiproute_weather.loaders import open_forecast  # noqa: E402
 from shiproute_weather.node import CYCLE_TOPIC, LOAD_SERVICE, SLICES_TOPIC, latched  # noqa: E402
+from shiproute_weather.record import without_record  # noqa: E402
 from weather_fixtures import small_canonical, write_nc  # noqa: E402
 
 from shiproute_msgs.msg import ForecastCycle, ForecastSlice  # noqa: E402
@@ -76,7 +77,7 @@ def _node(tmp: Path, dom: int, *params: str) -> RosProcess:
 def test_late_joiner_gets_whole_cycle(tmp_path: Path) -> None:
     (tmp_path / "watch").mkdir()
     src = write_nc(small_canonical(n_time=7), tmp_path / "first.nc")
-    expected = open_forecast([src])
+    expected = without_record(open_forecast([src]))  # provenance travels on the announcement
     dom = random_domain_id()
     with _node(tmp_path, dom, f"forecast_files:=['{src}']") as proc:
         proc.wait_for_line(r"published cycle test-2026030312", timeout_s=60)
@@ -127,7 +128,7 @@ def test_slice_encoding_parameter(tmp_path: Path) -> None:
     next cycle is exact, a bad value is refused with the reason and the node keeps going."""
     (tmp_path / "watch").mkdir()
     src = write_nc(small_canonical(n_time=3), tmp_path / "first.nc")
-    expected = open_forecast([src])
+    expected = without_record(open_forecast([src]))  # provenance travels on the announcement
     dom = random_domain_id()
     with _node(tmp_path, dom, f"forecast_files:=['{src}']", "slice_encoding:=float16") as proc, \
             ros_context(dom) as ctx:
@@ -152,7 +153,8 @@ def test_slice_encoding_parameter(tmp_path: Path) -> None:
             assert fut.result().accepted, fut.result().message
             msgs = lis.wait_cycle("exact-2026030318", 2)
             assert all(len(f.packed) == 0 for m in msgs for f in m.fields)
-            xr.testing.assert_identical(msgs_to_dataset(msgs), open_forecast([path]))
+            exact = without_record(open_forecast([path]))
+            xr.testing.assert_identical(msgs_to_dataset(msgs), exact)
             spin_until(lis.executor, lambda: any(
                 {kv.key: kv.value for kv in d.values}.get("bytes_per_slice")
                 == str(13 * 21 * 51 * 4) for d in lis.diags), 15, "float32 bytes in diagnostics")
