@@ -26,6 +26,8 @@ from .route.under_keel import UnderKeel, under_keel_for_ship
 PORT_CLEARANCE_M = 3000.0  # depth next to a berth is the harbour's business, not the grid's
 NO_DEPTH = ("depth not checked: no bathymetry grid (give --bathymetry FILE, or install the "
             "Debian package ferret-datasets for the global ETOPO5 grid)")
+NO_DEPTH_GIVEN = ("depth not checked: no bathymetry grid given and the global ETOPO5 default "
+                  "not asked for (bathymetry files, or default_bathymetry)")
 
 
 def depth_limits(limits: RouteLimits, spec: Any, bathymetry: Sequence[str | Path] | Bathymetry
@@ -37,7 +39,7 @@ def depth_limits(limits: RouteLimits, spec: Any, bathymetry: Sequence[str | Path
     bathy = bathymetry if isinstance(bathymetry, Bathymetry) else load_bathymetry(
         bathymetry or (), with_default=with_default)
     if bathy is None:
-        return limits, [NO_DEPTH]
+        return limits, [NO_DEPTH if with_default else NO_DEPTH_GIVEN]
     if spec is None:
         return limits, ["depth not checked: the ship model has no draft (give a ship file)"]
     uk = under_keel_for_ship(spec, bathy, margin_m)

@@ -58,34 +58,10 @@ def base_record(task: VoyageTask) -> dict[str, Any]:
     }
 
 
-def coverage_warnings(plan: Any, dataset: Any) -> list[str]:
-    """What of the voyage the forecast does not cover (calm water or the last valid time is
-    used there), so a fleet summary never hides it."""
-    import numpy as np
-
-    if dataset is None:
-        return ["planned in calm water (no forecast)"]
-    lon, lat, t = plan.track()
-    la, lo = dataset["latitude"].values, dataset["longitude"].values
-    tt = dataset["time"].values.astype("datetime64[ns]").astype(np.int64) / 1e9
-    lon_in = (lo[0] + (lon - lo[0]) % 360.0) <= lo[-1] + 1e-9
-    inside = (lat >= la.min()) & (lat <= la.max()) & lon_in
-    out = []
-    if not inside.all():
-        out.append(f"{100 * (1 - inside.mean()):.0f} % of the track outside the forecast grid "
-                   f"({la.min():g}..{la.max():g} N, {lo[0]:g}..{lo[-1]:g} E): calm water there")
-    if t[-1] > tt.max() + 1.0:
-        out.append(f"the voyage ends {(t[-1] - tt.max()) / 3600:.0f} h after the forecast's "
-                   "last valid time (held constant beyond it)")
-    if t[0] < tt.min() - 1.0:
-        out.append(f"the voyage starts {(tt.min() - t[0]) / 3600:.0f} h before the forecast's "
-                   "first valid time")
-    return out
-
-
-def plan_record(task: VoyageTask, plan: Any, dataset: Any = None) -> dict[str, Any]:
-    """A planned voyage's record: fuel against the constant-RPM baseline, ETA margin, flags."""
-    warnings = list(plan.warnings) + coverage_warnings(plan, dataset)
+def plan_record(task: VoyageTask, plan: Any) -> dict[str, Any]:
+    """A planned voyage's record: fuel against the constant-RPM baseline, ETA margin, flags and
+    the plan's own warnings (forecast coverage, depth, route check: the planner states them)."""
+    warnings = list(plan.warnings)
     if task.window_start_s is not None and plan.eta_s < task.window_start_s:
         warnings.append(f"arrives {(task.window_start_s - plan.eta_s) / 3600:.1f} h before "
                         "the arrival window opens")
@@ -121,7 +97,7 @@ def plan_task(task: VoyageTask) -> dict[str, Any]:
 
             write_plan_files(plan, tmp, stem="plan", forecast=fc.dataset if fc else None,
                              png=task.png)
-            return plan_record(task, plan, fc.dataset if fc else None)
+            return plan_record(task, plan)
 
         record, _ = publish(task.out_dir, task.voyage_id, task.key, write)
     except PlannerError as exc:
