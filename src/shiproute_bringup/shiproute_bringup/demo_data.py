@@ -77,7 +77,8 @@ def _warm_up(log) -> None:
     land.fine_coast.resolve_voyage((a.lon_deg, a.lat_deg), (b.lon_deg, b.lat_deg),
                                    (10.0, 10.0, 10.0, 25.0))
     forecast = ForecastSampler(scenario_dataset(FIRST_CYCLE), dtype=np.float16)
-    plan_voyage(ORIGIN, DESTINATION, DEPARTURE, RTA, SHIP, forecast, budget_s=1.0, land=land)
+    plan_voyage(ORIGIN, DESTINATION, DEPARTURE, RTA, SHIP, forecast, budget_s=1.0, land=land,
+                default_bathymetry=True)  # the global depth grid's cache, as the node uses it
 
 
 def prepare(log=print) -> DemoData:

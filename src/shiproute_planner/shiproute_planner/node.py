@@ -263,7 +263,23 @@ class PlannerNode(Node):
         self._worker = threading.Thread(target=self._work, name="planner", daemon=True)
         self._worker.start()
         self._log_seed_pool()
+        self._load_bathymetry()
         self.get_logger().info("planner ready; waiting for a complete forecast cycle")
+
+    def _load_bathymetry(self) -> None:
+        """Read the depth grids now (they are cached per process), so the first plan's budget
+        is spent planning; a bad grid is reported here and again by the plan that meets it."""
+        from .geo.depth import load_bathymetry
+
+        try:
+            bathy = load_bathymetry(_paths(str(self._p("bathymetry_files"))),
+                                    with_default=bool(self._p("default_bathymetry")))
+        except PlannerError as err:
+            self._last_error = f"bathymetry: {err}"
+            self.get_logger().error(self._last_error)
+            return
+        self.get_logger().info("depth: " + ("no bathymetry grid (depth not checked)"
+                                            if bathy is None else "bathymetry grids loaded"))
 
     def _log_seed_pool(self) -> None:
         """Say what the persisted seed pool holds, so a restart visibly continues from it."""
