@@ -103,7 +103,7 @@ def _run(path: str, topic: str, sub: subprocess.Popen[str], timeout_s: float,
     from .convert import DEFAULT_SLICE_ENCODING, cycle_to_msg, slice_to_msg, wire_bytes
     from .cycle_builder import CycleConfig, build_cycle
     from .node import latched
-    from .stream import load_slices, streamable
+    from .stream import load_slices, streamable, warm_array_backends
 
     rclpy.init()
     node = rclpy.create_node("bench_weather_publisher")
@@ -114,6 +114,7 @@ def _run(path: str, topic: str, sub: subprocess.Popen[str], timeout_s: float,
         time.sleep(0.05)
     cfg = CycleConfig()
     encoding = encoding or DEFAULT_SLICE_ENCODING
+    warm_array_backends()  # as the node does at start
     c0 = _cpu_s()
     t0 = time.perf_counter()
     if streamable([path], cfg):  # what the node does for one NetCDF file

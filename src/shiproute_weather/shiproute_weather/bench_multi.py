@@ -40,8 +40,10 @@ def make_sources(scenario: str = "storm_march") -> tuple[Path, Path]:
 def main() -> None:
     from .convert import DEFAULT_SLICE_ENCODING, slice_to_msg
     from .cycle_builder import CycleConfig, build_cycle
+    from .stream import warm_array_backends
 
     a, b = make_sources()
+    warm_array_backends()  # as the weather node does at start
     t0 = time.perf_counter()
     c0 = time.process_time()
     info, slices, _ = build_cycle([str(a), str(b)], CycleConfig())

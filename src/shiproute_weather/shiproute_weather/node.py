@@ -40,7 +40,7 @@ from .cycle_builder import MAX_SLICE_BYTES, MAX_SLICES, CycleConfig, build_cycle
 from .errors import WeatherError
 from .heap import return_freed_memory, return_large_blocks_at_once
 from .scenarios import scenario_path
-from .stream import load_slices, streamable
+from .stream import load_slices, streamable, warm_array_backends
 from .watch import DirectoryWatcher
 
 CYCLE_TOPIC = "/shiproute/forecast/cycle"
@@ -297,6 +297,7 @@ class WeatherNode(Node):
 def main(argv: list[str] | None = None) -> int:
     """Console script `shiproute_weather_node`; runs until SIGINT/SIGTERM."""
     return_large_blocks_at_once(1 << 15)  # a packed field of a slice is ~55 kB
+    warm_array_backends()
     rclpy.init(args=argv if argv is not None else sys.argv)
     node = WeatherNode()
     executor = MultiThreadedExecutor(num_threads=3)

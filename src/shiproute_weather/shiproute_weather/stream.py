@@ -139,3 +139,12 @@ def load_slices(path: str, cfg: CycleConfig
                    last_valid_time_ns=int(t[-1]), step_s=step, slice_count=n,
                    notes=tuple(report))
     return info, slices, report + notes
+
+
+def warm_array_backends() -> None:
+    """Let xarray import the array libraries it looks up on its first copy (dask's array module
+    when dask is installed, about 1 s), so a process's first forecast load is timed as a load."""
+    import numpy as np
+    import xarray as xr
+
+    xr.Dataset({"x": ("t", np.zeros(1, np.float32))}).copy(deep=True)
