@@ -21,7 +21,7 @@ BUILD="$WS/.build"
 STAMPS="$VENV/.shiproute-stamps"
 LOG="$BUILD/bootstrap.log"
 PY_BASE="${SHIPROUTE_PYTHON:-python3}"
-PY_PACKAGES=(shiproute_weather shiproute_planner shiproute_ais_replay shiproute_bringup shiproute_display)
+PY_PACKAGES=(shiproute_core shiproute_weather shiproute_planner shiproute_ais_replay shiproute_bringup shiproute_display)
 # Interface packages built with rosidl into the venv (foxglove_msgs: the Foxglove GeoJSON schema,
 # which no PyPI wheel carries).
 MSG_PACKAGES=(shiproute_msgs foxglove_msgs)

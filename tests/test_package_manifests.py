@@ -11,8 +11,8 @@ import pytest
 catkin_pkg = pytest.importorskip("catkin_pkg.package")
 
 REPO = Path(__file__).resolve().parents[1]
-PYTHON_PACKAGES = ("shiproute_weather", "shiproute_planner", "shiproute_ais_replay",
-                   "shiproute_bringup", "shiproute_display")
+PYTHON_PACKAGES = ("shiproute_core", "shiproute_weather", "shiproute_planner",
+                   "shiproute_ais_replay", "shiproute_bringup", "shiproute_display")
 
 
 def _ros_packages_installed() -> set[str]:

@@ -15,9 +15,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from shiproute_core.geodesy import direct, inverse, unwrap_near, wrap_lon
 
 from .ga.seeds import _searoute_coords
-from .geo.geodesy import direct, inverse, unwrap_near, wrap_lon
 from .geo.landmask import LandMask
 from .geo.ports import Port
 from .geo.verify import densify_track

@@ -14,8 +14,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-
-from .geo.geodesy import inverse
+from shiproute_core.geodesy import inverse
 
 
 @dataclass(frozen=True)
@@ -67,7 +66,7 @@ NEAR_M = 15_000.0  # a lane "uses" a canal when it passes both its entrances thi
 def canals_on_lane(lon_deg: np.ndarray, lat_deg: np.ndarray) -> list[tuple[int, Canal, bool]]:
     """Canals a sea-lane polyline passes through: (index of the lane point nearest the first
     entrance met, canal, reversed) in lane order; `reversed` when sailed exit to entry."""
-    from .geo.geodesy import densify_track
+    from shiproute_core.geodesy import densify_track
 
     found = []
     lon, lat = densify_track(np.unwrap(np.asarray(lon_deg, dtype=float), period=360.0),
@@ -98,8 +97,9 @@ def route_canals(ports: list, spec, via_rta: list) -> tuple[list, dict[int, tupl
     """Ports with canal entrances/exits (or ways round) inserted where the sea lane between
     two ports runs through a canal; returns (ports, {leg index: (canal, reversed)}, via RTAs
     aligned to the new ports, notes for the plan)."""
+    from shiproute_core.geodesy import wrap_lon
+
     from .ga.seeds import _searoute_coords
-    from .geo.geodesy import wrap_lon
     from .geo.ports import Port
 
     draft = beam = length = 0.0

@@ -15,10 +15,10 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from shiproute_core.geodesy import direct, inverse
 
 from .errors import BathymetryError
 from .geo.depth import Bathymetry, load_bathymetry
-from .geo.geodesy import direct, inverse
 from .plan_types import KN_PER_M_S, RoutePlan
 from .route.problem import RouteLimits
 from .route.under_keel import UnderKeel, under_keel_for_ship

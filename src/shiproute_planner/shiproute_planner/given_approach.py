@@ -8,9 +8,9 @@ from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
+from shiproute_core.geodesy import inverse, unwrap_near
 
 from .approach import Approach
-from .geo.geodesy import inverse, unwrap_near
 from .geo.ports import Port
 from .io.route_read import read_route
 

@@ -14,6 +14,8 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
+from shiproute_core.flags import FLAG_LAND
+from shiproute_core.geodesy import inverse
 
 from .errors import UnknownMethodError
 from .ga.islands import IslandGA, cross_track_rad
@@ -26,10 +28,8 @@ from .ga.seeds import (
     track_to_genes,
     via_track,
 )
-from .geo.geodesy import inverse
 from .geo.landmask import LandMask
 from .geo.verify import land_crossings
-from .route.constraints import FLAG_LAND
 from .route.encoding import clip_genes, gene_bounds
 from .route.environment import Environment
 from .route.evaluation import RouteEvaluation, clear_ports

@@ -613,7 +613,8 @@ class PlannerNode(Node):
 
     def _near_origin(self, origin: str, pos: tuple[float, float, float]) -> bool:
         """Whether the ship is still at the departure port (within departure_radius_nm)."""
-        from .geo.geodesy import inverse
+        from shiproute_core.geodesy import inverse
+
         from .geo.landmask import default_land_mask
         from .geo.ports import resolve_port
 

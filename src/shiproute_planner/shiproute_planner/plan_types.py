@@ -9,9 +9,9 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+from shiproute_core.flags import describe_flags
+from shiproute_core.geodesy import wrap_lon
 
-from .geo.geodesy import wrap_lon
-from .route.constraints import describe_flags
 from .route.evaluation import RouteEvaluation
 
 KN_PER_M_S = 3600.0 / 1852.0

@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from shiproute_core.geodesy import inverse, unwrap_near
 
 from .approach import Approach, CoastalPassage, approach_length_m, lane_approaches, sail_approach
 from .canals import route_canals, sail_canal
@@ -29,7 +30,6 @@ from .ga.loop import GAConfig
 from .ga.pool import Seed, SeedPool, pool_key
 from .ga.seeds import TrackSeed, shift_track
 from .geo.depth import Bathymetry
-from .geo.geodesy import inverse, unwrap_near
 from .geo.landmask import LandMask, default_land_mask
 from .geo.ports import Port, resolve_port
 from .geo.zones import Zones

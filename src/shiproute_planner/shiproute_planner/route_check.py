@@ -14,8 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 import shapely
+from shiproute_core.geodesy import densify_track, inverse, wrap_lon
 
-from .geo.geodesy import densify_track, inverse, wrap_lon
 from .geo.zones import Zones
 from .route.under_keel import UnderKeel
 

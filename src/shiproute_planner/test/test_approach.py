@@ -5,8 +5,8 @@ from __future__ import annotations
 from datetime import timedelta
 
 import numpy as np
+from shiproute_core.geodesy import inverse
 from shiproute_planner.approach import CoastalPassage, approach_length_m, lane_approaches
-from shiproute_planner.geo.geodesy import inverse
 from shiproute_planner.geo.ports import resolve_port
 from shiproute_planner.geo.verify import land_crossings
 from shiproute_planner.planning import _previous_arrival, plan_voyage

@@ -7,8 +7,8 @@ import dataclasses
 
 import numpy as np
 import pytest
+from shiproute_core.geodesy import inverse
 from shiproute_planner.canals import CANALS, route_canals, sail_canal
-from shiproute_planner.geo.geodesy import inverse
 from shiproute_planner.geo.ports import lookup_port
 from shiproute_planner.planning import make_environment, route_limits
 from shiproute_planner.ship import load_ship

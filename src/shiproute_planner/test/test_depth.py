@@ -9,10 +9,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 import xarray as xr
+from shiproute_core.geodesy import densify_track
 from shiproute_planner.errors import BathymetryError
 from shiproute_planner.geo.bathymetry import load_depth_grid
 from shiproute_planner.geo.depth import Bathymetry, load_bathymetry
-from shiproute_planner.geo.geodesy import densify_track
 from shiproute_planner.planning import plan_voyage
 from shiproute_planner.route.under_keel import UnderKeel, barrass_squat_m
 from shiproute_planner.ship import load_ship

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from shiproute_core.geodesy import direct, inverse, unwrap_near, wrap_lon
 from shiproute_planner.errors import PortNotFoundError, PositionOnLandError
-from shiproute_planner.geo.geodesy import direct, inverse, unwrap_near, wrap_lon
 from shiproute_planner.geo.landmask import default_land_mask
 from shiproute_planner.geo.ports import lookup_port, resolve_port
 from shiproute_planner.geo.raster import COAST, LAND, SEA

@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 import pytest
+from shiproute_core.geodesy import inverse
 from shiproute_planner.errors import PortNotFoundError
-from shiproute_planner.geo.geodesy import inverse
 from shiproute_planner.geo.ports import lookup_port, resolve_port
 
 

@@ -8,7 +8,7 @@ from datetime import timedelta
 
 import numpy as np
 import shapely
-from shiproute_planner.geo.geodesy import densify_track
+from shiproute_core.geodesy import densify_track
 from shiproute_planner.planning import plan_voyage
 
 BOX = [[-8.0, 45.5], [-7.0, 45.5], [-7.0, 46.5], [-8.0, 46.5], [-8.0, 45.5]]  # Bay of Biscay

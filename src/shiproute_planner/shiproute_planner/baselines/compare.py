@@ -11,9 +11,9 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
+from shiproute_core.geodesy import M_PER_NM
 
 from ..ga.loop import GAConfig
-from ..geo.geodesy import M_PER_NM
 from . import runners
 from .great_circle import run_great_circle
 from .inputs import BaselineInputs
@@ -110,7 +110,7 @@ def outcome_of(r: BaselineResult, rta_s: float) -> MethodOutcome:
 
 
 def _reasons(flags: int) -> tuple[str, ...]:
-    from ..route.constraints import describe_flags
+    from shiproute_core.flags import describe_flags
 
     return tuple(describe_flags(flags))
 

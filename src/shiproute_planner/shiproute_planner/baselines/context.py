@@ -9,10 +9,11 @@ planner's `LandMask` with the problem's land sampling spacing. Nothing here mode
 from __future__ import annotations
 
 import numpy as np
+from shiproute_core.flags import FLAG_HEADING_CHANGE, FLAG_LAND
+from shiproute_core.geodesy import direct, inverse
 
-from ..geo.geodesy import direct, inverse
 from ..geo.landmask import LandMask
-from ..route.constraints import FLAG_HEADING_CHANGE, FLAG_LAND, leg_flags_and_violation
+from ..route.constraints import leg_flags_and_violation
 from ..route.environment import Environment
 from ..route.evaluation import clear_ports
 from ..route.legs import perf_arrays, sail_to

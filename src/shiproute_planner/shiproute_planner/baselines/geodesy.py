@@ -3,8 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
-
-from ..geo.geodesy import GEOD, M_PER_NM, densify_track, direct, inverse, unwrap_near
+from shiproute_core.geodesy import GEOD, M_PER_NM, densify_track, direct, inverse, unwrap_near
 
 __all__ = [
     "EARTH_RADIUS_M",

@@ -12,8 +12,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from shiproute_core.geodesy import great_circle_points
 
-from ..geo.geodesy import great_circle_points
 from .errors import BaselineGridError
 from .geodesy import continuous_lon, inverse
 from .legs import LegSailor

@@ -17,9 +17,9 @@ import time
 from datetime import timedelta
 
 import numpy as np
+from shiproute_core.geodesy import direct, inverse
 
 from ..ga.seeds import great_circle_track
-from ..geo.geodesy import direct, inverse
 from ..geo.landmask import default_land_mask
 from ..geo.verify import land_crossings
 from ..planning import make_environment, plan_voyage

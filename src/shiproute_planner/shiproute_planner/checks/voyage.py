@@ -78,7 +78,8 @@ def check_voyage(origin: str | Port, destination: str | Port, depart_s: float | 
                  ship: Any, *, land: Any = None, objective: str = "fuel",
                  method: str = "seed_ga") -> VoyageCheck:
     """Resolve and check a voyage (see the module docstring); raises on what is invalid."""
-    from ..geo.geodesy import inverse
+    from shiproute_core.geodesy import inverse
+
     from ..geo.landmask import default_land_mask
     from ..methods import get_method
     from ..ship import ShipSpec, load_ship

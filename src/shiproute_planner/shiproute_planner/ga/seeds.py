@@ -16,8 +16,8 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from shiproute_core.geodesy import direct, great_circle_points, inverse, unwrap_near
 
-from ..geo.geodesy import direct, great_circle_points, inverse, unwrap_near
 from ..geo.landmask import LandMask
 from ..route.encoding import clip_genes, join_genes
 from ..route.environment import Environment
@@ -192,7 +192,7 @@ def sea_lane_track(problem: RouteProblem, max_points: int = 0,
 
     Its end points are replaced by the problem's ports (searoute snaps to its network); long
     polylines are resampled to `max_points` (default two per stage)."""
-    from ..geo.geodesy import wrap_lon
+    from shiproute_core.geodesy import wrap_lon
 
     stops = [[float(wrap_lon(problem.dep_lon_deg)), problem.dep_lat_deg],
              [float(wrap_lon(problem.arr_lon_deg)), problem.arr_lat_deg]]

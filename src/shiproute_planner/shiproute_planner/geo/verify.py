@@ -12,8 +12,8 @@ from __future__ import annotations
 from collections.abc import Callable
 
 import numpy as np
+from shiproute_core.geodesy import densify_track, inverse
 
-from .geodesy import densify_track, inverse
 from .gshhg import load_land_polygons
 from .landexact import ExactLand
 

@@ -12,8 +12,8 @@ port. Headings are what the ship steers; with current the track follows COG/SOG.
 from __future__ import annotations
 
 import numpy as np
+from shiproute_core.geodesy import inverse
 
-from ..geo.geodesy import inverse
 from .problem import RouteProblem
 
 

@@ -7,8 +7,7 @@ from typing import Any
 
 import numba
 import numpy as np
-
-from ..geo.geodesy import wrap_lon
+from shiproute_core.geodesy import wrap_lon
 
 # LegPerformance fields the evaluator keeps per leg (ship-model contract in ARCHITECTURE.md).
 PERF_FIELDS = (

@@ -10,9 +10,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from shiproute_core.flags import FLAG_RTA
 
 from ..geo.landmask import LandMask
-from .constraints import FLAG_RTA, leg_flags_and_violation
+from .constraints import leg_flags_and_violation
 from .environment import PERF_FIELDS
 from .problem import RouteProblem
 

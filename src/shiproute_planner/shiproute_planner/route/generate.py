@@ -9,8 +9,8 @@ arrival port is sailed with `legs.sail_to` (duration from distance and speed).
 from __future__ import annotations
 
 import numpy as np
+from shiproute_core.geodesy import direct
 
-from ..geo.geodesy import direct
 from ..geo.landmask import LandMask
 from .encoding import split_genes
 from .environment import PERF_FIELDS, Environment

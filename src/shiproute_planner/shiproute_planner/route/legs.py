@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 import numpy as np
+from shiproute_core.geodesy import inverse
 
-from ..geo.geodesy import inverse
 from .environment import PERF_FIELDS, Environment
 
 MIN_SOG_M_S = 0.05

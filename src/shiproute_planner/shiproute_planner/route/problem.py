@@ -5,8 +5,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from shiproute_core.geodesy import unwrap_near
+
 from ..errors import InvalidVoyageError
-from ..geo.geodesy import unwrap_near
 
 OBJECTIVES = ("fuel", "distance", "eta")
 

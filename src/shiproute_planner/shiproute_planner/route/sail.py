@@ -8,8 +8,8 @@ in the weather met at the leg's start, and lasts distance / speed over ground.
 from __future__ import annotations
 
 import numpy as np
+from shiproute_core.geodesy import unwrap_near
 
-from ..geo.geodesy import unwrap_near
 from ..geo.landmask import LandMask
 from .environment import PERF_FIELDS, Environment
 from .evaluation import RouteEvaluation, finish

@@ -9,8 +9,11 @@ from __future__ import annotations
 import numpy as np
 from pyproj import Geod
 
+from .units import M_PER_NM
+
 GEOD = Geod(ellps="WGS84")
-M_PER_NM = 1852.0
+__all__ = ["GEOD", "M_PER_NM", "bearing_deg", "densify_track", "destination", "direct",
+           "distance_m", "great_circle_points", "inverse", "unwrap_near", "wrap_lon"]
 
 
 def wrap_lon(lon_deg: np.ndarray | float) -> np.ndarray:
@@ -64,3 +67,19 @@ def densify_track(lon_deg, lat_deg, step_m: float) -> tuple[np.ndarray, np.ndarr
     out_lon.append(plon)
     out_lat.append(plat)
     return np.concatenate(out_lon), np.concatenate(out_lat)
+
+
+def distance_m(lon0_deg, lat0_deg, lon1_deg, lat1_deg) -> np.ndarray:
+    """Geodesic distance [m] from point 0 to point 1 on WGS 84, broadcast over arrays."""
+    return inverse(lon0_deg, lat0_deg, lon1_deg, lat1_deg)[1]
+
+
+def bearing_deg(lon0_deg, lat0_deg, lon1_deg, lat1_deg) -> np.ndarray:
+    """Initial geodesic bearing [deg true, 0..360) from point 0 towards point 1."""
+    return inverse(lon0_deg, lat0_deg, lon1_deg, lat1_deg)[0]
+
+
+def destination(lon_deg, lat_deg, bearing, dist_m) -> tuple[np.ndarray, np.ndarray]:
+    """Point (lon in -180..180, lat) reached after `dist_m` along the geodesic of `bearing`."""
+    lon, lat = direct(lon_deg, lat_deg, bearing, dist_m)
+    return wrap_lon(lon), lat
