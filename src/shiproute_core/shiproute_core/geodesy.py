@@ -7,6 +7,7 @@ that crossing the antimeridian is not a discontinuity; `wrap_lon` maps back to -
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 from pyproj import Geod
 
 from .units import M_PER_NM
@@ -16,18 +17,20 @@ __all__ = ["GEOD", "M_PER_NM", "bearing_deg", "densify_track", "destination", "d
            "distance_m", "great_circle_points", "inverse", "unwrap_near", "wrap_lon"]
 
 
-def wrap_lon(lon_deg: np.ndarray | float) -> np.ndarray:
+def wrap_lon(lon_deg: ArrayLike) -> np.ndarray:
     """Longitudes in -180..180."""
     return (np.asarray(lon_deg, dtype=float) + 180.0) % 360.0 - 180.0
 
 
-def unwrap_near(lon_deg: np.ndarray | float, ref_deg: np.ndarray | float) -> np.ndarray:
+def unwrap_near(lon_deg: ArrayLike, ref_deg: ArrayLike) -> np.ndarray:
     """Longitudes shifted by multiples of 360 to lie within 180 degrees of `ref_deg`."""
     lon = np.asarray(lon_deg, dtype=float)
-    return ref_deg + (lon - ref_deg + 180.0) % 360.0 - 180.0
+    ref = np.asarray(ref_deg, dtype=float)
+    return ref + (lon - ref + 180.0) % 360.0 - 180.0
 
 
-def direct(lon_deg, lat_deg, azimuth_deg, distance_m) -> tuple[np.ndarray, np.ndarray]:
+def direct(lon_deg: ArrayLike, lat_deg: ArrayLike, azimuth_deg: ArrayLike,
+           distance_m: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """Geodesic direct problem; returned longitudes continue the input frame."""
     lon0 = np.asarray(lon_deg, dtype=float)
     lon, lat, _ = GEOD.fwd(
@@ -36,7 +39,8 @@ def direct(lon_deg, lat_deg, azimuth_deg, distance_m) -> tuple[np.ndarray, np.nd
     return unwrap_near(lon, lon0), np.asarray(lat)
 
 
-def inverse(lon0_deg, lat0_deg, lon1_deg, lat1_deg) -> tuple[np.ndarray, np.ndarray]:
+def inverse(lon0_deg: ArrayLike, lat0_deg: ArrayLike, lon1_deg: ArrayLike,
+            lat1_deg: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """Forward azimuth [deg] and distance [m] from point 0 to point 1."""
     az, _, dist = GEOD.inv(
         wrap_lon(lon0_deg), np.asarray(lat0_deg, dtype=float),
@@ -45,7 +49,8 @@ def inverse(lon0_deg, lat0_deg, lon1_deg, lat1_deg) -> tuple[np.ndarray, np.ndar
     return np.asarray(az) % 360.0, np.asarray(dist)
 
 
-def great_circle_points(lon0, lat0, lon1, lat1, n: int) -> tuple[np.ndarray, np.ndarray]:
+def great_circle_points(lon0: float, lat0: float, lon1: float, lat1: float,
+                        n: int) -> tuple[np.ndarray, np.ndarray]:
     """`n` >= 2 points from point 0 to point 1 along the geodesic, both ends included."""
     az, dist = inverse(lon0, lat0, lon1, lat1)
     frac = np.linspace(0.0, 1.0, n)
@@ -53,7 +58,8 @@ def great_circle_points(lon0, lat0, lon1, lat1, n: int) -> tuple[np.ndarray, np.
     return np.unwrap(lon, period=360.0), lat
 
 
-def densify_track(lon_deg, lat_deg, step_m: float) -> tuple[np.ndarray, np.ndarray]:
+def densify_track(lon_deg: ArrayLike, lat_deg: ArrayLike,
+                  step_m: float) -> tuple[np.ndarray, np.ndarray]:
     """Points along each geodesic leg of a track, at most `step_m` apart."""
     lon = np.asarray(lon_deg, dtype=float)
     lat = np.asarray(lat_deg, dtype=float)
@@ -69,17 +75,20 @@ def densify_track(lon_deg, lat_deg, step_m: float) -> tuple[np.ndarray, np.ndarr
     return np.concatenate(out_lon), np.concatenate(out_lat)
 
 
-def distance_m(lon0_deg, lat0_deg, lon1_deg, lat1_deg) -> np.ndarray:
+def distance_m(lon0_deg: ArrayLike, lat0_deg: ArrayLike, lon1_deg: ArrayLike,
+               lat1_deg: ArrayLike) -> np.ndarray:
     """Geodesic distance [m] from point 0 to point 1 on WGS 84, broadcast over arrays."""
     return inverse(lon0_deg, lat0_deg, lon1_deg, lat1_deg)[1]
 
 
-def bearing_deg(lon0_deg, lat0_deg, lon1_deg, lat1_deg) -> np.ndarray:
+def bearing_deg(lon0_deg: ArrayLike, lat0_deg: ArrayLike, lon1_deg: ArrayLike,
+                lat1_deg: ArrayLike) -> np.ndarray:
     """Initial geodesic bearing [deg true, 0..360) from point 0 towards point 1."""
     return inverse(lon0_deg, lat0_deg, lon1_deg, lat1_deg)[0]
 
 
-def destination(lon_deg, lat_deg, bearing, dist_m) -> tuple[np.ndarray, np.ndarray]:
+def destination(lon_deg: ArrayLike, lat_deg: ArrayLike, bearing: ArrayLike,
+                dist_m: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """Point (lon in -180..180, lat) reached after `dist_m` along the geodesic of `bearing`."""
     lon, lat = direct(lon_deg, lat_deg, bearing, dist_m)
     return wrap_lon(lon), lat
