@@ -59,17 +59,55 @@ def pareto(plans: list[RoutePlan]) -> tuple[list[RoutePlan], list[RoutePlan]]:
 PlanOne = Callable[[int, str, float, RoutePlan | None], RoutePlan]
 
 
-def build_front(plan_one: PlanOne, depart_s: float, rta_s: float,
-                n_points: int) -> TimeFuelFront:
+#: windows tried for the fastest plan, as multiples of the great circle at top calm speed
+FAST_WINDOWS = (1.15, 1.4)
+
+
+def top_speed_s(origin: str, destination: str, ship: Any, loading: str = "") -> float:
+    """Great-circle time between the ports at the ship's top calm-water speed [s]: a lower
+    bound of any arrival, and the scale of the window the fastest plan is searched in."""
+    from .checks.voyage import max_calm_speed_kn
+    from .geo.geodesy import inverse
+    from .geo.landmask import default_land_mask
+    from .geo.ports import resolve_port
+    from .ship import load_ship
+    from .voyage_ship import loaded_ship
+
+    land = default_land_mask()
+    a, b = resolve_port(origin, land), resolve_port(destination, land)
+    dist_m = float(inverse(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)[1])
+    spec = loaded_ship(ship, loading) if loading else load_ship(ship)
+    return dist_m / (max_calm_speed_kn(spec) * 1852.0 / 3600.0)
+
+
+def build_front(plan_one: PlanOne, depart_s: float, rta_s: float, n_points: int,
+                top_s: float | None = None) -> TimeFuelFront:
     """The front from `plan_one`: the ETA-objective plan (index 0) fixes the earliest safe
     arrival, then `n_points - 1` least-fuel plans with RTAs spread evenly from it to `rta_s`,
-    each seeded with its faster neighbour; dominated plans are left out and noted."""
+    each seeded with its faster neighbour; dominated plans are left out and noted.
+
+    The route encoding has as many stages as the RTA window holds, so the fastest plan is
+    searched in a window just above `top_s` (great circle at top calm speed; FAST_WINDOWS),
+    widening while the plan arrives late or breaks a constraint, and at last in the whole
+    window up to `rta_s`."""
     t0 = time.perf_counter()
     if not 2 <= n_points <= 25:
         raise InvalidVoyageError(f"front points must be 2..25, got {n_points}")
-    fastest = plan_one(0, "eta", rta_s, None)
-    earliest = min(fastest.eta_s, rta_s)
     notes: list[str] = []
+    fastest = None
+    for factor in FAST_WINDOWS if top_s else ():
+        window_end = depart_s + factor * float(top_s or 0.0)
+        if window_end >= rta_s:
+            break
+        trial = plan_one(0, "eta", window_end, None)
+        if trial.feasible:
+            fastest = trial
+            break
+        notes.append(f"fastest plan: no feasible arrival within {factor:g} x the great circle "
+                     f"at top speed ({'; '.join(trial.infeasible_reasons)}); window widened")
+    if fastest is None:
+        fastest = plan_one(0, "eta", rta_s, None)
+    earliest = min(fastest.eta_s, rta_s)
     plans = [fastest]
     if rta_s - earliest < MIN_SPREAD_S:
         notes.append(f"the RTA leaves {(rta_s - earliest) / 60:.0f} min above the earliest "
@@ -113,4 +151,5 @@ def plan_front(req: PlanRequest, forecast: Any = None, *,
             progress(k, plan)
         return plan
 
-    return build_front(one, req.depart_s, req.rta_s, n)
+    top = top_speed_s(req.origin, req.destination, req.ship, req.loading)
+    return build_front(one, req.depart_s, req.rta_s, n, top)

@@ -618,7 +618,7 @@ class PlannerNode(Node):
     def _plan_front(self, inputs: _Inputs) -> tuple[bool, str]:
         """The time-fuel front of the voyage from the ship (or the origin) to the RTA, kept
         for the goal that asked; the plan in force is left as it is."""
-        from .front import build_front
+        from .front import build_front, top_speed_s
         from .planning import plan_voyage
 
         depart = (parse_utc(str(self._p("departure_time"))) if inputs.position is None
@@ -644,7 +644,11 @@ class PlannerNode(Node):
                 approaches_given=_paths(str(self._p("approach_files"))),
                 loading=str(self._p("loading")), economics=self._economics())
 
-        front = build_front(one, depart, rta, n)
+        start = (str(self._p("origin")) if inputs.position is None
+                 else f"{inputs.position[0]:.5f},{inputs.position[1]:.5f}")
+        top = top_speed_s(start, str(self._p("destination")), str(self._p("ship")),
+                          str(self._p("loading")))
+        front = build_front(one, depart, rta, n, top)
         self._front = (inputs.request_seq, front.plans)
         self.get_logger().info(
             f"time-fuel front: {len(front.plans)} plans, "

@@ -34,8 +34,8 @@ from .geo.landmask import LandMask, default_land_mask
 from .geo.ports import Port, resolve_port
 from .geo.zones import Zones
 from .given_approach import approaches_at, load_approaches
-from .objectives import Economics, ObjectiveTerms, objective_block, objective_terms
 from .methods import MethodContext, Progress, compute_baseline, get_method
+from .objectives import Economics, ObjectiveTerms, objective_block, objective_terms
 from .plan_checks import checked_plan, zone_limits
 from .plan_types import RoutePlan, Waypoint, reasons_of, waypoints_from_evaluation
 from .route.environment import Environment

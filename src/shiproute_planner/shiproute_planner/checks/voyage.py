@@ -18,8 +18,8 @@ from typing import Any
 import numpy as np
 
 from ..errors import InvalidVoyageError
-from ..objectives import OBJECTIVES
 from ..geo.ports import Port, resolve_port
+from ..objectives import OBJECTIVES
 from .forecast_wire import EARLIEST_TIME_S, LATEST_TIME_S
 
 KNOT_M_S = 1852.0 / 3600.0

@@ -9,12 +9,12 @@ from pathlib import Path
 
 from ..errors import InvalidVoyageError, PlannerError
 from ..methods import Progress, method_names
-from ..plan_request import build_request, duration_s, run_request
 from ..objectives import (
     DEFAULT_CHARTER_USD_PER_DAY,
     DEFAULT_FUEL_PRICE_USD_PER_T,
     PLAN_OBJECTIVES,
 )
+from ..plan_request import build_request, duration_s, run_request
 from ..planning import load_forecast
 from ..ship.fuel import CO2_FACTOR_T_PER_T
 

@@ -16,8 +16,9 @@ from ..plan_types import RoutePlan
 
 def format_front(front: TimeFuelFront) -> str:
     """One line per plan (fastest first) and the front's notes."""
+    shape = "monotone" if front.monotone else "NOT monotone"
     lines = [f"time-fuel front {' -> '.join(front.plans[0].ports)}: {len(front.plans)} plans "
-             f"in {front.compute_time_s:.1f} s ({'monotone' if front.monotone else 'NOT monotone'})",
+             f"in {front.compute_time_s:.1f} s ({shape})",
              "  #   voyage h   fuel t   dist NM   mean kn  status"]
     for k, p in enumerate(front.plans):
         hours = p.total_time_s / 3600.0

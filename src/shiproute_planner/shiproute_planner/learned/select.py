@@ -17,8 +17,8 @@ from typing import Any
 import numpy as np
 
 from ..ship.fast import fast_model
-from ..ship.tabulate import calibration_note, tabulated_model
 from ..ship.spec import ShipSpec
+from ..ship.tabulate import calibration_note, tabulated_model
 from .errors import LearnError, ModelFileError
 from .features import feature_matrix
 from .model import LearnedModel

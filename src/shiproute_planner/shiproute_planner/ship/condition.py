@@ -61,7 +61,7 @@ def ship_in_condition(ship: str | Path | ShipSpec, loading: str) -> ShipSpec:
     if drafts is None:
         return base
     fore, aft = drafts
-    if not 0.5 <= min(fore, aft) or max(fore, aft) >= base.hull.depth_m:
+    if not min(fore, aft) >= 0.5 or max(fore, aft) >= base.hull.depth_m:
         raise LoadingConditionError(
             f"loading drafts {fore:g},{aft:g} m: each must be 0.5 m or more and below the "
             f"hull depth {base.hull.depth_m:g} m of {base.name}")

@@ -23,8 +23,8 @@ def parse_economics(root: Mapping[str, Any], source: str) -> tuple[tuple[str, An
     if root.get("fuel_type") is not None:
         fuel = str(root["fuel_type"]).strip().upper()
         if fuel not in CO2_FACTOR_T_PER_T:
-            raise ShipFileError(source, "fuel_type",
-                                f"'{root['fuel_type']}': use one of {', '.join(CO2_FACTOR_T_PER_T)}")
+            known = ", ".join(CO2_FACTOR_T_PER_T)
+            raise ShipFileError(source, "fuel_type", f"'{root['fuel_type']}': use one of {known}")
         out.append(("fuel_type", fuel))
     eco = root.get("economics")
     if eco is None:
