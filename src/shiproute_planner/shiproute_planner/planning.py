@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import dataclasses
 import itertools
+import math
 import time
 import uuid
 from collections.abc import Callable, Sequence
@@ -35,6 +36,7 @@ from .geo.ports import Port, resolve_port
 from .geo.zones import Zones
 from .given_approach import approaches_at, load_approaches
 from .methods import MethodContext, Progress, compute_baseline, get_method
+from .objective_window import search_window_s
 from .objectives import Economics, ObjectiveTerms, objective_block, objective_terms
 from .plan_checks import checked_plan, zone_limits
 from .plan_types import RoutePlan, Waypoint, reasons_of, waypoints_from_evaluation
@@ -441,8 +443,13 @@ def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMa
         rta_leg -= float(est.eta_s[0] - est.time_s[0, 0])
     d_lon, d_lat = (ap_dep.lon_deg[-1], ap_dep.lat_deg[-1]) if ap_dep else (a.lon_deg, a.lat_deg)
     a_lon, a_lat = (ap_arr.lon_deg[0], ap_arr.lat_deg[0]) if ap_arr else (b.lon_deg, b.lat_deg)
+    span_s = search_window_s(terms, env.model,
+                             float(inverse(d_lon, d_lat, a_lon, a_lat)[1]), rta_leg - t_leg)
+    n_stages = (max(1, math.ceil(span_s / (stage_hours * 3600.0)) - 1)
+                if span_s < rta_leg - t_leg else 0)  # 0: the whole window
     problem = RouteProblem(float(d_lon), float(d_lat), float(a_lon), float(a_lat), t_leg,
-                           rta_leg, lim, stage_s=stage_hours * 3600.0, objective=objective,
+                           rta_leg, lim, stage_s=stage_hours * 3600.0, n_stages=n_stages,
+                           objective=objective,
                            objective_per_t_fuel=terms.per_t_fuel if terms else 1.0,
                            objective_per_h=terms.per_h if terms else 0.0,
                            dep_name=a.name, arr_name=b.name)
