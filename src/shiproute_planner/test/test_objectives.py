@@ -96,5 +96,6 @@ def test_distance_objective_sails_a_shorter_route_in_a_storm() -> None:
     fuel = run_request(build_request(**storm), fc)
     dist = run_request(build_request(**storm, objective="distance"), fc)
     assert dist.total_distance_nm < fuel.total_distance_nm
-    # never shorter than the great circle between the ports (5,216 NM Busan - Long Beach)
-    assert dist.total_distance_nm > 5100
+    # never shorter than the great circle between the ports (5,219 NM Busan - Long Beach,
+    # WGS 84 geodesic between the port positions 35.08 N 129.11 E and 33.74 N 118.22 W)
+    assert dist.total_distance_nm > 5200
