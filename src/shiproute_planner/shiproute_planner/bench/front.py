@@ -45,6 +45,7 @@ def front_bench(points: int = 9, budget_s: float = 9.0, seed: int = 0) -> dict[s
         "front_hours": [round(p.total_time_s / 3600.0, 2) for p in front.plans],
         "front_fuel_t": [round(p.total_fuel_t, 2) for p in front.plans],
         "front_feasible": [p.feasible for p in front.plans],
+        "front_reasons": ["; ".join(p.infeasible_reasons) for p in front.plans],
         "front_notes": list(front.notes),
     }
 
