@@ -634,7 +634,7 @@ class PlannerNode(Node):
                 str(self._p("ship")), inputs.forecast, cycle_id=inputs.cycle_id,
                 objective=objective, method=str(self._p("method")), budget_s=budget / n,
                 seed=int(self._p("rng_seed")) + k, stage_hours=float(self._p("stage_hours")),
-                previous_plan=previous, position=inputs.position if k == 0 else None,
+                previous_plan=previous, position=inputs.position,
                 cancel=self._cancel, ship_model=str(self._p("ship_model")),
                 bathymetry=_paths(str(self._p("bathymetry_files"))),
                 default_bathymetry=bool(self._p("default_bathymetry")),
