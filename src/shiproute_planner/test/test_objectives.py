@@ -87,6 +87,7 @@ def test_co2_is_fuel_times_the_factor_and_picks_the_least_fuel_route(fuel_plan) 
     assert co2.extra["objective"]["value"] == pytest.approx(3.206 * co2.total_fuel_t)
 
 
+@pytest.mark.slow
 def test_distance_objective_sails_a_shorter_route_in_a_storm() -> None:
     storm = dict(origin="Busan", destination="Long Beach", depart="2026-03-03T18:00Z",
                  rta="13d", budget="3000ev")
