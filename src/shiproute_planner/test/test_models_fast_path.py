@@ -103,3 +103,20 @@ def test_cli_model_of_another_ship_exits_2(profile_file: Path, capsys) -> None:
                "--no-plot"])
     err = capsys.readouterr().err
     assert rc == 2 and "another ship" in err and "Traceback" not in err
+
+
+@pytest.mark.slow
+def test_kwon_in_the_storm_agrees_with_kwon_itself_within_1pct() -> None:
+    """The bundled storm voyage: the tables fit Kwon's weather loss only approximately (the
+    plan states median and 90th-percentile gaps), yet over the planned voyage the fuel of the
+    fast path and of Kwon's model on the same legs agree within 1 % (0.26 % measured)."""
+    from shiproute_planner.planning import load_forecast
+    from shiproute_weather.sampling import ForecastSampler
+
+    fc = ForecastSampler(load_forecast("storm_march"))
+    kwon = KwonModel(load_ship("container_4600teu"))
+    plan = run_request(build_request(origin="Busan", destination="Long Beach",
+                                     depart="2026-03-03T18:00Z", rta="13d", budget="3000ev",
+                                     model="kwon"), fc)
+    ref = direct_fuel_t(plan, kwon, Environment(kwon, fc))
+    assert plan.total_fuel_t == pytest.approx(ref, rel=0.01)
