@@ -92,7 +92,16 @@ PARAMETERS: dict[str, tuple[object, str]] = {
     "ship": ("container_4600teu", "bundled ship name or ship file path"),
     "ship_model": ("", "physics | kwon | profile:FILE.nc | learned:FILE.nc; '' = the ship "
                    "file's performance_model, else physics"),
-    "objective": ("fuel", "fuel | distance | eta"),
+    "objective": ("fuel", "fuel | distance | eta | co2 | cost (a PlanRoute goal may ask for "
+                  "the time-fuel front)"),
+    "loading": ("", "loading condition: a condition of the ship file (design, ballast) or "
+                "drafts 'T_F,T_A' [m]; '' = the file's default"),
+    "fuel_type": ("", "fuel burned for the co2/cost objectives (HFO, LFO, MDO, MGO, LNG); "
+                  "'' = the ship file's, else HFO"),
+    "fuel_price_usd_per_t": (-1.0, "fuel price for the cost objective [USD/t]; < 0 = the "
+                             "ship file's economics, else the stated default"),
+    "charter_usd_per_day": (-1.0, "time-charter rate for the cost objective [USD/day]; < 0 "
+                            "= the ship file's economics, else the stated default"),
     "method": ("seed_ga", "route-finding method"),
     "stage_hours": (12.0, "fixed stage duration [h]"),
     "budget_s": (3.0, "wall-time budget of one plan [s]"),
@@ -118,6 +127,17 @@ PARAMETERS: dict[str, tuple[object, str]] = {
 }
 DROP_KINDS = ("ship_states", "forecast_slices", "forecast_cycles", "voyage_requests",
               "plan_requests")
+
+
+def _goal_objective_reason(objective: str, points: int) -> str | None:
+    """Why a PlanRoute goal's objective / front size is refused, or None."""
+    from .objectives import PLAN_OBJECTIVES
+
+    if objective and objective not in PLAN_OBJECTIVES:
+        return f"objective {objective!r}: use '' or one of {', '.join(PLAN_OBJECTIVES)}"
+    if objective == "front" and not 2 <= points <= 25:
+        return f"front_points {points}: use 2..25 (0 = 9)"
+    return None
 
 
 def _paths(text: str) -> list[str]:
@@ -187,6 +207,8 @@ class _Inputs:
     reason: str
     budget_s: float | None = None  # a PlanRoute goal's own budget (None: the parameter)
     request_seq: int = 0  # the latest request this run answers
+    objective: str = ""  # a PlanRoute goal's objective ("" = the parameter; "front")
+    front_points: int = 9
 
 
 class PlannerNode(Node):
@@ -214,6 +236,8 @@ class PlannerNode(Node):
         # requests and their outcomes, so a PlanRoute goal waits for the run that answers it
         self._request_seq = 0
         self._pending_budget_s: float | None = None
+        self._pending_objective: tuple[str, int] = ("", 9)  # a goal's objective, front size
+        self._front: tuple[int, tuple[RoutePlan, ...]] = (0, ())  # (request, plans) of a front
         self._answered_seq = 0
         self._answer_ok = False
         self._answer_text = ""
@@ -304,10 +328,29 @@ class PlannerNode(Node):
             reason = check_parameter(p.name, p.value)
             if reason is None and p.name == "method":
                 reason = _method_reason(str(p.value))
+            if reason is None and p.name in ("ship", "ship_model", "loading"):
+                reason = self._ship_choice_reason(params)
             if reason is not None:
                 self.get_logger().warning(f"rejected parameter: {reason}")
                 return SetParametersResult(successful=False, reason=reason)
         return SetParametersResult(successful=True)
+
+    def _ship_choice_reason(self, params) -> str | None:
+        """Why the ship, loading condition and model after this change cannot be planned
+        with (a model file of another ship, an unknown condition), or None."""
+        from .voyage_ship import model_choice_reason
+
+        new = {p.name: p.value for p in params}
+        return model_choice_reason(*(str(new.get(k, self._p(k)))
+                                     for k in ("ship", "ship_model", "loading")))
+
+    def _economics(self):
+        """The co2/cost figures the parameters set (None where the ship file decides)."""
+        from .objectives import Economics
+
+        price, rate = float(self._p("fuel_price_usd_per_t")), float(self._p("charter_usd_per_day"))
+        return Economics(str(self._p("fuel_type")) or None, price if price >= 0 else None,
+                         rate if rate >= 0 else None)
 
     def _on_set_voyage(self, req: SetVoyage.Request, res: SetVoyage.Response):
         """Check the whole voyage first; answer accepted=false with the reason when it is
@@ -486,13 +529,17 @@ class PlannerNode(Node):
             self._request("first ship state")
 
     # ----------------------------------------------------------------- triggers
-    def _request(self, reason: str, budget_s: float | None = None) -> int:
-        """Ask the worker for a plan; returns the request's number (a goal waits for it)."""
+    def _request(self, reason: str, budget_s: float | None = None, objective: str = "",
+                 front_points: int = 9) -> int:
+        """Ask the worker for a plan (or a time-fuel front); returns the request's number (a
+        goal waits for it)."""
         with self._wake:
             self._pending = reason
             self._request_seq += 1
             if budget_s is not None:
                 self._pending_budget_s = budget_s  # kept until a run takes it
+            if objective:
+                self._pending_objective = (objective, front_points)
             self._wake.notify()
             return self._request_seq
 
@@ -528,8 +575,9 @@ class PlannerNode(Node):
         if pos is None and not self._p("plan_without_ship_state"):
             return "no plan: no valid ship state received yet"
         budget, self._pending_budget_s = self._pending_budget_s, None
+        (objective, points), self._pending_objective = self._pending_objective, ("", 9)
         return _Inputs(self._forecast, self._cycle_id, pos, self._plan, reason, budget,
-                       self._request_seq)
+                       self._request_seq, objective, points)
 
     def _answer(self, seq: int, ok: bool, text: str) -> None:
         """Record the outcome of the run that served requests up to `seq`."""
@@ -552,7 +600,9 @@ class PlannerNode(Node):
                 self._planning = True
                 self._cancel.clear()
             try:
-                if self._plan_once(inputs):
+                if inputs.objective == "front":
+                    self._answer(inputs.request_seq, *self._plan_front(inputs))
+                elif self._plan_once(inputs):
                     self._answer(inputs.request_seq, True, self._plan.plan_id if self._plan
                                  else "")
             except Exception as err:  # the node never dies on input
@@ -564,6 +614,47 @@ class PlannerNode(Node):
                 with self._done_event:
                     self._planning = False
                     self._done_event.notify_all()
+
+    def _plan_front(self, inputs: _Inputs) -> tuple[bool, str]:
+        """The time-fuel front of the voyage from the ship (or the origin) to the RTA, kept
+        for the goal that asked; the plan in force is left as it is."""
+        from .front import build_front, top_speed_s
+        from .planning import plan_voyage
+
+        depart = (parse_utc(str(self._p("departure_time"))) if inputs.position is None
+                  else inputs.position[2])
+        rta = parse_utc(str(self._p("rta")))
+        n = inputs.front_points
+        budget = (inputs.budget_s if inputs.budget_s is not None
+                  else float(self._p("budget_s")) * n)
+
+        def one(k: int, objective: str, rta_s: float, previous: RoutePlan | None) -> RoutePlan:
+            return plan_voyage(
+                str(self._p("origin")), str(self._p("destination")), depart, rta_s,
+                str(self._p("ship")), inputs.forecast, cycle_id=inputs.cycle_id,
+                objective=objective, method=str(self._p("method")), budget_s=budget / n,
+                seed=int(self._p("rng_seed")) + k, stage_hours=float(self._p("stage_hours")),
+                previous_plan=previous, position=inputs.position,
+                cancel=self._cancel, ship_model=str(self._p("ship_model")),
+                bathymetry=_paths(str(self._p("bathymetry_files"))),
+                default_bathymetry=bool(self._p("default_bathymetry")),
+                ukc_margin_m=float(self._p("ukc_margin_m")),
+                zones=_paths(str(self._p("zones_files"))),
+                clearance_nm=float(self._p("clearance_nm")),
+                approaches_given=_paths(str(self._p("approach_files"))),
+                loading=str(self._p("loading")), economics=self._economics())
+
+        start = (str(self._p("origin")) if inputs.position is None
+                 else f"{inputs.position[0]:.5f},{inputs.position[1]:.5f}")
+        top = top_speed_s(start, str(self._p("destination")), str(self._p("ship")),
+                          str(self._p("loading")))
+        front = build_front(one, depart, rta, n, top)
+        self._front = (inputs.request_seq, front.plans)
+        self.get_logger().info(
+            f"time-fuel front: {len(front.plans)} plans, "
+            + ", ".join(f"{(p.eta_s - depart) / 3600:.1f} h {p.total_fuel_t:.1f} t"
+                        for p in front.plans) + f" in {front.compute_time_s:.1f} s")
+        return True, front.plans[0].plan_id
 
     def _plan_once(self, inputs: _Inputs) -> bool:
         """Plan and publish; False when the run was superseded by a newer cycle."""
@@ -584,8 +675,8 @@ class PlannerNode(Node):
         plan = plan_voyage(
             origin, str(self._p("destination")), depart, parse_utc(str(self._p("rta"))),
             str(self._p("ship")), inputs.forecast, cycle_id=inputs.cycle_id,
-            objective=str(self._p("objective")), method=str(self._p("method")),
-            budget_s=inputs.budget_s if inputs.budget_s is not None
+            objective=inputs.objective or str(self._p("objective")),
+            method=str(self._p("method")), budget_s=inputs.budget_s if inputs.budget_s is not None
             else float(self._p("budget_s")), seed=int(self._p("rng_seed")),
             stage_hours=float(self._p("stage_hours")), previous_plan=inputs.previous,
             position=position, seed_pool_dir=pool, progress=self._on_progress,
@@ -596,6 +687,7 @@ class PlannerNode(Node):
             zones=_paths(str(self._p("zones_files"))),
             clearance_nm=float(self._p("clearance_nm")),
             approaches_given=_paths(str(self._p("approach_files"))),
+            loading=str(self._p("loading")), economics=self._economics(),
         )
         if self._cancel.is_set():
             self.get_logger().info(f"plan on {inputs.cycle_id} superseded by a newer cycle")
@@ -675,9 +767,19 @@ class PlannerNode(Node):
             goal_handle.abort()
             result.message = f"goal refused: {reason}"
             return result
+        objective = str(goal_handle.request.objective).strip()
+        points = int(goal_handle.request.front_points) or 9
+        reason = _goal_objective_reason(objective, points)
+        if reason is not None:
+            self._drops.drop("plan_requests", reason)
+            goal_handle.abort()
+            result.message = f"goal refused: {reason}"
+            return result
         goal_budget = budget if budget > 0 else float(self._p("budget_s"))
+        if objective == "front":
+            goal_budget *= 1 if budget > 0 else points
         seq = self._request(goal_handle.request.reason or "plan requested",
-                            budget if budget > 0 else None)
+                            budget if budget > 0 else None, objective, points)
         start = time.monotonic()
         deadline = start + 10.0 * goal_budget + 60.0  # a stuck run (never seen) still ends
         while time.monotonic() < deadline:
@@ -691,6 +793,11 @@ class PlannerNode(Node):
             if answered >= seq:
                 result.success, result.message = ok, "planned" if ok else text
                 result.plan_id = text if ok else ""
+                front_seq, plans = self._front
+                if ok and objective == "front" and front_seq >= seq:
+                    stamp = self.get_clock().now().to_msg()
+                    result.front = [plan_to_msg(p, stamp) for p in plans]
+                    result.message = f"time-fuel front of {len(plans)} plans"
                 if ok:
                     goal_handle.succeed()
                 else:

@@ -11,10 +11,12 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from .errors import InvalidVoyageError
+from .objectives import PLAN_OBJECTIVES as OBJECTIVES
+from .objectives import Economics
 from .plan_types import RoutePlan
 from .planning import plan_voyage, to_posix_s
+from .voyage_ship import loaded_ship
 
-OBJECTIVES = ("fuel", "distance", "eta")
 # "" = the ship file's performance_model entry, else physics; "physics" (alias "fast") is the
 # ship file's physics tabulated for the hot path, "physics-direct" solves it on every leg
 SHIP_MODELS = ("", "physics", "fast", "physics-direct", "kwon")
@@ -112,6 +114,9 @@ class PlanRequest:
     budget: Budget = field(default_factory=Budget)
     seed: int = 0
     stage_hours: float = 12.0
+    loading: str = ""  # ship file condition or 'T_F,T_A' drafts [m]; '' = the file's default
+    economics: Economics = field(default_factory=Economics)
+    front_points: int = 9  # plans on the time-fuel front (objective "front")
 
     def __post_init__(self) -> None:
         if self.objective not in OBJECTIVES:
@@ -124,6 +129,8 @@ class PlanRequest:
                 "profile:FILE.nc or learned:FILE.nc")
         if not self.rta_s > self.depart_s:
             raise InvalidVoyageError("the RTA must be after the departure time")
+        if not 2 <= self.front_points <= 25:
+            raise InvalidVoyageError(f"front points must be 2..25, got {self.front_points}")
         if not 0 < self.stage_hours <= 48:
             raise InvalidVoyageError(f"stage hours must be in (0, 48], got {self.stage_hours}")
 
@@ -131,23 +138,38 @@ class PlanRequest:
 def build_request(*, origin: str, destination: str, depart: str, rta: str,
                   via: Sequence[str] = (), ship: str = "container_4600teu",
                   objective: str = "fuel", method: str = "seed_ga", model: str = "",
-                  budget: str = "3s", seed: int = 0, stage_hours: float = 12.0) -> PlanRequest:
+                  budget: str = "3s", seed: int = 0, stage_hours: float = 12.0,
+                  loading: str = "", fuel_type: str | None = None,
+                  fuel_price_usd_per_t: float | None = None,
+                  charter_usd_per_day: float | None = None,
+                  front_points: int = 9) -> PlanRequest:
     """A request from user text (raises InvalidVoyageError naming the bad input)."""
     depart_s = parse_time_s(depart, "departure")
     names, rtas = parse_vias(via)
+    if loading.strip():
+        from .ship.condition import parse_loading
+        from .ship.errors import ShipModelError
+
+        try:
+            parse_loading(loading)
+        except ShipModelError as exc:
+            raise InvalidVoyageError(str(exc)) from None
     return PlanRequest(origin.strip(), destination.strip(), depart_s, parse_rta_s(rta, depart_s),
                        ship.strip(), names, rtas, objective, method, model, Budget.parse(budget),
-                       int(seed), float(stage_hours))
+                       int(seed), float(stage_hours), loading.strip(),
+                       Economics(fuel_type, fuel_price_usd_per_t, charter_usd_per_day),
+                       int(front_points))
 
 
-def ship_and_model(ship: str, model: str) -> tuple[Any, str]:
+def ship_and_model(ship: str, model: str, loading: str = "") -> tuple[Any, str]:
     """The (ship, ship_model) arguments of `plan_voyage`: the ship with the model choice that
     the planner resolves and states (`learned.select.resolve_model`), or the direct physics
     model of that ship for "physics-direct"."""
     if model == "physics-direct":
         from .ship import PhysicsModel, load_ship
 
-        return PhysicsModel(load_ship(ship)), ""
+        spec = loaded_ship(ship, loading) if loading else load_ship(ship)
+        return PhysicsModel(spec), ""
     return ship, "physics" if model == "fast" else model
 
 
@@ -156,11 +178,12 @@ def run_request(req: PlanRequest, forecast: Any = None, *, cycle_id: str = "",
                 **extra: Any) -> RoutePlan:
     """Plan `req` on `forecast` (a ForecastSampler, a canonical Dataset or None for calm
     water); `extra` passes further `plan_voyage` keywords (land mask, cancel, ...)."""
-    ship, model = ship_and_model(req.ship, req.model)
+    ship, model = ship_and_model(req.ship, req.model, req.loading)
     return plan_voyage(
         req.origin, req.destination, req.depart_s, req.rta_s, ship, forecast,
         ship_model=model, via=req.via, via_rta=req.via_rta_s, objective=req.objective,
         method=req.method,
         cycle_id=cycle_id, budget_s=req.budget.wall_s, max_evaluations=req.budget.evaluations,
         seed=req.seed, stage_hours=req.stage_hours, seed_pool_dir=seed_pool_dir,
-        progress=progress, **extra)
+        progress=progress, loading="" if req.model == "physics-direct" else req.loading,
+        economics=req.economics, **extra)

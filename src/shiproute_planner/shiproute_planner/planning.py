@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import dataclasses
 import itertools
+import math
 import time
 import uuid
 from collections.abc import Callable, Sequence
@@ -35,11 +36,14 @@ from .geo.ports import Port, resolve_port
 from .geo.zones import Zones
 from .given_approach import approaches_at, load_approaches
 from .methods import MethodContext, Progress, compute_baseline, get_method
+from .objective_window import search_window_s
+from .objectives import Economics, ObjectiveTerms, objective_block, objective_terms
 from .plan_checks import checked_plan, zone_limits
 from .plan_types import RoutePlan, Waypoint, reasons_of, waypoints_from_evaluation
 from .route.environment import Environment
 from .route.evaluation import RouteEvaluation
 from .route.problem import RouteLimits, RouteProblem
+from .voyage_ship import loaded_ship, loading_block
 
 TimeLike = datetime | float | int | str
 
@@ -191,6 +195,8 @@ def plan_voyage(
     zones: Sequence[str | Path] | Zones | None = None,
     clearance_nm: float = 0.0,
     approaches_given: Sequence[str | Path] = (),
+    loading: str = "",
+    economics: Economics | None = None,
 ) -> RoutePlan:
     """Plan a voyage and return a frozen RoutePlan.
 
@@ -223,12 +229,16 @@ def plan_voyage(
     (a penalty per NM). The finished plan gets the route check (land, `clearance_nm` from
     land, depth, zones) and carries its findings in its warnings. `approaches_given`: route
     files (RTZ/GeoJSON) of coastal passages from a port or to one, used as given.
+    `loading`: the loading condition (a condition of the ship file, or drafts 'T_F,T_A' in
+    m; '' = the file's default). `objective` co2 / cost take the fuel type and prices from
+    `economics`, else the ship file, else stated defaults (`objectives`).
     """
     t0 = time.perf_counter()
     require_number("stage_hours", stage_hours)
     land = land or default_land_mask()
-    ship, model_notes = _chosen_model(ship, ship_model)
+    ship, model_notes = _chosen_model(loaded_ship(ship, loading), ship_model)
     env, spec = make_environment(ship, forecast)
+    terms = objective_terms(objective, dict(getattr(spec, "economics", ()) or ()), economics)
     if cycle_id:
         env = dataclasses.replace(env, cycle_id=cycle_id)
     lim = route_limits(spec, limits)
@@ -286,7 +296,7 @@ def plan_voyage(
         under_way = k == 0 and position is not None
         leg = leg_setup(a, b, env, lim, land, leg_depart, search_rtas[k], approach_nm=approach_nm,
                         approach_rpm=approach_rpm, coastal_passage=coastal_passage,
-                        stage_hours=stage_hours, objective=objective,
+                        stage_hours=stage_hours, objective=objective, terms=terms,
                         under_way=under_way, previous_plan=previous_plan if under_way else None,
                         position=position if under_way else None, given=given)
         problem, pre, ap_arr, rpm_ap = leg.problem, leg.pre, leg.ap_arr, leg.rpm_ap
@@ -335,8 +345,11 @@ def plan_voyage(
     plan = checked_plan(with_depth_report(plan, lim.under_keel, warnings), land, lim,
                         clearance_nm)
     block, said = forecast_statement(env.sampler, plan, persistence_h)
-    return dataclasses.replace(plan, warnings=(*plan.warnings, *said),
-                               extra={**plan.extra, "forecast": block})
+    goal = objective_block(terms, plan.total_fuel_t, plan.total_time_s / 3600.0,
+                           plan.total_distance_nm)
+    return dataclasses.replace(plan, warnings=(*plan.warnings, *said, *terms.notes),
+                               extra={**plan.extra, "forecast": block, "objective": goal,
+                                      **loading_block(spec)})
 
 
 def _chosen_model(ship: Any, ship_model: str) -> tuple[Any, tuple[str, ...]]:
@@ -394,7 +407,8 @@ class LegSetup:
 def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMask,
               depart_s: float, rta_s: float, *, approach_nm: float = 25.0,
               approach_rpm: float | None = None, coastal_passage: bool = True,
-              stage_hours: float = 12.0, objective: str = "fuel", under_way: bool = False,
+              stage_hours: float = 12.0, objective: str = "fuel",
+              terms: ObjectiveTerms | None = None, under_way: bool = False,
               previous_plan: RoutePlan | None = None,
               position: tuple[float, float, float] | None = None,
               given: Sequence[Approach] = ()) -> LegSetup:
@@ -429,8 +443,15 @@ def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMa
         rta_leg -= float(est.eta_s[0] - est.time_s[0, 0])
     d_lon, d_lat = (ap_dep.lon_deg[-1], ap_dep.lat_deg[-1]) if ap_dep else (a.lon_deg, a.lat_deg)
     a_lon, a_lat = (ap_arr.lon_deg[0], ap_arr.lat_deg[0]) if ap_arr else (b.lon_deg, b.lat_deg)
+    span_s = search_window_s(terms, env.model,
+                             float(inverse(d_lon, d_lat, a_lon, a_lat)[1]), rta_leg - t_leg)
+    n_stages = (max(1, math.ceil(span_s / (stage_hours * 3600.0)) - 1)
+                if span_s < rta_leg - t_leg else 0)  # 0: the whole window
     problem = RouteProblem(float(d_lon), float(d_lat), float(a_lon), float(a_lat), t_leg,
-                           rta_leg, lim, stage_s=stage_hours * 3600.0, objective=objective,
+                           rta_leg, lim, stage_s=stage_hours * 3600.0, n_stages=n_stages,
+                           objective=objective,
+                           objective_per_t_fuel=terms.per_t_fuel if terms else 1.0,
+                           objective_per_h=terms.per_h if terms else 0.0,
                            dep_name=a.name, arr_name=b.name)
     return LegSetup(problem, pre, ap_arr, float(rpm_ap))
 

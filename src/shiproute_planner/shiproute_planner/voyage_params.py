@@ -12,8 +12,8 @@ from typing import Any
 
 from .checks.forecast_wire import EARLIEST_TIME_S, LATEST_TIME_S
 from .checks.parameters import check_number
-
-OBJECTIVES = ("fuel", "distance", "eta")
+from .objectives import OBJECTIVES
+from .ship.fuel import CO2_FACTOR_T_PER_T
 
 
 def parse_utc(text: str) -> float:
@@ -44,6 +44,12 @@ def check_parameter(name: str, value: Any) -> str | None:
         return "ship must name a bundled ship or a ship file"
     if name == "ship_model":
         return _ship_model_reason(str(value))
+    if name == "fuel_type" and str(value).strip().upper() not in ("", *CO2_FACTOR_T_PER_T):
+        return f"fuel_type must be '' or one of {', '.join(CO2_FACTOR_T_PER_T)}, got {value!r}"
+    if name in ("fuel_price_usd_per_t", "charter_usd_per_day") and (
+            isinstance(value, bool) or not isinstance(value, int | float)
+            or not -1.0 <= value < 1e7):
+        return f"{name} must be a number in 0..1e7 (or -1: ship file / default), got {value!r}"
     if name in ("ukc_margin_m", "clearance_nm") and (
             not isinstance(value, int | float) or not value >= 0):
         return f"{name} must be a non-negative number, got {value!r}"

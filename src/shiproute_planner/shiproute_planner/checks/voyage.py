@@ -19,10 +19,10 @@ import numpy as np
 
 from ..errors import InvalidVoyageError
 from ..geo.ports import Port, resolve_port
+from ..objectives import OBJECTIVES
 from .forecast_wire import EARLIEST_TIME_S, LATEST_TIME_S
 
 KNOT_M_S = 1852.0 / 3600.0
-OBJECTIVES = ("fuel", "distance", "eta")
 
 
 @dataclass(frozen=True)

@@ -9,8 +9,14 @@ from pathlib import Path
 
 from ..errors import InvalidVoyageError, PlannerError
 from ..methods import Progress, method_names
+from ..objectives import (
+    DEFAULT_CHARTER_USD_PER_DAY,
+    DEFAULT_FUEL_PRICE_USD_PER_T,
+    PLAN_OBJECTIVES,
+)
 from ..plan_request import build_request, duration_s, run_request
 from ..planning import load_forecast
+from ..ship.fuel import CO2_FACTOR_T_PER_T
 
 
 def parse_duration_s(text: str) -> float:
@@ -49,10 +55,28 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--persistence-hours", type=float, default=24.0,
                     help="hold the forecast's last fields this long beyond its last valid "
                          "time, then assume calm water (default 24)")
-    ap.add_argument("--objective", choices=("fuel", "distance", "eta"), default="fuel")
+    ap.add_argument("--objective", choices=PLAN_OBJECTIVES, default="fuel",
+                    help="fuel, distance, eta (earliest arrival), co2 (fuel x the fuel's IMO "
+                         "carbon factor), cost (fuel price x fuel + charter rate x time), or "
+                         "front: the time-fuel Pareto front (--front-points plans)")
+    ap.add_argument("--front-points", type=int, default=9,
+                    help="plans on the time-fuel front (objective front; default 9)")
+    ap.add_argument("--loading", default="",
+                    help="loading condition: a condition of the ship file (design, ballast) "
+                         "or drafts fore,aft in metres (11.5,12.5); default: the file's")
+    ap.add_argument("--fuel-type", default=None, choices=sorted(CO2_FACTOR_T_PER_T),
+                    help="fuel burned, for co2/cost (default: the ship file's fuel_type, "
+                         "else HFO)")
+    ap.add_argument("--fuel-price", type=float, default=None, metavar="USD_PER_T",
+                    help=f"fuel price for the cost objective (default: ship file economics, "
+                         f"else {DEFAULT_FUEL_PRICE_USD_PER_T:.0f} USD/t)")
+    ap.add_argument("--charter-rate", type=float, default=None, metavar="USD_PER_DAY",
+                    help=f"time-charter rate for the cost objective (default: ship file "
+                         f"economics, else {DEFAULT_CHARTER_USD_PER_DAY:.0f} USD/day)")
     ap.add_argument("--method", default="seed_ga", help="planning method (see --list-methods)")
-    ap.add_argument("--budget", default="3s",
-                    help="wall time (3s) or route evaluations (4000ev: reproducible)")
+    ap.add_argument("--budget", default=None,
+                    help="wall time (3s) or route evaluations (4000ev: reproducible); "
+                         "default 3s, for the front 1s per plan")
     ap.add_argument("--seed", type=int, default=0, help="random seed")
     ap.add_argument("--stage-hours", type=float, default=12.0)
     ap.add_argument("--seed-pool", default=None, help="seed pool directory")
@@ -112,7 +136,11 @@ def main(argv: list[str]) -> int:
         req = build_request(
             origin=args.origin, destination=args.destination, depart=args.depart, rta=args.rta,
             via=args.via, ship=args.ship, objective=args.objective, method=args.method,
-            model=args.model, budget=args.budget, seed=args.seed, stage_hours=args.stage_hours)
+            model=args.model, seed=args.seed, stage_hours=args.stage_hours,
+            budget=args.budget or (f"{args.front_points}s" if args.objective == "front"
+                                   else "3s"),
+            loading=args.loading, fuel_type=args.fuel_type, fuel_price_usd_per_t=args.fuel_price,
+            charter_usd_per_day=args.charter_rate, front_points=args.front_points)
         if args.persistence_hours < 0:
             raise InvalidVoyageError("--persistence-hours must be >= 0")
         forecast = (load_forecast(args.forecast, waves_from_wind=not args.no_wave_estimate)
@@ -123,13 +151,18 @@ def main(argv: list[str]) -> int:
             from shiproute_weather.sampling import ForecastSampler
 
             env_forecast = ForecastSampler(forecast)
-        plan = run_request(
-            req, env_forecast, seed_pool_dir=args.seed_pool, progress=_progress,
+        keywords = dict(
             cycle_id=str(forecast.attrs.get("cycle_id", "")) if forecast is not None else "",
             persistence_h=args.persistence_hours, climatology=_climatology(args.climatology),
             bathymetry=args.bathymetry, default_bathymetry=not args.no_default_bathymetry,
             ukc_margin_m=args.ukc_margin, zones=args.zones, clearance_nm=args.clearance_nm,
             approaches_given=args.approach)
+        if req.objective == "front":
+            from .plan_front import run_front
+
+            return run_front(req, env_forecast, args, forecast, keywords)
+        plan = run_request(req, env_forecast, seed_pool_dir=args.seed_pool, progress=_progress,
+                           **keywords)
         print(file=sys.stderr)
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)
@@ -181,6 +214,18 @@ def format_summary(plan) -> str:
         f"compute    {plan.compute_time_s:.2f} s, {plan.generations} generations, "
         f"{plan.evaluations} route evaluations",
     ]
+    goal = plan.extra.get("objective") or {}
+    if goal.get("name") in ("co2", "cost"):
+        extra = (f"  ({goal['co2_factor_t_per_t']:g} t CO2/t {goal['fuel_type']}, "
+                 "IMO MEPC.308(73))" if goal["name"] == "co2" else
+                 f"  (fuel {goal['fuel_cost_usd']:,.0f} USD at {goal['fuel_price_usd_per_t']:g}"
+                 f" USD/t + time {goal['time_cost_usd']:,.0f} USD at "
+                 f"{goal['charter_usd_per_day']:,.0f} USD/day)")
+        lines.append(f"{goal['name']:<10} {goal['value']:9,.1f} {goal['unit']}{extra}")
+    cond = plan.extra.get("loading") or {}
+    if cond:
+        lines.append(f"loading    {cond['condition']}: drafts {cond['draft_fore_m']:.2f} / "
+                     f"{cond['draft_aft_m']:.2f} m fore/aft, {cond['displacement_t']:,.0f} t")
     fc = plan.extra.get("forecast") or {}
     if fc.get("used"):
         lines.append(f"forecast   {fc['valid_from']} .. {fc['valid_to']}: covers "

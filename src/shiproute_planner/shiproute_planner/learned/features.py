@@ -15,6 +15,7 @@ import json
 
 import numpy as np
 
+from ..ship.condition import at_drafts
 from ..ship.fast import fast_model
 from ..ship.physics import relative_wave_deg
 from ..ship.seastate import SeaState
@@ -68,22 +69,6 @@ def feature_matrix(stw_kn: np.ndarray, heading_deg: np.ndarray, draft_fore_m: np
 
 
 DRAFT_STEP_M = 0.1  # drafts are rounded to this for the prior (one table set per pair)
-
-
-def at_drafts(ship: ShipSpec, draft_fore_m: float, draft_aft_m: float) -> ShipSpec:
-    """``ship`` floating at other drafts: displacement changed by the waterplane times the
-    mean-draft change (parallel sinkage), everything else as in the file."""
-    c = ship.condition
-    if draft_fore_m == c.draft_fore_m and draft_aft_m == c.draft_aft_m:
-        return ship
-    d_mean = 0.5 * (draft_fore_m + draft_aft_m) - ship.mean_draft_m
-    h = ship.hull
-    extra_t = 1.025 * h.waterplane_coefficient * h.lwl_m * h.breadth_m * d_mean
-    cond = dataclasses.replace(c, name=f"{c.name} at {draft_fore_m:.2f}/{draft_aft_m:.2f} m",
-                               draft_fore_m=float(draft_fore_m), draft_aft_m=float(draft_aft_m),
-                               displacement_t=c.displacement_t + extra_t)
-    return dataclasses.replace(ship, condition=cond, content_hash=ship.content_hash
-                               + f"#drafts={draft_fore_m:.3f}/{draft_aft_m:.3f}")
 
 
 def physics_prior(ship: ShipSpec, stw_kn: np.ndarray, heading_deg: np.ndarray, sea: SeaState,

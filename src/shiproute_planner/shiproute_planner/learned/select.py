@@ -2,9 +2,10 @@
 
 ``physics`` (the default, and what an empty choice means unless the ship file names another
 with ``performance_model``) is the tabulated physics model. ``learned`` is tabulated the same
-way (`tables`), so both keep the GA's compiled fast path; ``kwon`` and ``profile`` are
-evaluated through the generic (slower) route evaluator. Every choice but the default adds a
-line to the plan's warnings, and a learned model says how many legs left its training range.
+way (`tables`), and ``kwon`` and ``profile`` through `ship.tabulate`, so every choice keeps
+the GA's compiled fast path. Every choice but the default adds a line to the plan's warnings
+(with how closely the tables follow the model), and a learned model says how many legs left
+its training range.
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ import numpy as np
 
 from ..ship.fast import fast_model
 from ..ship.spec import ShipSpec
+from ..ship.tabulate import calibration_note, tabulated_model
 from .errors import LearnError, ModelFileError
 from .features import feature_matrix
 from .model import LearnedModel
@@ -31,19 +33,16 @@ def resolve_model(ship: ShipSpec, choice: str = "") -> tuple[Any, tuple[str, ...
     if kind == "physics" and not path:
         return fast_model(ship), ()
     if kind == "kwon" and not path:
-        from ..ship.kwon import KwonModel
-
-        return KwonModel(ship), ("ship model: Kwon (2008) speed loss on the ship file's calm-"
-                                 "water curve (generic route evaluator, slower than physics)",)
+        fm = _tabulated(ship, "kwon", "")
+        return fm, ("ship model: Kwon (2008) speed loss on the ship file's calm-water curve",
+                    calibration_note(fm))
     if kind in ("profile", "learned") and path:
         if not Path(path).is_file():
             raise ModelFileError(f"{kind} model file {path} does not exist")
         if kind == "profile":
-            from ..ship.profile import ProfileModel
-
-            return ProfileModel(ship, path), (
-                f"ship model: performance profile {path} (interpolated, generic route "
-                "evaluator, slower than physics)",)
+            fm = _tabulated(ship, path, str(Path(path).stat().st_mtime_ns))
+            return fm, (f"ship model: performance profile {path} (interpolated)",
+                        calibration_note(fm))
         learned, fm = _learned(ship, path, Path(path).stat().st_mtime_ns)
         m = learned.report.get("metrics", {})
         return fm, (
@@ -63,6 +62,20 @@ def _learned(ship: ShipSpec, path: str, mtime_ns: int) -> tuple[LearnedModel, An
     del mtime_ns  # part of the cache key only
     learned = LearnedModel.load(path)
     return learned, learned_fast_model(ship, learned, source=path)
+
+
+@functools.lru_cache(maxsize=8)
+def _tabulated(ship: ShipSpec, what: str, version: str) -> Any:
+    """Kwon's model (``what`` "kwon") or the profile file ``what`` tabulated for the fast
+    path, once per (ship, file version): re-plans reuse it."""
+    del version  # part of the cache key only
+    if what == "kwon":
+        from ..ship.kwon import KwonModel
+
+        return tabulated_model(ship, KwonModel(ship), "Kwon (2008)")
+    from ..ship.profile import ProfileModel
+
+    return tabulated_model(ship, ProfileModel(ship, what), f"profile {Path(what).name}")
 
 
 def plan_warnings(model: Any, plan: Any) -> tuple[str, ...]:

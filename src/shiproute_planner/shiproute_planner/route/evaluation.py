@@ -58,11 +58,15 @@ class RouteEvaluation:
 
 
 def objective_of(problem: RouteProblem, fuel_t, distance_m, eta_s) -> np.ndarray:
-    """Objective value: fuel [t], distance [NM] or elapsed time [h]."""
+    """Objective value: fuel [t], distance [NM], elapsed time [h], CO2 [t] or cost [USD]."""
     if problem.objective == "distance":
         return distance_m / 1852.0
     if problem.objective == "eta":
         return (eta_s - problem.depart_s) / 3600.0
+    if problem.objective in ("co2", "cost"):
+        hours = (np.asarray(eta_s, dtype=float) - problem.depart_s) / 3600.0
+        return (problem.objective_per_t_fuel * np.asarray(fuel_t, dtype=float)
+                + problem.objective_per_h * hours)
     return np.asarray(fuel_t, dtype=float)
 
 

@@ -8,8 +8,7 @@ from dataclasses import dataclass, field
 from shiproute_core.geodesy import unwrap_near
 
 from ..errors import InvalidVoyageError
-
-OBJECTIVES = ("fuel", "distance", "eta")
+from ..objectives import OBJECTIVES
 
 
 @dataclass(frozen=True)
@@ -54,6 +53,9 @@ class RouteProblem:
     stage_s: float = 12 * 3600.0
     n_stages: int = 0  # 0: derived from the time window
     objective: str = "fuel"
+    # co2 / cost objectives: per_t_fuel x fuel [t] + per_h x time under way [h]
+    objective_per_t_fuel: float = 1.0
+    objective_per_h: float = 0.0
     land_spacing_deg: float = 0.05
     port_clearance_m: float = 3000.0  # land within this distance of the ports is not checked
     dep_name: str = ""

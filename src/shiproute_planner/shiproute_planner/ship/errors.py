@@ -32,3 +32,7 @@ class InputRangeError(ShipModelError):
 
 class ProfileError(ShipModelError):
     """A performance-profile NetCDF file is missing variables or has an invalid grid."""
+
+
+class LoadingConditionError(ShipModelError):
+    """A loading condition that the ship file does not have or drafts the hull cannot take."""

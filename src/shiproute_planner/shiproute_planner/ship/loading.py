@@ -13,6 +13,7 @@ import numpy as np
 import yaml
 
 from .errors import ShipFileError, UnknownShipError
+from .fuel import parse_economics
 from .spec import (
     EngineSpec,
     HullSpec,
@@ -197,6 +198,7 @@ def parse_ship(text: str, source: str, condition: str | None = None) -> ShipSpec
         sources=tuple(str(s) for s in sources),
         content_hash=digest,
         performance_model=_performance_model(root, source),
+        economics=parse_economics(root, source),
     )
 
 

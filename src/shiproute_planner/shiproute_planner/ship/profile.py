@@ -114,6 +114,11 @@ class ProfileModel:
             ds = xr.load_dataset(path)
         except (OSError, ValueError) as exc:
             raise ProfileError(f"{path}: cannot read NetCDF profile: {exc}") from exc
+        made_for = str(ds.attrs.get("ship", "") or "")
+        if made_for and made_for != ship.name:
+            raise ProfileError(f"{path}: profile of ship '{made_for}', not of '{ship.name}' "
+                               "(a model file for another ship)")
+        self.condition = str(ds.attrs.get("loading_condition", "") or "")
         axis = "rpm" if "rpm" in ds.dims else "stw_kn" if "stw_kn" in ds.dims else None
         if axis is None:
             raise ProfileError(f"{path}: needs an 'rpm' or 'stw_kn' dimension")

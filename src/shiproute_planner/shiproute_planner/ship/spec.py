@@ -119,6 +119,8 @@ class ShipSpec:
     # planner model the file asks for: "" (physics), "kwon", "profile:PATH" or "learned:PATH";
     # relative paths resolved against the ship file's folder
     performance_model: str = ""
+    # fuel_type and economics entries as (key, value) pairs (`ship.fuel.parse_economics`)
+    economics: tuple[tuple[str, object], ...] = ()
 
     @property
     def mean_draft_m(self) -> float:

@@ -1,0 +1,48 @@
+"""How much time the route encoding of a leg spans for an objective that wants to arrive
+early. The encoding has one stage per `stage_s` of the window it is given, and the GA can
+only move the arrival within about a stage of that window's end; so an objective that values
+time searches in the window it needs, while the RTA stays the constraint:
+
+- eta: the great circle between the leg's ends at the ship's top calm-water speed, x 1.1;
+- cost: the same distance at the calm-water speed that minimises the cost per metre,
+  (fuel price x fuel rate + charter rate) / speed, x 1.1, and never below the eta window;
+- fuel, distance, co2: the whole window up to the RTA.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from .objectives import ObjectiveTerms
+
+MARGIN = 1.1  # weather and the route's detour over the great circle
+N_RPM = 60
+
+
+def search_window_s(terms: ObjectiveTerms | None, model: Any, distance_m: float,
+                    window_s: float) -> float:
+    """Seconds the encoding should span (at most `window_s`, the time to the RTA)."""
+    if terms is None or terms.name not in ("eta", "cost"):
+        return window_s
+    from .ship import SeaState
+
+    spec = getattr(model, "ship", None)
+    if spec is None:
+        return window_s
+    rpm = np.linspace(spec.engine.rpm_min, spec.engine.rpm_max, N_RPM)
+    try:
+        perf = model.evaluate(rpm, np.zeros(N_RPM), SeaState.calm(N_RPM))
+    except (ValueError, ArithmeticError):
+        return window_s
+    v = np.asarray(perf.stw_m_s, dtype=float)
+    ok = np.isfinite(v) & (v > 0.1)
+    if not np.any(ok):
+        return window_s
+    fastest_s = MARGIN * distance_m / float(v[ok].max())
+    if terms.name == "eta":
+        return min(fastest_s, window_s)
+    per_m = (terms.per_t_fuel * np.asarray(perf.fuel_t_per_h)[ok] + terms.per_h) / v[ok]
+    best_v = float(v[ok][int(np.argmin(per_m))])
+    return min(max(MARGIN * distance_m / best_v, fastest_s), window_s)
