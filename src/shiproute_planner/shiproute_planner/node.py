@@ -321,7 +321,8 @@ class PlannerNode(Node):
                 request, origin=str(self._p("origin")), ship=str(self._p("ship")),
                 objective=str(self._p("objective")), method=str(self._p("method")),
                 rta=str(self._p("rta")), position=self._fix(),
-                departure_time=str(self._p("departure_time")), clock_s=self._clock_s())
+                departure_time=str(self._p("departure_time")), clock_s=self._clock_s(),
+                ship_model=str(self._p("ship_model")))
         except Exception as err:  # every refusal is an answer, never an exception
             reason = str(err) if isinstance(err, PlannerError | ValueError) else repr(err)
             self._drops.drop("voyage_requests", reason)

@@ -44,9 +44,6 @@ def check_parameter(name: str, value: Any) -> str | None:
         return "ship must name a bundled ship or a ship file"
     if name == "ship_model":
         return _ship_model_reason(str(value))
-    if name in ("ukc_margin_m", "clearance_nm") and (
-            not isinstance(value, int | float) or not value >= 0):
-        return f"{name} must be a non-negative number, got {value!r}"
     if name in ("bathymetry_files", "zones_files", "approach_files"):
         missing = [p.strip() for p in str(value).split(",") if p.strip()
                    and not Path(p.strip()).is_file()]

@@ -11,6 +11,7 @@ from ..errors import InvalidVoyageError, PlannerError
 from ..methods import Progress, method_names
 from ..plan_request import build_request, duration_s, run_request
 from ..planning import load_forecast
+from .option_ranges import PLAN_OPTIONS, check_options
 
 
 def parse_duration_s(text: str) -> float:
@@ -109,12 +110,11 @@ def main(argv: list[str]) -> int:
     from ..io.summary import write_geojson, write_json
 
     try:
+        check_options(args, PLAN_OPTIONS, budget_option="--budget")
         req = build_request(
             origin=args.origin, destination=args.destination, depart=args.depart, rta=args.rta,
             via=args.via, ship=args.ship, objective=args.objective, method=args.method,
             model=args.model, budget=args.budget, seed=args.seed, stage_hours=args.stage_hours)
-        if args.persistence_hours < 0:
-            raise InvalidVoyageError("--persistence-hours must be >= 0")
         forecast = (load_forecast(args.forecast, waves_from_wind=not args.no_wave_estimate)
                     if args.forecast else None)
         # build the sampler outside the budget: --budget is planning time, not file loading
