@@ -371,6 +371,7 @@ def test_bad_voyage_refused_with_reason(nodes: Any, case: str) -> None:
             "unknown_ship": "flying_dutchman", "on_land": "land", "nan_position": "latitude",
             "bad_objective": "objective", "missing_model": "missing_model.nc"}[case]
     assert word.lower() in ans.message.lower(), ans.message
+    assert not ans.message.startswith(("ModelFileError(", "UnknownShipError(")), ans.message
     _assert_alive(weather, planner)
     _good_plan_check(peer, good)
 
