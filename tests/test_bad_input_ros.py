@@ -339,10 +339,22 @@ def test_bad_ship_state_dropped_counted(nodes: Any, case: str) -> None:
     _good_plan_check(peer, good)
 
 
+def _ship_with_missing_model(work: Any) -> str:
+    """The bundled 4,600 TEU ship file naming a learned model file that is not there."""
+    from pathlib import Path
+
+    import shiproute_planner.ships as ships
+
+    text = (Path(ships.__file__).parent / "container_4600teu.yaml").read_text()
+    path = work / "ship_missing_model.yaml"
+    path.write_text(text + "\nperformance_model: learned:missing_model.nc\n")
+    return str(path)
+
+
 @pytest.mark.parametrize("case", ["unknown_port", "rta_before_departure", "unknown_ship",
-                                  "on_land", "nan_position", "bad_objective"])
+                                  "on_land", "nan_position", "bad_objective", "missing_model"])
 def test_bad_voyage_refused_with_reason(nodes: Any, case: str) -> None:
-    peer, good, _ref, _f, weather, planner = nodes
+    peer, good, _ref, forecast, weather, planner = nodes
     kw = {"unknown_port": {"destination": "Atlantis"},
           "rta_before_departure": {"destination": "Long Beach", "rta_s": DEPART_S - 86400},
           "unknown_ship": {"destination": "Long Beach", "ship": "flying_dutchman"},
@@ -350,13 +362,16 @@ def test_bad_voyage_refused_with_reason(nodes: Any, case: str) -> None:
                       "destination_lon_deg": -100.0},
           "nan_position": {"destination": "", "destination_lat_deg": math.nan,
                            "destination_lon_deg": -118.0},
-          "bad_objective": {"destination": "Long Beach", "objective": "speed"}}[case]
+          "bad_objective": {"destination": "Long Beach", "objective": "speed"},
+          "missing_model": {"destination": "Long Beach",
+                            "ship": _ship_with_missing_model(forecast.parent)}}[case]
     ans = peer.set_voyage(**kw)
     assert not ans.accepted
     word = {"unknown_port": "Atlantis", "rta_before_departure": "RTA",
             "unknown_ship": "flying_dutchman", "on_land": "land", "nan_position": "latitude",
-            "bad_objective": "objective"}[case]
+            "bad_objective": "objective", "missing_model": "missing_model.nc"}[case]
     assert word.lower() in ans.message.lower(), ans.message
+    assert not ans.message.startswith(("ModelFileError(", "UnknownShipError(")), ans.message
     _assert_alive(weather, planner)
     _good_plan_check(peer, good)
 
@@ -403,10 +418,17 @@ def test_goal_aborts_as_soon_as_planning_fails(nodes: Any) -> None:
     peer.state = (36.2, 138.2, DEPART_S + 600)  # valid fix, but in the Japanese Alps
     _settle_state(peer)
     try:
-        result, took = peer.plan_goal(budget_s=5.0)
+        n0 = int(peer.planner_diag().get("plan_requests_dropped", "0"))
+        # a minute of budget: a goal that waited for its budget instead of the failure would
+        # take 60 s; planning fails in well under a second and the goal ends with it
+        result, took = peer.plan_goal(budget_s=60.0, timeout_s=120.0)
         assert not result.success
         assert "land" in result.message, result.message
-        assert took < 10.0  # planning fails in well under a second; the goal ends with it
+        assert took < 10.0
+        diag = peer.spin_until(
+            lambda: int(peer.planner_diag().get("plan_requests_dropped", "0")) > n0
+            and peer.planner_diag(), 10, "the failed goal counted")
+        assert "land" in diag["plan_requests_last_reason"]
     finally:
         peer.state = (BUSAN[0], BUSAN[1], DEPART_S)
         _settle_state(peer)
@@ -415,8 +437,29 @@ def test_goal_aborts_as_soon_as_planning_fails(nodes: Any) -> None:
 
 
 def test_counts_reach_diagnostics(nodes: Any) -> None:
-    peer, *_ = nodes
+    peer, good, _ref, forecast, weather, planner = nodes
     diag = peer.spin_until(lambda: peer.planner_diag(), 5, "diagnostics")
-    for kind in ("ship_states", "forecast_slices", "forecast_cycles", "voyage_requests"):
+    for kind in ("ship_states", "forecast_slices", "forecast_cycles", "voyage_requests",
+                 "plan_requests"):
         assert f"{kind}_dropped" in diag and f"{kind}_last_reason" in diag
+    # a refused goal (budget outside 0.05..3600 s) is counted with its reason
+    n0 = int(diag["plan_requests_dropped"])
+    result, _ = peer.plan_goal(budget_s=1e5)
+    assert not result.success and "budget_s" in result.message
+    diag = peer.spin_until(lambda: int(peer.planner_diag()["plan_requests_dropped"]) > n0
+                           and peer.planner_diag(), 10, "refused goal counted")
+    assert "budget_s" in diag["plan_requests_last_reason"]
+    # a refused forecast load is counted by the weather node, the cycle in force named
+    name = "shiproute_weather: forecast"
+    bad = forecast.parent / "not_a_forecast.nc"
+    bad.write_text("this is not NetCDF")
+    n0 = int(peer.diag.get(name, {}).get("loads_refused", "0"))
+    ans = peer.call(peer.load, peer.types["LoadForecast"].Request(paths=[str(bad)]),
+                    timeout_s=60)
+    assert not ans.accepted and "not_a_forecast.nc" in ans.message
+    wdiag = peer.spin_until(lambda: int(peer.diag.get(name, {}).get("loads_refused", "0"))
+                            > n0 and peer.diag[name], 10, "weather refusal counted")
+    assert "not_a_forecast.nc" in wdiag["loads_refused_last_reason"]
+    assert wdiag["cycle_id"] == good
+    _assert_alive(weather, planner)
 

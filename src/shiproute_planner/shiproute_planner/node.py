@@ -57,6 +57,7 @@ from .errors import PlannerError
 from .intake_keys import RejectedKeys, assembly_key
 from .plan_types import RoutePlan
 from .replan_policy import ReplanThresholds, track_deviation
+from .ship.errors import ShipModelError
 from .voyage_params import check_parameter, parse_utc
 from .voyage_request import VoyageRequest, check_voyage_request
 
@@ -364,9 +365,11 @@ class PlannerNode(Node):
                 request, origin=str(self._p("origin")), ship=str(self._p("ship")),
                 objective=str(self._p("objective")), method=str(self._p("method")),
                 rta=str(self._p("rta")), position=self._fix(),
-                departure_time=str(self._p("departure_time")), clock_s=self._clock_s())
+                departure_time=str(self._p("departure_time")), clock_s=self._clock_s(),
+                ship_model=str(self._p("ship_model")))
         except Exception as err:  # every refusal is an answer, never an exception
-            reason = str(err) if isinstance(err, PlannerError | ValueError) else repr(err)
+            known = PlannerError | ShipModelError | ValueError  # their messages name the input
+            reason = str(err) if isinstance(err, known) else repr(err)
             self._drops.drop("voyage_requests", reason)
             self.get_logger().warning(f"voyage refused: {reason}")
             res.accepted, res.message = False, reason

@@ -10,6 +10,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
+from .checks.parameters import require_number
 from .errors import InvalidVoyageError
 from .objectives import PLAN_OBJECTIVES as OBJECTIVES
 from .objectives import Economics
@@ -131,8 +132,14 @@ class PlanRequest:
             raise InvalidVoyageError("the RTA must be after the departure time")
         if not 2 <= self.front_points <= 25:
             raise InvalidVoyageError(f"front points must be 2..25, got {self.front_points}")
-        if not 0 < self.stage_hours <= 48:
-            raise InvalidVoyageError(f"stage hours must be in (0, 48], got {self.stage_hours}")
+        for name, value in self.numbers().items():
+            require_number(name, value)  # the node's parameter ranges: one table
+
+    def numbers(self) -> dict[str, object]:
+        """The request's numeric settings under the planner's parameter names."""
+        budget = ({"budget_evaluations": self.budget.evaluations} if self.budget.evaluations
+                  else {"budget_s": self.budget.wall_s})
+        return {"stage_hours": self.stage_hours, "rng_seed": self.seed, **budget}
 
 
 def build_request(*, origin: str, destination: str, depart: str, rta: str,

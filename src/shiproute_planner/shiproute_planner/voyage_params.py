@@ -50,9 +50,6 @@ def check_parameter(name: str, value: Any) -> str | None:
             isinstance(value, bool) or not isinstance(value, int | float)
             or not -1.0 <= value < 1e7):
         return f"{name} must be a number in 0..1e7 (or -1: ship file / default), got {value!r}"
-    if name in ("ukc_margin_m", "clearance_nm") and (
-            not isinstance(value, int | float) or not value >= 0):
-        return f"{name} must be a non-negative number, got {value!r}"
     if name in ("bathymetry_files", "zones_files", "approach_files"):
         missing = [p.strip() for p in str(value).split(",") if p.strip()
                    and not Path(p.strip()).is_file()]

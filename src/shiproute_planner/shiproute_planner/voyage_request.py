@@ -50,7 +50,8 @@ def _iso(t_s: float) -> str:
 
 def check_voyage_request(req: VoyageRequest, *, origin: str, ship: str, objective: str,
                          method: str, rta: str, position: tuple[float, float, float] | None,
-                         departure_time: str, clock_s: float) -> CheckedVoyage:
+                         departure_time: str, clock_s: float,
+                         ship_model: str = "") -> CheckedVoyage:
     """Check `req` with the current voyage's values for what it leaves empty. The voyage
     starts at the ship's position and time when one is known, else at `origin` at
     `departure_time` (or the clock)."""
@@ -67,7 +68,8 @@ def check_voyage_request(req: VoyageRequest, *, origin: str, ship: str, objectiv
     elif clock_s > 0:
         depart_s = clock_s
     check = check_voyage(start, dest, depart_s, rta_s, req.ship.strip() or ship,
-                         objective=req.objective.strip() or objective, method=method)
+                         objective=req.objective.strip() or objective, method=method,
+                         ship_model=ship_model)
     params: dict[str, object] = {"destination": dest}
     if req.rta_s != 0.0:
         params["rta"] = _iso(rta_s)

@@ -103,7 +103,7 @@ def _run(path: str, topic: str, sub: subprocess.Popen[str], timeout_s: float,
     from .convert import DEFAULT_SLICE_ENCODING, cycle_to_msg, slice_to_msg, wire_bytes
     from .cycle_builder import CycleConfig, build_cycle
     from .node import latched
-    from .stream import load_slices, streamable, warm_array_backends
+    from .stream import load_encoded, streamable, warm_array_backends
 
     rclpy.init()
     node = rclpy.create_node("bench_weather_publisher")
@@ -117,15 +117,16 @@ def _run(path: str, topic: str, sub: subprocess.Popen[str], timeout_s: float,
     warm_array_backends()  # as the node does at start
     c0 = _cpu_s()
     t0 = time.perf_counter()
+    msgs: list[ForecastSlice]  # encoded whole before the announcement, as the node does
     if streamable([path], cfg):  # what the node does for one NetCDF file
-        info, slices, _ = load_slices(path, cfg)
+        info, msgs, _ = load_encoded(path, cfg, lambda s: slice_to_msg(s, encoding=encoding))
     else:
         info, slices, _ = build_cycle([path], cfg)
-    msgs = []  # encoded whole before the announcement, as the node does
-    for k in range(len(slices)):
-        s, slices[k] = slices[k], None  # type: ignore[call-overload]  # free as we go
-        msgs.append(slice_to_msg(s, encoding=encoding))
-        del s
+        msgs = []
+        for k in range(len(slices)):
+            s, slices[k] = slices[k], None  # type: ignore[call-overload]  # free as we go
+            msgs.append(slice_to_msg(s, encoding=encoding))
+            del s
     t1 = time.perf_counter()
     c1 = _cpu_s()
     sent_bytes = max((wire_bytes(m) for m in msgs), default=0)

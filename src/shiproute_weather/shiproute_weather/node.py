@@ -40,7 +40,7 @@ from .cycle_builder import MAX_SLICE_BYTES, MAX_SLICES, CycleConfig, build_cycle
 from .errors import WeatherError
 from .heap import return_freed_memory, return_large_blocks_at_once
 from .scenarios import scenario_path
-from .stream import load_slices, streamable, warm_array_backends
+from .stream import load_encoded, streamable, warm_array_backends
 from .watch import DirectoryWatcher
 
 CYCLE_TOPIC = "/shiproute/forecast/cycle"
@@ -195,19 +195,21 @@ class WeatherNode(Node):
         try:
             if not req.paths:
                 raise WeatherError("no paths given")
-            if streamable(req.paths, self.cfg_base):
-                info, slices, notes = load_slices(req.paths[0], self.cfg_base)  # block-wise
-            else:
-                info, slices, notes = build_cycle(req.paths, self.cfg_base)
             # the whole cycle is encoded before it is announced: an encoding failure leaves
             # the last good cycle in force, and the announcement is followed by slices at
             # the transport's pace (~2 ms per slice of encoding no longer sits in between)
             encoding = str(self.get_parameter("slice_encoding").value)
-            kept: list[ForecastSlice] = []
-            for k in range(len(slices)):
-                s, slices[k] = slices[k], None  # type: ignore[call-overload]  # free as we go
-                kept.append(slice_to_msg(s, None, encoding))
-                del s
+            kept: list[ForecastSlice]
+            if streamable(req.paths, self.cfg_base):  # block-wise, encoded block by block
+                info, kept, notes = load_encoded(
+                    req.paths[0], self.cfg_base, lambda s: slice_to_msg(s, None, encoding))
+            else:
+                info, slices, notes = build_cycle(req.paths, self.cfg_base)
+                kept = []
+                for k in range(len(slices)):
+                    s, slices[k] = slices[k], None  # type: ignore[call-overload]  # free
+                    kept.append(slice_to_msg(s, None, encoding))
+                    del s
             nbytes = max((wire_bytes(m) for m in kept), default=0)
             cycle = cycle_to_msg(info)
         except Exception as exc:  # a bad file must never stop the node

@@ -7,9 +7,10 @@ publisher drops them, leaving little more than the middleware history.
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import replace
 from pathlib import Path
+from typing import TypeVar
 
 import numpy as np
 import xarray as xr
@@ -30,6 +31,8 @@ from .validate import validate
 #: history): 16 (~23 MB at 0.5 deg) instead of 32 lowers the peak by ~22 MB for ~13 ms of
 #: per-block overhead each.
 BLOCK_TIMES = 16
+
+T = TypeVar("T")
 
 
 def streamable(paths: list[str], cfg: CycleConfig) -> bool:
@@ -56,7 +59,8 @@ def _wind_without_waves(path: str) -> bool:
     return cv.WIND_U in found and not found & waves
 
 
-def _blocks(path: str, cfg: CycleConfig) -> Iterator[xr.Dataset]:
+def _blocks(path: str, cfg: CycleConfig) -> Iterator[tuple[int, xr.Dataset]]:
+    """(valid times the file yields in all, block) for each block of valid times."""
     import netCDF4
 
     netCDF4.set_chunk_cache(NETCDF_CHUNK_CACHE_BYTES, 61, 0.75)
@@ -68,6 +72,7 @@ def _blocks(path: str, cfg: CycleConfig) -> Iterator[xr.Dataset]:
     with raw:
         lazy = rename_coords(raw, path)
         n = lazy.sizes["time"]
+        total = min(n, cfg.max_slices)
         attrs: dict[str, str] | None = None
         last_t = None
         for i in range(0, min(n, cfg.max_slices), BLOCK_TIMES):
@@ -90,7 +95,7 @@ def _blocks(path: str, cfg: CycleConfig) -> Iterator[xr.Dataset]:
             last_t = t[-1]
             if cfg.box is not None:
                 block = subset(block, cfg.box)
-            yield snap_grid(block)
+            yield total, snap_grid(block)
 
 
 def load_slices(path: str, cfg: CycleConfig
@@ -102,12 +107,29 @@ def load_slices(path: str, cfg: CycleConfig
     memory block by block (the middleware history then takes its place). The grid is thinned
     like `cycle_builder.thin` when a slice would exceed `cfg.max_slice_bytes`.
     """
-    slices: list[SliceData] = []
+    return load_encoded(path, cfg, _keep)
+
+
+def _keep(s: SliceData) -> SliceData:
+    return s
+
+
+def load_encoded(path: str, cfg: CycleConfig, encode: Callable[[SliceData], T]
+                 ) -> tuple[CycleInfo, list[T], list[str]]:
+    """`load_slices` with each slice passed through `encode` as soon as its block is read.
+
+    The float32 slices of a block are dropped once encoded, so a caller that encodes to the
+    wire form (half the bytes when packed) never holds the whole cycle as float32: the peak of
+    a reload is the encoded cycle plus one block instead of the float32 cycle beside it.
+    Each slice handed to `encode` already carries its final index and the cycle's count.
+    """
+    out: list[T] = []
     first: xr.Dataset | None = None
     stride = 1
     notes: list[str] = []
     masked: dict[str, int] = {}
-    for block in _blocks(path, cfg):
+    times: list[int] = []
+    for total, block in _blocks(path, cfg):
         for n, k in masked_counts(block).items():
             masked[n] = masked.get(n, 0) + k
         if first is None:
@@ -125,12 +147,16 @@ def load_slices(path: str, cfg: CycleConfig
             first = block.isel(time=[0])
             for n in masked:
                 first[n].attrs["masked_outliers"] = 0  # the totals are set below
-        slices.extend(dataset_to_slices(block))
+        for sl in dataset_to_slices(block):
+            times.append(sl.valid_time_ns)
+            out.append(encode(replace(sl, slice_index=len(out), slice_count=total)))
+        del block
     if first is None:
         raise WeatherError(f"{path}: no valid time")
-    n = len(slices)
-    slices = [replace(sl, slice_index=k, slice_count=n) for k, sl in enumerate(slices)]
-    t = np.array([sl.valid_time_ns for sl in slices], dtype=np.int64)
+    n = len(out)
+    if n != total:  # every block yields all its valid times: a mismatch is a loader bug
+        raise WeatherError(f"{path}: read {n} valid times, expected {total}")
+    t = np.array(times, dtype=np.int64)
     step = float((t[1] - t[0]) / 1e9) if n > 1 else 0.0
     for name, k in masked.items():
         first[name].attrs["masked_outliers"] = k
@@ -138,7 +164,7 @@ def load_slices(path: str, cfg: CycleConfig
     info = replace(cycle_info(first, [path]), first_valid_time_ns=int(t[0]),
                    last_valid_time_ns=int(t[-1]), step_s=step, slice_count=n,
                    notes=tuple(report))
-    return info, slices, report + notes
+    return info, out, report + notes
 
 
 def warm_array_backends() -> None:

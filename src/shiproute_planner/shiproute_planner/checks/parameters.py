@@ -48,20 +48,34 @@ RANGES: dict[str, Range] = {
         "corrupt or unset stamp"),
     "ship_state_max_lead_h": Range(
         0.0, 24.0, "h", "a fix from the future is a clock error; an hour covers clock skew"),
+    "ukc_margin_m": Range(
+        0.0, 10.0, "m", "UKC policies ask 0.3-2 m on top of squat and wave allowance; above "
+        "10 m the check would close shelf seas and every port approach"),
+    "clearance_nm": Range(
+        0.0, 50.0, "NM", "beyond 50 NM from land the Dover Strait, Malacca and every port "
+        "approach become impassable"),
+    "persistence_hours": Range(
+        0.0, 240.0, "h", "a forecast's last fields say little of the weather days later; "
+        "beyond 10 days give a climatology instead"),
+    "budget_evaluations": Range(
+        1, 72_000_000, "evaluations", "a plan needs at least one evaluation; 72 M is the "
+        "hour of the wall-time budget's limit at 20,000 evaluations/s", integer=True),
 }
 
 
-def check_number(name: str, value: object) -> str | None:
-    """Why `value` is refused for numeric parameter `name` (None: accepted or not numeric)."""
+def check_number(name: str, value: object, label: str = "") -> str | None:
+    """Why `value` is refused for numeric parameter `name` (None: accepted or not numeric);
+    the reason names `label` (e.g. the CLI option) when given, else the parameter."""
     rule = RANGES.get(name)
     if rule is None:
         return None
+    label = label or name
     if isinstance(value, bool) or not isinstance(value, int | float):
-        return f"{name} must be a number, got {value!r}"
+        return f"{label} must be a number, got {value!r}"
     if rule.integer and not isinstance(value, int):
-        return f"{name} must be an integer, got {value!r}"
+        return f"{label} must be an integer, got {value!r}"
     if not (math.isfinite(value) and rule.lowest <= value <= rule.highest):
-        return (f"{name} = {value!r} is outside {rule.lowest:g}..{rule.highest:g} "
+        return (f"{label} = {value!r} is outside {rule.lowest:g}..{rule.highest:g} "
                 f"{rule.unit}".rstrip() + f": {rule.why}")
     return None
 

@@ -76,7 +76,7 @@ def max_calm_speed_kn(spec: Any) -> float:
 def check_voyage(origin: str | Port, destination: str | Port, depart_s: float | None,
                  rta_s: float,
                  ship: Any, *, land: Any = None, objective: str = "fuel",
-                 method: str = "seed_ga") -> VoyageCheck:
+                 method: str = "seed_ga", ship_model: str = "") -> VoyageCheck:
     """Resolve and check a voyage (see the module docstring); raises on what is invalid."""
     from shiproute_core.geodesy import inverse
 
@@ -100,9 +100,22 @@ def check_voyage(origin: str | Port, destination: str | Port, depart_s: float | 
     if isinstance(ship, str) and not ship.strip():
         raise InvalidVoyageError("ship is empty; expected a bundled ship name or a ship file")
     spec = ship if isinstance(ship, ShipSpec) else load_ship(ship)
+    check_model_file(ship_model or spec.performance_model)
     a, b = ports
     _, dist_m = inverse(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)
     dist_nm = float(dist_m) / 1852.0
     need_kn = 0.0 if depart_s is None else dist_nm / ((rta_s - depart_s) / 3600.0)
     return VoyageCheck(a, b, depart_s, float(rta_s), spec, dist_nm, need_kn,
                        max_calm_speed_kn(spec))
+
+
+def check_model_file(choice: str) -> None:
+    """The ship model a plan would use (the node's ship_model, else the ship file's entry)
+    exists: a profile or learned model names a file that is there (ModelFileError if not)."""
+    from pathlib import Path
+
+    from ..learned.errors import ModelFileError
+
+    kind, sep, path = choice.strip().partition(":")
+    if kind in ("profile", "learned") and sep and not Path(path).is_file():
+        raise ModelFileError(f"ship model {choice!r}: {kind} model file {path} does not exist")

@@ -63,9 +63,11 @@ def main(argv: list[str]) -> int:
     from ..planning import route_limits
     from ..route_check import check_track
     from ..ship import load_ship
+    from .option_ranges import CHECK_OPTIONS, check_options
 
     try:
-        for name, v in (("--clearance-nm", args.clearance_nm), ("--speed-kn", args.speed_kn),
+        check_options(args, CHECK_OPTIONS)
+        for name, v in (("--speed-kn", args.speed_kn),
                         ("--port-clearance-nm", args.port_clearance_nm)):
             if not (v >= 0 and np.isfinite(v)):
                 raise PlannerError(f"{name} {v} must be a non-negative number")

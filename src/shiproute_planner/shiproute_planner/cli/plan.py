@@ -17,6 +17,7 @@ from ..objectives import (
 from ..plan_request import build_request, duration_s, run_request
 from ..planning import load_forecast
 from ..ship.fuel import CO2_FACTOR_T_PER_T
+from .option_ranges import PLAN_OPTIONS, check_options
 
 
 def parse_duration_s(text: str) -> float:
@@ -133,6 +134,7 @@ def main(argv: list[str]) -> int:
     from ..io.summary import write_geojson, write_json
 
     try:
+        check_options(args, PLAN_OPTIONS, budget_option="--budget")
         req = build_request(
             origin=args.origin, destination=args.destination, depart=args.depart, rta=args.rta,
             via=args.via, ship=args.ship, objective=args.objective, method=args.method,
@@ -141,8 +143,6 @@ def main(argv: list[str]) -> int:
                                    else "3s"),
             loading=args.loading, fuel_type=args.fuel_type, fuel_price_usd_per_t=args.fuel_price,
             charter_usd_per_day=args.charter_rate, front_points=args.front_points)
-        if args.persistence_hours < 0:
-            raise InvalidVoyageError("--persistence-hours must be >= 0")
         forecast = (load_forecast(args.forecast, waves_from_wind=not args.no_wave_estimate)
                     if args.forecast else None)
         # build the sampler outside the budget: --budget is planning time, not file loading
