@@ -58,6 +58,8 @@ from .intake_keys import RejectedKeys, assembly_key
 from .plan_types import RoutePlan
 from .replan_policy import ReplanThresholds, track_deviation
 from .voyage_params import check_parameter, parse_utc
+from .convert import port_call_from_msg
+from .voyage.node_calls import node_port_calls
 from .voyage_request import VoyageRequest, check_voyage_request
 
 LATCHED = QoSProfile(
@@ -94,7 +96,12 @@ PARAMETERS: dict[str, tuple[object, str]] = {
                    "file's performance_model, else physics"),
     "objective": ("fuel", "fuel | distance | eta"),
     "method": ("seed_ga", "route-finding method"),
-    "stage_hours": (12.0, "fixed stage duration [h]"),
+    "stage_hours": (0.0, "stage duration [h]; 0 = from the voyage (12 h for an ocean "
+                    "crossing, ~12 stages for a short passage)"),
+    "rta_tolerance_s": (300.0, "an arrival this much after the RTA or a port's latest arrival "
+                        "is on time [s]"),
+    "port_calls": ("", "intermediate port calls, ';'-separated "
+                   "PORT[@EARLIEST..LATEST][+BERTH_H] (ISO UTC times); set by SetVoyage"),
     "budget_s": (3.0, "wall-time budget of one plan [s]"),
     "rng_seed": (0, "seed of the GA's random generator"),
     "seed_pool_dir": ("", "seed pool directory (persists across restarts); '' = none"),
@@ -315,7 +322,8 @@ class PlannerNode(Node):
         request = VoyageRequest(
             destination=req.destination, destination_lat_deg=float(req.destination_lat_deg),
             destination_lon_deg=float(req.destination_lon_deg), rta_s=posix_s(req.rta),
-            ship=req.ship, objective=req.objective)
+            ship=req.ship, objective=req.objective,
+            port_calls=tuple(port_call_from_msg(c) for c in req.port_calls))
         try:
             checked = check_voyage_request(
                 request, origin=str(self._p("origin")), ship=str(self._p("ship")),
@@ -587,7 +595,9 @@ class PlannerNode(Node):
             objective=str(self._p("objective")), method=str(self._p("method")),
             budget_s=inputs.budget_s if inputs.budget_s is not None
             else float(self._p("budget_s")), seed=int(self._p("rng_seed")),
-            stage_hours=float(self._p("stage_hours")), previous_plan=inputs.previous,
+            stage_hours=float(self._p("stage_hours")) or None, previous_plan=inputs.previous,
+            port_calls=node_port_calls(str(self._p("port_calls")), depart),
+            rta_tolerance_s=float(self._p("rta_tolerance_s")),
             position=position, seed_pool_dir=pool, progress=self._on_progress,
             cancel=self._cancel, ship_model=str(self._p("ship_model")),
             bathymetry=_paths(str(self._p("bathymetry_files"))),

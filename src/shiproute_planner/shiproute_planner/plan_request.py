@@ -13,6 +13,8 @@ from typing import Any
 from .errors import InvalidVoyageError
 from .plan_types import RoutePlan
 from .planning import plan_voyage, to_posix_s
+from .voyage.port_calls import PortCall, parse_port_calls
+from .voyage.stage_length import RTA_TOLERANCE_S, check_rta_tolerance_s, check_stage_hours
 
 OBJECTIVES = ("fuel", "distance", "eta")
 # "" = the ship file's performance_model entry, else physics; "physics" (alias "fast") is the
@@ -111,7 +113,9 @@ class PlanRequest:
     model: str = ""
     budget: Budget = field(default_factory=Budget)
     seed: int = 0
-    stage_hours: float = 12.0
+    stage_hours: float | None = None  # None: derived from the voyage (voyage.stage_length)
+    port_calls: tuple[PortCall, ...] = ()  # the vias' windows and berth times
+    rta_tolerance_s: float = RTA_TOLERANCE_S
 
     def __post_init__(self) -> None:
         if self.objective not in OBJECTIVES:
@@ -124,20 +128,25 @@ class PlanRequest:
                 "profile:FILE.nc or learned:FILE.nc")
         if not self.rta_s > self.depart_s:
             raise InvalidVoyageError("the RTA must be after the departure time")
-        if not 0 < self.stage_hours <= 48:
-            raise InvalidVoyageError(f"stage hours must be in (0, 48], got {self.stage_hours}")
+        check_stage_hours(self.stage_hours)
+        check_rta_tolerance_s(self.rta_tolerance_s)
 
 
 def build_request(*, origin: str, destination: str, depart: str, rta: str,
                   via: Sequence[str] = (), ship: str = "container_4600teu",
                   objective: str = "fuel", method: str = "seed_ga", model: str = "",
-                  budget: str = "3s", seed: int = 0, stage_hours: float = 12.0) -> PlanRequest:
-    """A request from user text (raises InvalidVoyageError naming the bad input)."""
+                  budget: str = "3s", seed: int = 0, stage_hours: float | None = None,
+                  rta_tolerance: str = "5m") -> PlanRequest:
+    """A request from user text (raises InvalidVoyageError naming the bad input); `via`
+    items are port calls `PORT[@EARLIEST..LATEST][+BERTH_H]` (`voyage.port_calls`)."""
     depart_s = parse_time_s(depart, "departure")
-    names, rtas = parse_vias(via)
+    calls = parse_port_calls(list(via), depart_s)
+    names = tuple(c.port for c in calls)
+    rtas = tuple(c.latest_s for c in calls)
     return PlanRequest(origin.strip(), destination.strip(), depart_s, parse_rta_s(rta, depart_s),
                        ship.strip(), names, rtas, objective, method, model, Budget.parse(budget),
-                       int(seed), float(stage_hours))
+                       int(seed), None if stage_hours is None else float(stage_hours), calls,
+                       duration_s(rta_tolerance))
 
 
 def ship_and_model(ship: str, model: str) -> tuple[Any, str]:
@@ -163,4 +172,5 @@ def run_request(req: PlanRequest, forecast: Any = None, *, cycle_id: str = "",
         method=req.method,
         cycle_id=cycle_id, budget_s=req.budget.wall_s, max_evaluations=req.budget.evaluations,
         seed=req.seed, stage_hours=req.stage_hours, seed_pool_dir=seed_pool_dir,
+        port_calls=req.port_calls, rta_tolerance_s=req.rta_tolerance_s,
         progress=progress, **extra)

@@ -27,7 +27,11 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--from", dest="origin", required=True, help="port name, UN/LOCODE or lat,lon")
     ap.add_argument("--to", dest="destination", required=True)
     ap.add_argument("--via", action="append", default=[],
-                    help="intermediate port (repeatable); optional '@TIME' sets its RTA")
+                    metavar="PORT[@EARLIEST..LATEST][+BERTH_H]",
+                    help="port call (repeatable): optional arrival window (ISO UTC times or "
+                         "offsets after departure such as 3d; either end may be left out; "
+                         "'@TIME' alone is a latest arrival) and berth time in hours; the "
+                         "leg times are scheduled together for the least fuel")
     ap.add_argument("--depart", required=True, help="ISO 8601 UTC, e.g. 2026-03-03T18:00Z")
     ap.add_argument("--rta", required=True,
                     help="required time of arrival: ISO time or duration after departure (13d)")
@@ -54,7 +58,12 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--budget", default="3s",
                     help="wall time (3s) or route evaluations (4000ev: reproducible)")
     ap.add_argument("--seed", type=int, default=0, help="random seed")
-    ap.add_argument("--stage-hours", type=float, default=12.0)
+    ap.add_argument("--stage-hours", type=float, default=None,
+                    help="stage duration [h] (default: from the voyage, 12 h for an ocean "
+                         "crossing, shorter so a short passage gets ~12 stages)")
+    ap.add_argument("--rta-tolerance", default="5m",
+                    help="an arrival this much after the RTA (or a port's latest arrival) "
+                         "is on time (default 5m; e.g. 0, 90s, 10m)")
     ap.add_argument("--seed-pool", default=None, help="seed pool directory")
     ap.add_argument("--out", default=".", help="output directory")
     ap.add_argument("--name", default=None, help="output file stem (default from ports)")
@@ -112,7 +121,8 @@ def main(argv: list[str]) -> int:
         req = build_request(
             origin=args.origin, destination=args.destination, depart=args.depart, rta=args.rta,
             via=args.via, ship=args.ship, objective=args.objective, method=args.method,
-            model=args.model, budget=args.budget, seed=args.seed, stage_hours=args.stage_hours)
+            model=args.model, budget=args.budget, seed=args.seed, stage_hours=args.stage_hours,
+            rta_tolerance=args.rta_tolerance)
         if args.persistence_hours < 0:
             raise InvalidVoyageError("--persistence-hours must be >= 0")
         forecast = (load_forecast(args.forecast, waves_from_wind=not args.no_wave_estimate)
@@ -189,5 +199,11 @@ def format_summary(plan) -> str:
                      f"{', '.join(_short(n) for n in fc['fields'])}")
         for f in fc.get("source_files", []):
             lines.append(f"  from     {f}")
+    for row in plan.extra.get("port_calls", ()):
+        window = (f"  window {row['earliest'] or '..'} .. {row['latest'] or '..'}"
+                  if row["earliest"] or row["latest"] else "")
+        lines.append(f"call       {row['port']:<24s} arrive {row['arrival']}  depart "
+                     f"{row['departure']}{window}"
+                     + ("" if row["in_window"] else "  LATE"))
     lines += [f"warning    {w}" for w in plan.warnings]
     return "\n".join(lines)
