@@ -395,7 +395,7 @@ def test_parameters_and_goal_budget(nodes: Any) -> None:
     got = peer.call(peer.get_params, peer.types["GetParameters"].Request(
         names=["budget_s", "stage_hours"]))
     assert got.values[0].double_value == BUDGET_S  # the goal's budget was its own
-    assert got.values[1].double_value == 12.0
+    assert got.values[1].double_value == 0.0  # the default: derived from the voyage
 
 
 def test_goal_aborts_as_soon_as_planning_fails(nodes: Any) -> None:

@@ -45,6 +45,7 @@ from .convert import (
     plan_to_msg,
     plan_to_path,
     plan_to_rpm_profile,
+    port_call_from_msg,
     posix_s,
     ship_position,
     slice_fields,
@@ -57,9 +58,8 @@ from .errors import PlannerError
 from .intake_keys import RejectedKeys, assembly_key
 from .plan_types import RoutePlan
 from .replan_policy import ReplanThresholds, track_deviation
-from .voyage_params import check_parameter, parse_utc
-from .convert import port_call_from_msg
 from .voyage.node_calls import node_port_calls
+from .voyage_params import check_parameter, parse_utc
 from .voyage_request import VoyageRequest, check_voyage_request
 
 LATCHED = QoSProfile(

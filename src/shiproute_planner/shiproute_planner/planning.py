@@ -21,6 +21,7 @@ import numpy as np
 
 from .approach import Approach, CoastalPassage, approach_length_m, lane_approaches, sail_approach
 from .canals import route_canals, sail_canal
+from .checks.parameters import require_number
 from .depth_setup import depth_limits, with_depth_report
 from .errors import InvalidVoyageError, PlanCancelledError
 from .forecast_statement import forecast_statement, prepare_forecast
@@ -46,7 +47,6 @@ from .voyage.stage_length import (
     OCEAN_STAGE_H,
     RTA_TOLERANCE_S,
     check_rta_tolerance_s,
-    check_stage_hours,
     default_stage_hours,
     scaled_ga_config,
 )
@@ -248,7 +248,8 @@ def plan_voyage(
     time when it arrives within `rta_tolerance_s` of each deadline.
     """
     t0 = time.perf_counter()
-    stage_hours = check_stage_hours(stage_hours)
+    if stage_hours is not None:
+        require_number("stage_hours", stage_hours)
     rta_tolerance_s = check_rta_tolerance_s(rta_tolerance_s)
     if port_calls:
         via = [c.port for c in port_calls]

@@ -11,9 +11,10 @@ no more than the constant-RPM route over the same time.
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
 import pytest
-
 from shiproute_planner.bench.voyages import (
     MULTIPORT,
     optimised_stages,
@@ -36,7 +37,7 @@ def _land_findings(plan) -> list:
             len(wps) - 1]
     fixed = [tuple(f) for f in plan.extra.get("fixed_passages", ())]
     found = []
-    for a, b in zip(cuts[:-1], cuts[1:], strict=True):
+    for a, b in itertools.pairwise(cuts):
         lon = np.array([w.lon_deg for w in wps[a:b + 1]])
         lat = np.array([w.lat_deg for w in wps[a:b + 1]])
         skip = frozenset(k - a for s, e in fixed for k in range(s, e) if a <= k < b)

@@ -11,7 +11,6 @@ import itertools
 
 import numpy as np
 import pytest
-
 from shiproute_planner.errors import InvalidVoyageError
 from shiproute_planner.voyage.port_calls import parse_port_call
 from shiproute_planner.voyage.schedule import FuelRate, LegSpec, plan_schedule
@@ -124,3 +123,31 @@ def test_stage_length_fits_the_voyage():
             check_stage_hours(bad)
     assert move_scale(24) == pytest.approx(1.0)
     assert move_scale(6) > move_scale(24) > move_scale(96)
+
+
+def test_set_voyage_port_calls_round_trip_and_refusals():
+    """SetVoyage's port calls (ROS-free half): checked, stored as the node parameter and
+    read back unchanged; a window before departure or an unknown port is refused by name."""
+    from shiproute_planner.errors import PlannerError
+    from shiproute_planner.voyage.node_calls import node_port_calls
+    from shiproute_planner.voyage.port_calls import PortCall
+    from shiproute_planner.voyage_request import VoyageRequest, check_voyage_request
+
+    calls = (PortCall("Singapore", T0 + 7 * 86400, T0 + 10 * 86400, 12 * H),
+             PortCall("Rotterdam", None, T0 + 27 * 86400, 0.0))
+
+    def ask(c):
+        return check_voyage_request(
+            VoyageRequest("Gdansk", 0.0, 0.0, T0 + 28 * 86400, "", "", port_calls=c),
+            origin="Shanghai", ship="container_4600teu", objective="fuel", method="seed_ga",
+            rta="2026-06-29T00:00:00Z", position=None, departure_time="2026-06-01T00:00:00Z",
+            clock_s=0.0)
+
+    checked = ask(calls)
+    assert node_port_calls(str(checked.parameters["port_calls"]), T0) == calls
+    assert "Singapore" in checked.message
+    assert ask(()).parameters["port_calls"] == ""  # no calls: a direct voyage
+    with pytest.raises(InvalidVoyageError, match="Singapore"):
+        ask((PortCall("Singapore", None, T0 - 86400, 0.0),))
+    with pytest.raises(PlannerError, match="Atlantis"):
+        ask((PortCall("Atlantis Harbour", None, None, 0.0),))

@@ -14,7 +14,6 @@ fuel) and the schedule states why, so the voyage is planned best effort and flag
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from datetime import UTC, datetime
@@ -163,7 +162,10 @@ def plan_schedule(legs: Sequence[LegSpec], depart_s: float, rta_s: float,
     dep_h = start_h + berth_h
     reasons = _reasons(legs, arr_h, start_h, lo, depart_s, rta_s, berth_h)
     fuel = float(np.sum(_leg_fuel(x[:n], dist, fr, sea)))
-    to_s = (lambda h: tuple(float(depart_s + 3600.0 * v) for v in h))
+
+    def to_s(h: np.ndarray) -> tuple[float, ...]:
+        return tuple(float(depart_s + 3600.0 * v) for v in h)
+
     return Schedule(to_s(arr_h), to_s(start_h), to_s(dep_h),
                     tuple(float(3600.0 * v) for v in x[:n]), not reasons, tuple(reasons), fuel)
 
@@ -232,7 +234,3 @@ def describe(legs: Sequence[LegSpec], sched: Schedule) -> list[dict]:
                      "berth_h": round(leg.berth_s / 3600.0, 2)})
     return rows
 
-
-def is_finite_window(t: float | None) -> bool:
-    """True for a given, finite window bound."""
-    return t is not None and math.isfinite(t)
