@@ -40,14 +40,14 @@ from .plan_types import RoutePlan, Waypoint, reasons_of, waypoints_from_evaluati
 from .route.environment import Environment
 from .route.evaluation import RouteEvaluation
 from .route.problem import RouteLimits, RouteProblem
-from .voyage.legs import voyage_schedule
+from .voyage.legs import lane_turns, voyage_schedule
 from .voyage.plan_calls import with_port_calls
 from .voyage.port_calls import PortCall
 from .voyage.stage_length import (
     OCEAN_STAGE_H,
     RTA_TOLERANCE_S,
     check_rta_tolerance_s,
-    default_stage_hours,
+    leg_stage_hours,
     scaled_ga_config,
 )
 
@@ -480,7 +480,9 @@ def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMa
     d_lon, d_lat = (ap_dep.lon_deg[-1], ap_dep.lat_deg[-1]) if ap_dep else (a.lon_deg, a.lat_deg)
     a_lon, a_lat = (ap_arr.lon_deg[0], ap_arr.lat_deg[0]) if ap_arr else (b.lon_deg, b.lat_deg)
     rta_leg = max(rta_leg, t_leg + 60.0)
-    stage_h = stage_hours or default_stage_hours(rta_leg - t_leg)
+    stage_h = stage_hours or leg_stage_hours(
+        rta_leg - t_leg, lane_turns(round(float(d_lon), 4), round(float(d_lat), 4),
+                                    round(float(a_lon), 4), round(float(a_lat), 4)))
     problem = RouteProblem(float(d_lon), float(d_lat), float(a_lon), float(a_lat), t_leg,
                            rta_leg, lim, stage_s=stage_h * 3600.0, objective=objective,
                            dep_name=a.name, arr_name=b.name)

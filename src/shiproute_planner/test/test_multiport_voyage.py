@@ -4,8 +4,8 @@ land mask and sea lanes).
 Application 1 of the reference study (Shanghai -> Ningbo -> Xiamen -> Yantian -> Singapore ->
 Felixstowe -> Rotterdam -> Gdansk in 28 days) must plan feasible, below the constant-RPM
 baseline, clear of land at GSHHG full resolution and within its ports' windows; one
-impossible window must give a flagged plan with the reason. A 6-hour Channel crossing
-(Harwich -> Hook of Holland, the day ferry's passage) must be shaped by >= 8 stages and burn
+impossible window must give a flagged plan with the reason. A 6-hour Baltic crossing
+(Rostock -> Trelleborg, the ferries' passage) must be shaped by >= 8 stages and burn
 no more than the constant-RPM route over the same time.
 """
 

@@ -1,7 +1,8 @@
 """Voyages benchmark: the reference study's application 1 (Shanghai -> Ningbo -> Xiamen ->
 Yantian -> Singapore -> Felixstowe -> Rotterdam -> Gdansk, 28-day RTA, calm water) planned as
-one multi-port voyage, and a 6-hour short-sea passage (Harwich -> Hook of Holland, the day
-ferry's crossing), each against the constant-RPM baseline over the same time.
+one multi-port voyage, and a 6-hour short-sea passage (Rostock -> Trelleborg, 80 NM across
+the western Baltic, the ferries' 6-hour crossing), each against the constant-RPM baseline
+over the same time.
 
 `figures()` builds the whole result dict (other voyage figures are merged into it there).
 """
@@ -14,7 +15,7 @@ import time
 
 MULTIPORT = ("Shanghai", ("Ningbo", "Xiamen", "Yantian", "Singapore", "Felixstowe",
                           "Rotterdam"), "Gdansk", "2026-06-01T00:00Z", "28d")
-SHORTSEA = ("Harwich", "Hook of Holland", "2026-06-01T08:00Z", "6h")
+SHORTSEA = ("Rostock", "Trelleborg", "2026-06-01T08:00Z", "6h")
 
 
 def plan_multiport(budget: str = "12s", seed: int = 0, via: tuple[str, ...] | None = None):

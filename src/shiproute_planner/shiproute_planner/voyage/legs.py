@@ -21,6 +21,34 @@ KNOT_M_S = M_PER_NM / 3600.0
 
 
 @functools.lru_cache(maxsize=256)
+def lane_turns(lon0: float, lat0: float, lon1: float, lat1: float,
+               tolerance_deg: float = 0.1, min_turn_deg: float = 20.0) -> int:
+    """Turns of the shortest sea lane between two points: vertices of the lane simplified to
+    `tolerance_deg` (~6 NM) where it turns by more than `min_turn_deg`, i.e. the capes and
+    straits a route must round (a great circle drawn in lon/lat bends, it does not turn)."""
+    import searoute
+    import shapely
+
+    try:
+        feat = searoute.searoute([float(wrap_lon(lon0)), lat0], [float(wrap_lon(lon1)), lat1])
+        c = np.asarray(feat["geometry"]["coordinates"], dtype=float)
+    except Exception:  # no lane known: nothing to round
+        return 0
+    if c.ndim != 2 or c.shape[0] < 3:
+        return 0
+    c[:, 0] = np.unwrap(c[:, 0], period=360.0)
+    simple = np.asarray(shapely.simplify(shapely.LineString(c), tolerance_deg,
+                                         preserve_topology=False).coords)
+    if simple.shape[0] < 3:
+        return 0
+    x, y = simple[:-1], simple[1:]
+    course = np.degrees(np.arctan2((y[:, 0] - x[:, 0]) * np.cos(np.radians(x[:, 1])),
+                                   y[:, 1] - x[:, 1]))
+    turn = np.abs((np.diff(course) + 180.0) % 360.0 - 180.0)
+    return int(np.sum(turn > min_turn_deg))
+
+
+@functools.lru_cache(maxsize=256)
 def sea_distance_m(lon0: float, lat0: float, lon1: float, lat1: float) -> float:
     """Length of the shortest sea lane between two points [m] (great circle if none)."""
     import searoute

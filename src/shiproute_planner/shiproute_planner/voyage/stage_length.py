@@ -32,6 +32,15 @@ def default_stage_hours(window_s: float) -> float:
     return float(min(OCEAN_STAGE_H, max(MIN_STAGE_H, hours)))
 
 
+def leg_stage_hours(window_s: float, lane_turns: int) -> float:
+    """Stage duration [h] of a leg whose sea lane rounds `lane_turns` capes and straits: the
+    voyage's default, shortened so the leg has ~3 stages per turn (a 12-hour stage cannot
+    follow the lane through the Strait of Gibraltar and up the Channel in one leg)."""
+    stages = max(TARGET_STAGES, 3 * lane_turns)
+    hours = max(window_s, 0.0) / 3600.0 / (stages + 1)
+    return float(min(default_stage_hours(window_s), max(MIN_STAGE_H, hours)))
+
+
 def check_stage_hours(stage_hours: float | None) -> float | None:
     """The user's stage duration [h] (None = derived), or InvalidVoyageError naming it."""
     if stage_hours is None:
