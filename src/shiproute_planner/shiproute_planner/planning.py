@@ -40,7 +40,7 @@ from .plan_types import RoutePlan, Waypoint, reasons_of, waypoints_from_evaluati
 from .route.environment import Environment
 from .route.evaluation import RouteEvaluation
 from .route.problem import RouteLimits, RouteProblem
-from .voyage.legs import lane_turns, voyage_schedule
+from .voyage.legs import lane_turns, sea_distance_m, voyage_schedule
 from .voyage.plan_calls import with_port_calls
 from .voyage.port_calls import PortCall
 from .voyage.stage_length import (
@@ -526,14 +526,15 @@ def _previous_arrival(previous: RoutePlan | None, port: Port,
 def _lane_rpm(env: Environment, a: Port, b: Port, ap_dep, ap_arr, depart_s: float,
               rta_s: float, lim: RouteLimits) -> float:
     """Approach RPM: calm water RPM of the mean speed that meets the RTA on the approaches
-    plus the great circle between their sea ends, within the engine range."""
+    plus the sea lane between their sea ends, within the engine range."""
     ends = [(a.lon_deg, a.lat_deg), (b.lon_deg, b.lat_deg)]
     if ap_dep is not None:
         ends[0] = (ap_dep.lon_deg[-1], ap_dep.lat_deg[-1])
     if ap_arr is not None:
         ends[1] = (ap_arr.lon_deg[0], ap_arr.lat_deg[0])
+    # the sea lane between the approaches' ends (round the land the great circle crosses)
     length = (approach_length_m(ap_dep) + approach_length_m(ap_arr)
-              + float(inverse(*ends[0], *ends[1])[1]))
+              + sea_distance_m(*(round(float(v), 4) for v in (*ends[0], *ends[1]))))
     speed = length / max(rta_s - depart_s, 3600.0)
     model = env.model
     if hasattr(model, "rpm_for_speed"):

@@ -19,6 +19,7 @@ from ..ga.loop import GAConfig
 
 OCEAN_STAGE_H = 12.0  # the reference formulation's stage for an ocean crossing
 TARGET_STAGES = 12  # stages a short passage's optimised part is given at least
+STAGES_PER_TURN = 5  # stages per cape or strait of a leg's sea lane
 MIN_STAGE_H = 0.1  # 6 minutes: below this a stage is shorter than the ship's turning
 MAX_STAGE_H = 48.0
 REFERENCE_STAGES = 24  # the GA's default move sizes were tuned on ~24-stage crossings
@@ -34,9 +35,9 @@ def default_stage_hours(window_s: float) -> float:
 
 def leg_stage_hours(window_s: float, lane_turns: int) -> float:
     """Stage duration [h] of a leg whose sea lane rounds `lane_turns` capes and straits: the
-    voyage's default, shortened so the leg has ~3 stages per turn (a 12-hour stage cannot
-    follow the lane through the Strait of Gibraltar and up the Channel in one leg)."""
-    stages = max(TARGET_STAGES, 3 * lane_turns)
+    voyage's default, shortened to STAGES_PER_TURN stages per turn (a 12-hour stage cannot
+    follow the lane through the Strait of Gibraltar and up the Channel)."""
+    stages = max(TARGET_STAGES, STAGES_PER_TURN * lane_turns)
     hours = max(window_s, 0.0) / 3600.0 / (stages + 1)
     return float(min(default_stage_hours(window_s), max(MIN_STAGE_H, hours)))
 
