@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 from shiproute_planner.errors import InvalidVoyageError
 from shiproute_planner.voyage.port_calls import parse_port_call
-from shiproute_planner.voyage.schedule import FuelRate, LegSpec, plan_schedule
+from shiproute_planner.voyage.schedule import SPEED_MARGIN, FuelRate, LegSpec, plan_schedule
 from shiproute_planner.voyage.stage_length import (
     check_stage_hours,
     default_stage_hours,
@@ -79,8 +79,11 @@ def test_schedule_matches_brute_force_with_a_window_and_berth():
     assert sched.arrival_s[0] <= T0 + 40 * H + 60
     assert sched.berth_start_s[1] >= T0 + 150 * H - 60
     assert sched.arrival_s[2] <= rta + 60
+    # the schedule keeps 1 % of the leg's shortest time (>= 15 min) before a latest arrival
+    margin_h = max(0.25, 0.01 * 600 * NM / (SPEED_MARGIN * CUBE.v_max_m_s) / H)
     best = np.inf
-    for t1, t2 in itertools.product(np.arange(20.0, 40.01, 0.5), np.arange(60.0, 200.0, 0.5)):
+    for t1, t2 in itertools.product(np.linspace(20.0, 40.0 - margin_h, 41),
+                                    np.arange(60.0, 200.0, 0.5)):
         arr2 = t1 + 10 + t2
         t3 = 260 - (max(arr2, 150) + 6)
         if t3 <= 0:

@@ -22,6 +22,8 @@ import numpy as np
 from scipy.optimize import minimize
 
 SPEED_MARGIN = 0.92  # a leg planned at full speed must leave room for weather and detours
+WINDOW_MARGIN = 0.01  # share of a leg's shortest time kept before a latest arrival ...
+WINDOW_MARGIN_MIN_H, WINDOW_MARGIN_MAX_H = 0.25, 3.0  # ... within these bounds [h]
 _LATE_COST = 1e4  # objective units per hour of missed window (fuel is ~1 per leg)
 
 
@@ -141,6 +143,9 @@ def plan_schedule(legs: Sequence[LegSpec], depart_s: float, rta_s: float,
             row = row_a.copy()
             row[2 * n + k] = -1.0
             off = float(tri_strict[k] @ berth_h)
+            if k < n - 1:  # aim a little before a port's latest arrival (weather, detours)
+                off += min(WINDOW_MARGIN_MAX_H, max(WINDOW_MARGIN_MIN_H,
+                                                    WINDOW_MARGIN * float(lo[k])))
             cons.append({"type": "ineq", "jac": (lambda x, r=row: -r),
                          "fun": (lambda x, r=row, c=latest[k] - off: c - r @ x)})
         if earliest[k] is not None:  # A_k + W_k + s_k >= earliest (waiting allowed)
