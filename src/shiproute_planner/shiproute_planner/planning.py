@@ -43,6 +43,7 @@ from .route.problem import RouteLimits, RouteProblem
 from .voyage.legs import lane_turns, sea_distance_m, voyage_schedule
 from .voyage.plan_calls import with_port_calls
 from .voyage.port_calls import PortCall
+from .voyage.schedule import plan_schedule
 from .voyage.stage_length import (
     OCEAN_STAGE_H,
     RTA_TOLERANCE_S,
@@ -282,7 +283,7 @@ def plan_voyage(
     sched = None
     if len(ports) > 2:
         call_at = {k + 1: c for k, c in enumerate(calls_x) if c is not None}
-        sched_legs, sched, notes = voyage_schedule(ports, call_at, canal_legs, depart_s, rta_s,
+        sched_legs, sched, notes, rate = voyage_schedule(ports, call_at, canal_legs, depart_s, rta_s,
                                                    env.model, lim.rpm_min, lim.rpm_max)
         warnings += notes
         leg_rtas = list(sched.arrival_s)
@@ -295,7 +296,7 @@ def plan_voyage(
     # an RTA beyond reach is searched best effort: over the time the great circle takes at
     # full speed (a lower bound), lateness being a violation the search minimises; a
     # multi-port schedule never asks a leg for more than the ship can do
-    search_rtas = [earliest_s] if rta_warning else leg_rtas
+    search_rtas = [earliest_s] if rta_warning else list(leg_rtas)
     is_cancelled = _cancel_fn(cancel)
     rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
     pool = SeedPool(seed_pool_dir) if seed_pool_dir is not None else None
@@ -325,6 +326,9 @@ def plan_voyage(
             leg_depart = _departure(call_at.get(k + 1), leg_depart)
             continue
         under_way = k == 0 and position is not None
+        if sched is not None and k > 0 and not rta_warning:
+            # closed loop: the legs left re-scheduled from where and when this one starts
+            search_rtas[k] = plan_schedule(sched_legs[k:], leg_depart, rta_s, rate).arrival_s[0]
         leg_rta = max(search_rtas[k], leg_depart + 60.0)
         leg = leg_setup(a, b, env, lim, land, leg_depart, leg_rta, approach_nm=approach_nm,
                         approach_rpm=approach_rpm, coastal_passage=coastal_passage,

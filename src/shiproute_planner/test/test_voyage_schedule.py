@@ -154,3 +154,20 @@ def test_set_voyage_port_calls_round_trip_and_refusals():
         ask((PortCall("Singapore", None, T0 - 86400, 0.0),))
     with pytest.raises(PlannerError, match="Atlantis"):
         ask((PortCall("Atlantis Harbour", None, None, 0.0),))
+
+
+@pytest.mark.parametrize("extra, words", [
+    (["--via", "Ningbo@2d..1d"], "Ningbo"),
+    (["--via", "Ningbo@2026-05-01T00:00Z"], "not after the departure"),
+    (["--via", "Ningbo+lots"], "berth time"),
+    (["--stage-hours", "0"], "stage hours"),
+    (["--stage-hours", "1000"], "stage hours"),
+    (["--rta-tolerance", "soon"], "duration"),
+])
+def test_cli_refuses_malformed_voyages_with_exit_2(extra, words, capsys, tmp_path):
+    from shiproute_planner.cli.plan import main
+
+    code = main(["--from", "Shanghai", "--to", "Gdansk", "--depart", "2026-06-01T00:00Z",
+                 "--rta", "28d", "--out", str(tmp_path), *extra])
+    assert code == 2
+    assert words in capsys.readouterr().err

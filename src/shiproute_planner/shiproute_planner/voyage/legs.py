@@ -109,8 +109,10 @@ def cube_law_rate(v_min_m_s: float = 4.0, v_max_m_s: float = 12.0) -> FuelRate:
 
 def voyage_schedule(ports: Sequence[Port], calls: dict[int, PortCall],
                     canal_legs: dict[int, Any], depart_s: float, rta_s: float, model: Any,
-                    rpm_min: float, rpm_max: float) -> tuple[list[LegSpec], Any, list[str]]:
-    """(legs, Schedule, notes): the fuel-optimal schedule of a multi-port voyage."""
+                    rpm_min: float, rpm_max: float
+                    ) -> tuple[list[LegSpec], Any, list[str], FuelRate]:
+    """(legs, Schedule, notes, fuel rate): the fuel-optimal schedule of a multi-port voyage
+    (the rate re-schedules the legs left as each leg is planned)."""
     from .schedule import plan_schedule
 
     notes: list[str] = []
@@ -121,4 +123,4 @@ def voyage_schedule(ports: Sequence[Port], calls: dict[int, PortCall],
         notes.append(f"leg schedule estimated with the propeller (cube) law: the ship model "
                      f"gives no calm-water fuel rate ({exc})")
     legs = leg_specs(ports, calls, canal_legs)
-    return legs, plan_schedule(legs, depart_s, rta_s, rate), notes
+    return legs, plan_schedule(legs, depart_s, rta_s, rate), notes, rate
