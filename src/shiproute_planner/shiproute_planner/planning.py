@@ -283,8 +283,8 @@ def plan_voyage(
     sched = None
     if len(ports) > 2:
         call_at = {k + 1: c for k, c in enumerate(calls_x) if c is not None}
-        sched_legs, sched, notes, rate = voyage_schedule(ports, call_at, canal_legs, depart_s, rta_s,
-                                                   env.model, lim.rpm_min, lim.rpm_max)
+        sched_legs, sched, notes, rate = voyage_schedule(
+            ports, call_at, canal_legs, depart_s, rta_s, env.model, lim.rpm_min, lim.rpm_max)
         warnings += notes
         leg_rtas = list(sched.arrival_s)
     else:
