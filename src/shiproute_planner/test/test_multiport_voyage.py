@@ -46,6 +46,9 @@ def _land_findings(plan) -> list:
     return found
 
 
+pytestmark = pytest.mark.slow  # each application-1 plan takes ~10-30 s
+
+
 @pytest.fixture(scope="module")
 def app1():
     return plan_multiport(BUDGET)
