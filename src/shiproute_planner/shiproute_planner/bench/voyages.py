@@ -18,7 +18,7 @@ MULTIPORT = ("Shanghai", ("Ningbo", "Xiamen", "Yantian", "Singapore", "Felixstow
 SHORTSEA = ("Rostock", "Trelleborg", "2026-06-01T08:00Z", "6h")
 
 
-def plan_multiport(budget: str = "12s", seed: int = 0, via: tuple[str, ...] | None = None):
+def plan_multiport(budget: str = "8s", seed: int = 0, via: tuple[str, ...] | None = None):
     """The application-1 plan (calm water); `via` replaces the port calls (windows)."""
     from ..plan_request import build_request, run_request
 
