@@ -58,7 +58,7 @@ from .errors import PlannerError
 from .intake_keys import RejectedKeys, assembly_key
 from .plan_types import RoutePlan
 from .replan_policy import ReplanThresholds, track_deviation
-from .voyage.node_calls import node_port_calls
+from .voyage.node_calls import calls_ahead, node_port_calls
 from .voyage_params import check_parameter, parse_utc
 from .voyage_request import VoyageRequest, check_voyage_request
 
@@ -596,7 +596,8 @@ class PlannerNode(Node):
             budget_s=inputs.budget_s if inputs.budget_s is not None
             else float(self._p("budget_s")), seed=int(self._p("rng_seed")),
             stage_hours=float(self._p("stage_hours")) or None, previous_plan=inputs.previous,
-            port_calls=node_port_calls(str(self._p("port_calls")), depart),
+            port_calls=calls_ahead(node_port_calls(str(self._p("port_calls")), depart),
+                                   inputs.previous, position[2] if position else None),
             rta_tolerance_s=float(self._p("rta_tolerance_s")),
             position=position, seed_pool_dir=pool, progress=self._on_progress,
             cancel=self._cancel, ship_model=str(self._p("ship_model")),

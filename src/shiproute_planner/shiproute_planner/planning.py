@@ -40,7 +40,7 @@ from .plan_types import RoutePlan, Waypoint, reasons_of, waypoints_from_evaluati
 from .route.environment import Environment
 from .route.evaluation import RouteEvaluation
 from .route.problem import RouteLimits, RouteProblem
-from .voyage.legs import lane_turns, sea_distance_m, voyage_schedule
+from .voyage.legs import sea_distance_m, turns_to_round, voyage_schedule
 from .voyage.plan_calls import with_port_calls
 from .voyage.port_calls import PortCall
 from .voyage.schedule import plan_schedule
@@ -485,8 +485,8 @@ def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMa
     a_lon, a_lat = (ap_arr.lon_deg[0], ap_arr.lat_deg[0]) if ap_arr else (b.lon_deg, b.lat_deg)
     rta_leg = max(rta_leg, t_leg + 60.0)
     stage_h = stage_hours or leg_stage_hours(
-        rta_leg - t_leg, lane_turns(round(float(d_lon), 4), round(float(d_lat), 4),
-                                    round(float(a_lon), 4), round(float(a_lat), 4)))
+        rta_leg - t_leg, turns_to_round(land, float(d_lon), float(d_lat), float(a_lon),
+                                        float(a_lat)))
     problem = RouteProblem(float(d_lon), float(d_lat), float(a_lon), float(a_lat), t_leg,
                            rta_leg, lim, stage_s=stage_h * 3600.0, objective=objective,
                            dep_name=a.name, arr_name=b.name)

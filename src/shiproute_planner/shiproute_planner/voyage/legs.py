@@ -20,6 +20,20 @@ from .schedule import FuelRate, LegSpec, fuel_rate_of
 KNOT_M_S = M_PER_NM / 3600.0
 
 
+def turns_to_round(land: Any, lon0: float, lat0: float, lon1: float, lat1: float) -> int:
+    """Capes and straits a leg must round: the sea lane's turns when the great circle between
+    the leg's ends crosses land, else 0 (the open sea needs no extra stages)."""
+    from ..geo.geodesy import great_circle_points
+
+    d = float(inverse(lon0, lat0, lon1, lat1)[1])
+    n = int(min(2000, max(8, d / 5000.0)))  # a sample every ~5 km
+    lon, lat = great_circle_points(lon0, lat0, lon1, lat1, n)
+    inner = slice(1, -1)  # the ends are the approaches' sea ends (or ports)
+    if not np.any(land.is_land(np.asarray(lon)[inner], np.asarray(lat)[inner])):
+        return 0
+    return lane_turns(round(lon0, 4), round(lat0, 4), round(lon1, 4), round(lat1, 4))
+
+
 @functools.lru_cache(maxsize=256)
 def lane_turns(lon0: float, lat0: float, lon1: float, lat1: float,
                tolerance_deg: float = 0.1, min_turn_deg: float = 20.0) -> int:

@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import Any
 
 from ..errors import PlannerError
 from .port_calls import PortCall, parse_port_call
@@ -26,3 +27,14 @@ def port_calls_reason(text: str) -> str | None:
     except PlannerError as exc:
         return f"port_calls: {exc}"
     return None
+
+
+def calls_ahead(calls: Sequence[PortCall], previous: Any, now_s: float | None
+                ) -> tuple[PortCall, ...]:
+    """The calls still ahead of a ship under way: those the previous plan had it leave
+    before `now_s` are done (a re-plan from the ship's position must not go back)."""
+    if previous is None or now_s is None:
+        return tuple(calls)
+    left = {str(r["port"]).casefold() for r in previous.extra.get("port_calls", ())
+            if float(r.get("departure_s", float("inf"))) <= now_s}
+    return tuple(c for c in calls if c.port.casefold() not in left)
