@@ -171,3 +171,18 @@ def test_cli_refuses_malformed_voyages_with_exit_2(extra, words, capsys, tmp_pat
                  "--rta", "28d", "--out", str(tmp_path), *extra])
     assert code == 2
     assert words in capsys.readouterr().err
+
+
+def test_calls_left_behind_are_dropped_under_way():
+    from types import SimpleNamespace
+
+    from shiproute_planner.voyage.node_calls import calls_ahead
+    from shiproute_planner.voyage.port_calls import PortCall
+
+    calls = (PortCall("Ningbo"), PortCall("Singapore", None, T0 + 9 * 86400, 12 * H))
+    prev = SimpleNamespace(extra={"port_calls": [
+        {"port": "Ningbo", "departure_s": T0 + 0.4 * 86400},
+        {"port": "Singapore", "departure_s": T0 + 8 * 86400}]})
+    assert calls_ahead(calls, prev, T0 + 86400) == calls[1:]
+    assert calls_ahead(calls, prev, T0 + 0.2 * 86400) == calls
+    assert calls_ahead(calls, None, T0 + 86400) == calls
