@@ -200,7 +200,7 @@ def format_summary(plan) -> str:
         for f in fc.get("source_files", []):
             lines.append(f"  from     {f}")
     for row in plan.extra.get("port_calls", ()):
-        window = (f"  window {row['earliest'] or '..'} .. {row['latest'] or '..'}"
+        window = (f"  window {row['earliest']}..{row['latest']}"
                   if row["earliest"] or row["latest"] else "")
         lines.append(f"call       {row['port']:<24s} arrive {row['arrival']}  depart "
                      f"{row['departure']}{window}"
