@@ -286,7 +286,7 @@ def plan_voyage(
         sched_legs, sched, notes, rate = voyage_schedule(
             ports, call_at, canal_legs, depart_s, rta_s, env.model, lim.rpm_min, lim.rpm_max)
         warnings += notes
-        leg_rtas = list(sched.arrival_s)
+        leg_rtas = [*sched.arrival_s[:-1], rta_s]  # the last leg aims at the RTA itself
     else:
         call_at, leg_rtas = {}, [rta_s]
     env = dataclasses.replace(env, sampler=prepare_forecast(env.sampler, depart_s, rta_s,
@@ -326,7 +326,7 @@ def plan_voyage(
             leg_depart = _departure(call_at.get(k + 1), leg_depart)
             continue
         under_way = k == 0 and position is not None
-        if sched is not None and k > 0 and not rta_warning:
+        if sched is not None and 0 < k < len(ports) - 2 and not rta_warning:
             # closed loop: the legs left re-scheduled from where and when this one starts
             search_rtas[k] = plan_schedule(sched_legs[k:], leg_depart, rta_s, rate).arrival_s[0]
         leg_rta = max(search_rtas[k], leg_depart + 60.0)
