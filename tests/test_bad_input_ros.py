@@ -395,6 +395,30 @@ def test_impossible_rta_gives_flagged_best_effort_plan(nodes: Any) -> None:
     _good_plan_check(peer, good)
 
 
+def test_set_voyage_port_calls(nodes: Any) -> None:
+    """SetVoyage with port calls: a malformed call is refused naming it; a good one plans a
+    multi-port voyage that reports each call's arrival and departure (berth included)."""
+    from shiproute_msgs.msg import PortCall
+
+    peer, good, _ref, _f, weather, planner = nodes
+    bad = PortCall(port="Yokohama", berth_hours=12.0)
+    bad.latest_arrival.sec = int(DEPART_S - 86400)
+    ans = peer.set_voyage(destination="Long Beach", rta_s=RTA_S, port_calls=[bad])
+    assert not ans.accepted and "Yokohama" in ans.message, ans.message
+    n = len(peer.plans)
+    call = PortCall(port="Yokohama", berth_hours=12.0)
+    ans = peer.set_voyage(destination="Long Beach", rta_s=RTA_S, port_calls=[call])
+    assert ans.accepted, ans.message
+    plan = peer.spin_until(lambda: len(peer.plans) > n and peer.plans[-1], 90, "multi-port")
+    assert list(plan.call_ports) == ["Yokohama", "Long Beach"]
+    stay_s = plan.call_departures[0].sec - plan.call_arrivals[0].sec
+    assert stay_s >= 12 * 3600 - 1
+    ans = peer.set_voyage(destination="Long Beach", rta_s=RTA_S)  # direct again
+    assert ans.accepted, ans.message
+    _assert_alive(weather, planner)
+    _good_plan_check(peer, good)
+
+
 def test_parameters_and_goal_budget(nodes: Any) -> None:
     from rcl_interfaces.msg import Parameter, ParameterType, ParameterValue
 
@@ -410,7 +434,7 @@ def test_parameters_and_goal_budget(nodes: Any) -> None:
     got = peer.call(peer.get_params, peer.types["GetParameters"].Request(
         names=["budget_s", "stage_hours"]))
     assert got.values[0].double_value == BUDGET_S  # the goal's budget was its own
-    assert got.values[1].double_value == 12.0
+    assert got.values[1].double_value == 0.0  # the default: derived from the voyage
 
 
 def test_goal_aborts_as_soon_as_planning_fails(nodes: Any) -> None:

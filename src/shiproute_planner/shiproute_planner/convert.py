@@ -25,6 +25,7 @@ from shiproute_msgs.msg import RoutePlan as RoutePlanMsg
 from .cycle_packer import SliceFields
 from .path_frame import track_to_ecef
 from .plan_types import RoutePlan
+from .voyage.port_calls import PortCall
 
 EARTH_FRAME = "earth"
 
@@ -65,6 +66,10 @@ def plan_to_msg(plan: RoutePlan, stamp: Time) -> RoutePlanMsg:
     msg.baseline_fuel_t = float(plan.baseline_fuel_t)
     msg.compute_time_s = float(plan.compute_time_s)
     msg.waypoints = [_waypoint_msg(w) for w in plan.waypoints]
+    calls = plan.extra.get("port_calls", ())
+    msg.call_ports = [str(r["port"]) for r in calls]
+    msg.call_arrivals = [time_msg(float(r["arrival_s"])) for r in calls]
+    msg.call_departures = [time_msg(float(r["departure_s"])) for r in calls]
     return msg
 
 
@@ -166,3 +171,12 @@ def cycle_record(msg: Any) -> dict:
               for k, n in enumerate(msg.fields)}
     return {"cycle_id": str(msg.cycle_id), "source_files": [str(f) for f in msg.source_files],
             "fields": fields, "notes": [str(n) for n in getattr(msg, "notes", []) or []]}
+
+
+def port_call_from_msg(msg: Any) -> PortCall:
+    """shiproute_msgs/PortCall -> PortCall (a zero time is an open window end)."""
+    def when(stamp: Time) -> float | None:
+        return None if stamp.sec == 0 and stamp.nanosec == 0 else posix_s(stamp)
+
+    return PortCall(str(msg.port).strip(), when(msg.earliest_arrival), when(msg.latest_arrival),
+                    float(msg.berth_hours) * 3600.0)

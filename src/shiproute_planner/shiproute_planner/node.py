@@ -45,6 +45,7 @@ from .convert import (
     plan_to_msg,
     plan_to_path,
     plan_to_rpm_profile,
+    port_call_from_msg,
     posix_s,
     ship_position,
     slice_fields,
@@ -58,6 +59,7 @@ from .intake_keys import RejectedKeys, assembly_key
 from .plan_types import RoutePlan
 from .replan_policy import ReplanThresholds, track_deviation
 from .ship.errors import ShipModelError
+from .voyage.node_calls import calls_ahead, node_port_calls
 from .voyage_params import check_parameter, parse_utc
 from .voyage_request import VoyageRequest, check_voyage_request
 
@@ -104,7 +106,12 @@ PARAMETERS: dict[str, tuple[object, str]] = {
     "charter_usd_per_day": (-1.0, "time-charter rate for the cost objective [USD/day]; < 0 "
                             "= the ship file's economics, else the stated default"),
     "method": ("seed_ga", "route-finding method"),
-    "stage_hours": (12.0, "fixed stage duration [h]"),
+    "stage_hours": (0.0, "stage duration [h]; 0 = from the voyage (12 h for an ocean "
+                    "crossing, ~12 stages for a short passage)"),
+    "rta_tolerance_s": (300.0, "an arrival this much after the RTA or a port's latest arrival "
+                        "is on time [s]"),
+    "port_calls": ("", "intermediate port calls, ';'-separated "
+                   "PORT[@EARLIEST..LATEST][+BERTH_H] (ISO UTC times); set by SetVoyage"),
     "budget_s": (3.0, "wall-time budget of one plan [s]"),
     "rng_seed": (0, "seed of the GA's random generator"),
     "seed_pool_dir": ("", "seed pool directory (persists across restarts); '' = none"),
@@ -359,7 +366,8 @@ class PlannerNode(Node):
         request = VoyageRequest(
             destination=req.destination, destination_lat_deg=float(req.destination_lat_deg),
             destination_lon_deg=float(req.destination_lon_deg), rta_s=posix_s(req.rta),
-            ship=req.ship, objective=req.objective)
+            ship=req.ship, objective=req.objective,
+            port_calls=tuple(port_call_from_msg(c) for c in req.port_calls))
         try:
             checked = check_voyage_request(
                 request, origin=str(self._p("origin")), ship=str(self._p("ship")),
@@ -681,7 +689,10 @@ class PlannerNode(Node):
             objective=inputs.objective or str(self._p("objective")),
             method=str(self._p("method")), budget_s=inputs.budget_s if inputs.budget_s is not None
             else float(self._p("budget_s")), seed=int(self._p("rng_seed")),
-            stage_hours=float(self._p("stage_hours")), previous_plan=inputs.previous,
+            stage_hours=float(self._p("stage_hours")) or None, previous_plan=inputs.previous,
+            port_calls=calls_ahead(node_port_calls(str(self._p("port_calls")), depart),
+                                   inputs.previous, position[2] if position else None),
+            rta_tolerance_s=float(self._p("rta_tolerance_s")),
             position=position, seed_pool_dir=pool, progress=self._on_progress,
             cancel=self._cancel, ship_model=str(self._p("ship_model")),
             bathymetry=_paths(str(self._p("bathymetry_files"))),

@@ -16,6 +16,8 @@ from .objectives import PLAN_OBJECTIVES as OBJECTIVES
 from .objectives import Economics
 from .plan_types import RoutePlan
 from .planning import plan_voyage, to_posix_s
+from .voyage.port_calls import PortCall, parse_port_calls
+from .voyage.stage_length import RTA_TOLERANCE_S, check_rta_tolerance_s, check_stage_hours
 from .voyage_ship import loaded_ship
 
 # "" = the ship file's performance_model entry, else physics; "physics" (alias "fast") is the
@@ -114,10 +116,12 @@ class PlanRequest:
     model: str = ""
     budget: Budget = field(default_factory=Budget)
     seed: int = 0
-    stage_hours: float = 12.0
+    stage_hours: float | None = None  # None: derived from the voyage (voyage.stage_length)
     loading: str = ""  # ship file condition or 'T_F,T_A' drafts [m]; '' = the file's default
     economics: Economics = field(default_factory=Economics)
     front_points: int = 9  # plans on the time-fuel front (objective "front")
+    port_calls: tuple[PortCall, ...] = ()  # the vias' windows and berth times
+    rta_tolerance_s: float = RTA_TOLERANCE_S
 
     def __post_init__(self) -> None:
         if self.objective not in OBJECTIVES:
@@ -132,6 +136,8 @@ class PlanRequest:
             raise InvalidVoyageError("the RTA must be after the departure time")
         if not 2 <= self.front_points <= 25:
             raise InvalidVoyageError(f"front points must be 2..25, got {self.front_points}")
+        check_stage_hours(self.stage_hours)
+        check_rta_tolerance_s(self.rta_tolerance_s)
         for name, value in self.numbers().items():
             require_number(name, value)  # the node's parameter ranges: one table
 
@@ -139,20 +145,23 @@ class PlanRequest:
         """The request's numeric settings under the planner's parameter names."""
         budget = ({"budget_evaluations": self.budget.evaluations} if self.budget.evaluations
                   else {"budget_s": self.budget.wall_s})
-        return {"stage_hours": self.stage_hours, "rng_seed": self.seed, **budget}
+        stages = {} if self.stage_hours is None else {"stage_hours": self.stage_hours}
+        return {**stages, "rng_seed": self.seed, **budget}
 
 
 def build_request(*, origin: str, destination: str, depart: str, rta: str,
                   via: Sequence[str] = (), ship: str = "container_4600teu",
                   objective: str = "fuel", method: str = "seed_ga", model: str = "",
-                  budget: str = "3s", seed: int = 0, stage_hours: float = 12.0,
+                  budget: str = "3s", seed: int = 0, stage_hours: float | None = None,
+                  rta_tolerance: str = "5m",
                   loading: str = "", fuel_type: str | None = None,
                   fuel_price_usd_per_t: float | None = None,
                   charter_usd_per_day: float | None = None,
                   front_points: int = 9) -> PlanRequest:
-    """A request from user text (raises InvalidVoyageError naming the bad input)."""
+    """A request from user text (raises InvalidVoyageError naming the bad input); `via`
+    items are port calls `PORT[@EARLIEST..LATEST][+BERTH_H]` (`voyage.port_calls`)."""
     depart_s = parse_time_s(depart, "departure")
-    names, rtas = parse_vias(via)
+    calls = parse_port_calls(list(via), depart_s)
     if loading.strip():
         from .ship.condition import parse_loading
         from .ship.errors import ShipModelError
@@ -161,11 +170,16 @@ def build_request(*, origin: str, destination: str, depart: str, rta: str,
             parse_loading(loading)
         except ShipModelError as exc:
             raise InvalidVoyageError(str(exc)) from None
-    return PlanRequest(origin.strip(), destination.strip(), depart_s, parse_rta_s(rta, depart_s),
-                       ship.strip(), names, rtas, objective, method, model, Budget.parse(budget),
-                       int(seed), float(stage_hours), loading.strip(),
-                       Economics(fuel_type, fuel_price_usd_per_t, charter_usd_per_day),
-                       int(front_points))
+    return PlanRequest(
+        origin.strip(), destination.strip(), depart_s, parse_rta_s(rta, depart_s),
+        ship=ship.strip(), via=tuple(c.port for c in calls),
+        via_rta_s=tuple(c.latest_s for c in calls), objective=objective, method=method,
+        model=model, budget=Budget.parse(budget), seed=int(seed),
+        stage_hours=None if stage_hours is None else float(stage_hours),
+        loading=loading.strip(),
+        economics=Economics(fuel_type, fuel_price_usd_per_t, charter_usd_per_day),
+        front_points=int(front_points), port_calls=calls,
+        rta_tolerance_s=duration_s(rta_tolerance))
 
 
 def ship_and_model(ship: str, model: str, loading: str = "") -> tuple[Any, str]:
@@ -192,5 +206,6 @@ def run_request(req: PlanRequest, forecast: Any = None, *, cycle_id: str = "",
         method=req.method,
         cycle_id=cycle_id, budget_s=req.budget.wall_s, max_evaluations=req.budget.evaluations,
         seed=req.seed, stage_hours=req.stage_hours, seed_pool_dir=seed_pool_dir,
+        port_calls=req.port_calls, rta_tolerance_s=req.rta_tolerance_s,
         progress=progress, loading="" if req.model == "physics-direct" else req.loading,
         economics=req.economics, **extra)

@@ -43,6 +43,17 @@ from .plan_types import RoutePlan, Waypoint, reasons_of, waypoints_from_evaluati
 from .route.environment import Environment
 from .route.evaluation import RouteEvaluation
 from .route.problem import RouteLimits, RouteProblem
+from .voyage.legs import sea_distance_m, turns_to_round, voyage_schedule
+from .voyage.plan_calls import with_port_calls
+from .voyage.port_calls import PortCall
+from .voyage.schedule import plan_schedule
+from .voyage.stage_length import (
+    OCEAN_STAGE_H,
+    RTA_TOLERANCE_S,
+    check_rta_tolerance_s,
+    leg_stage_hours,
+    scaled_ga_config,
+)
 from .voyage_ship import loaded_ship, loading_block
 
 TimeLike = datetime | float | int | str
@@ -134,25 +145,32 @@ def _port_id(p: Port) -> str:
     return p.locode or f"{p.lat_deg:.2f},{p.lon_deg:.2f}"
 
 
-def _leg_rtas(ports: list[Port], depart_s: float, rta_s: float,
-              via_rtas: Sequence[TimeLike | None]) -> list[float]:
-    """RTA per leg: given ones, the rest split in proportion to great-circle distance."""
-    n = len(ports) - 1
-    given = [None if v is None else to_posix_s(v) for v in via_rtas] + [None] * n
-    given = [*given[: n - 1], rta_s]
-    d = np.array([float(inverse(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)[1])
-                  for a, b in itertools.pairwise(ports)])
-    out, t_prev, k_prev = [], depart_s, -1
-    for k in range(n):
-        if given[k] is None:
-            continue
-        span = d[k_prev + 1: k + 1]
-        cum = np.cumsum(span) / max(span.sum(), 1.0)
-        out.extend(t_prev + (given[k] - t_prev) * cum)
-        t_prev, k_prev = given[k], k
-    if any(b <= a for a, b in zip([depart_s, *out[:-1]], out, strict=True)):
-        raise InvalidVoyageError("leg RTAs must increase along the voyage")
+def _calls_of(via: Sequence[str | Port], via_rta: Sequence[TimeLike | None],
+              depart_s: float) -> list[PortCall | None]:
+    """Port calls of `via` ports whose `via_rta` is a latest arrival (None: no fixed time)."""
+    rtas = list(via_rta) + [None] * (len(via) - len(via_rta))
+    out: list[PortCall | None] = []
+    for p, t in zip(via, rtas, strict=False):
+        name = p.name if isinstance(p, Port) else str(p)
+        latest = None if t is None else to_posix_s(t)
+        if latest is not None and latest <= depart_s:
+            raise InvalidVoyageError(f"via {name}: RTA is not after the departure")
+        out.append(PortCall(name, None, latest, 0.0))
     return out
+
+
+def _departure(call: PortCall | None, arrival_s: float) -> float:
+    """Departure from a port reached at `arrival_s`: berth after the window opens."""
+    if call is None:
+        return arrival_s
+    start = max(arrival_s, call.earliest_s) if call.earliest_s is not None else arrival_s
+    return start + call.berth_s
+
+
+def _deadline(call: PortCall | None, rta_s: float | None) -> float:
+    """Latest arrival at a leg's end port (the RTA at the destination; inf: none)."""
+    limits = [t for t in (rta_s, call.latest_s if call is not None else None) if t is not None]
+    return min(limits) if limits else float("inf")
 
 
 def plan_voyage(
@@ -169,7 +187,7 @@ def plan_voyage(
     method: str = "seed_ga",
     budget_s: float = 3.0,
     seed: int | np.random.Generator = 0,
-    stage_hours: float = 12.0,
+    stage_hours: float | None = None,
     previous_plan: RoutePlan | None = None,
     position: tuple[float, float, float] | None = None,
     seed_pool_dir: str | Path | None = None,
@@ -197,6 +215,8 @@ def plan_voyage(
     approaches_given: Sequence[str | Path] = (),
     loading: str = "",
     economics: Economics | None = None,
+    port_calls: Sequence[PortCall] = (),
+    rta_tolerance_s: float = RTA_TOLERANCE_S,
 ) -> RoutePlan:
     """Plan a voyage and return a frozen RoutePlan.
 
@@ -232,9 +252,17 @@ def plan_voyage(
     `loading`: the loading condition (a condition of the ship file, or drafts 'T_F,T_A' in
     m; '' = the file's default). `objective` co2 / cost take the fuel type and prices from
     `economics`, else the ship file, else stated defaults (`objectives`).
+    `stage_hours` None derives each leg's stage from its window (`voyage.stage_length`).
+    `port_calls` (or `via` with `via_rta` as latest arrivals) make a multi-port voyage whose
+    leg times are scheduled together for the least fuel (`voyage.schedule`); a plan is on
+    time when it arrives within `rta_tolerance_s` of each deadline.
     """
     t0 = time.perf_counter()
-    require_number("stage_hours", stage_hours)
+    if stage_hours is not None:
+        require_number("stage_hours", stage_hours)
+    rta_tolerance_s = check_rta_tolerance_s(rta_tolerance_s)
+    if port_calls:
+        via = [c.port for c in port_calls]
     land = land or default_land_mask()
     ship, model_notes = _chosen_model(loaded_ship(ship, loading), ship_model)
     env, spec = make_environment(ship, forecast)
@@ -259,16 +287,26 @@ def plan_voyage(
         depart_s = float(now_s)
     if not rta_s > depart_s:
         raise InvalidVoyageError("the RTA must be after the departure time")
-    ports, canal_legs, via_rta, canal_notes = route_canals(ports, spec, list(via_rta))
+    calls = list(port_calls) or _calls_of(via, via_rta, depart_s)
+    ports, canal_legs, calls_x, canal_notes = route_canals(ports, spec, calls)
     warnings += canal_notes
-    leg_rtas = _leg_rtas(ports, depart_s, rta_s, via_rta)
+    sched = None
+    if len(ports) > 2:
+        call_at = {k + 1: c for k, c in enumerate(calls_x) if c is not None}
+        sched_legs, sched, notes, rate = voyage_schedule(
+            ports, call_at, canal_legs, depart_s, rta_s, env.model, lim.rpm_min, lim.rpm_max)
+        warnings += notes
+        leg_rtas = [*sched.arrival_s[:-1], rta_s]  # the last leg aims at the RTA itself
+    else:
+        call_at, leg_rtas = {}, [rta_s]
     env = dataclasses.replace(env, sampler=prepare_forecast(env.sampler, depart_s, rta_s,
                                                             persistence_h, climatology))
-    rta_warning, earliest_s = _rta_warning(ports, depart_s, rta_s, spec)
+    rta_warning, earliest_s = ("", rta_s) if sched else _rta_warning(ports, depart_s, rta_s,
+                                                                       spec)
     # an RTA beyond reach is searched best effort: over the time the great circle takes at
-    # full speed (a lower bound), lateness being a violation the search minimises
-    search_rtas = (_leg_rtas(ports, depart_s, earliest_s, via_rta) if rta_warning
-                   else leg_rtas)
+    # full speed (a lower bound), lateness being a violation the search minimises; a
+    # multi-port schedule never asks a leg for more than the ship can do
+    search_rtas = [earliest_s] if rta_warning else list(leg_rtas)
     is_cancelled = _cancel_fn(cancel)
     rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
     pool = SeedPool(seed_pool_dir) if seed_pool_dir is not None else None
@@ -277,6 +315,7 @@ def plan_voyage(
     dists = np.array([float(inverse(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)[1])
                       for a, b in itertools.pairwise(ports)])
     results, baselines, problems, sources, approaches = [], [], [], [], []
+    arrivals: list[float] = []
     gens = evals = 0
     leg_depart = depart_s
     for k, (a, b) in enumerate(itertools.pairwise(ports)):
@@ -284,7 +323,8 @@ def plan_voyage(
             canal, rev = canal_legs[k]
             sea_rpm = float(results[-1].legs["rpm"][0, -1]) if results else None
             lead_in, ev, lead_out, rpm_c, canal_problem = sail_canal(
-                env, canal, rev, leg_depart, lim, stage_hours * 3600.0, sea_rpm)
+                env, canal, rev, leg_depart, lim, (stage_hours or OCEAN_STAGE_H) * 3600.0,
+                sea_rpm)
             results.append(ev)
             sources.append("canal")
             problems.append(canal_problem)
@@ -292,9 +332,15 @@ def plan_voyage(
                 baselines.append(("canal", rpm_c, ev))
             approaches.append((lead_in, lead_out))
             leg_depart = float((lead_out or ev).eta_s[0])
+            arrivals.append(leg_depart)
+            leg_depart = _departure(call_at.get(k + 1), leg_depart)
             continue
         under_way = k == 0 and position is not None
-        leg = leg_setup(a, b, env, lim, land, leg_depart, search_rtas[k], approach_nm=approach_nm,
+        if sched is not None and 0 < k < len(ports) - 2 and not rta_warning:
+            # closed loop: the legs left re-scheduled from where and when this one starts
+            search_rtas[k] = plan_schedule(sched_legs[k:], leg_depart, rta_s, rate).arrival_s[0]
+        leg_rta = max(search_rtas[k], leg_depart + 60.0)
+        leg = leg_setup(a, b, env, lim, land, leg_depart, leg_rta, approach_nm=approach_nm,
                         approach_rpm=approach_rpm, coastal_passage=coastal_passage,
                         stage_hours=stage_hours, objective=objective, terms=terms,
                         under_way=under_way, previous_plan=previous_plan if under_way else None,
@@ -311,7 +357,8 @@ def plan_voyage(
         need = with_baseline or (method == "seed_ga" and not seeds)
         base = compute_baseline(problem, env, land) if need else None
         ctx = MethodContext(problem, env, land, rng, leg_budget, seeds, progress, is_cancelled,
-                            k, time.perf_counter(), ga_config, stall_generations=stall_generations,
+                            k, time.perf_counter(), scaled_ga_config(ga_config, problem.n_stages),
+                            stall_generations=stall_generations,
                             baseline=base, max_generations=max_generations,
                             gene_seeds=gene_seeds, max_evaluations=leg_evals)
         res = fn(ctx)
@@ -331,10 +378,16 @@ def plan_voyage(
         if post is not None:
             leg_depart = float(post.eta_s[0])
         approaches.append((pre, post))
+        arrivals.append(leg_depart)
+        leg_depart = _departure(call_at.get(k + 1), leg_depart)
     land.fine_coast.save()  # coastal cells this plan resolved: later processes start with them
+    deadlines = [_deadline(call_at.get(k + 1), rta_s if k == len(results) - 1 else None)
+                 + rta_tolerance_s for k in range(len(results))]
     plan = _assemble(ports, problems, results, baselines, sources, approaches, env, spec,
                      method, objective, depart_s, rta_s, leg_rtas, gens, evals,
-                     time.perf_counter() - t0)
+                     time.perf_counter() - t0, deadlines)
+    if sched is not None:
+        plan = with_port_calls(plan, sched_legs, sched, arrivals, ports, rta_tolerance_s)
     if model_notes:
         from .learned.select import plan_warnings
 
@@ -407,7 +460,7 @@ class LegSetup:
 def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMask,
               depart_s: float, rta_s: float, *, approach_nm: float = 25.0,
               approach_rpm: float | None = None, coastal_passage: bool = True,
-              stage_hours: float = 12.0, objective: str = "fuel",
+              stage_hours: float | None = 12.0, objective: str = "fuel",
               terms: ObjectiveTerms | None = None, under_way: bool = False,
               previous_plan: RoutePlan | None = None,
               position: tuple[float, float, float] | None = None,
@@ -443,12 +496,16 @@ def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMa
         rta_leg -= float(est.eta_s[0] - est.time_s[0, 0])
     d_lon, d_lat = (ap_dep.lon_deg[-1], ap_dep.lat_deg[-1]) if ap_dep else (a.lon_deg, a.lat_deg)
     a_lon, a_lat = (ap_arr.lon_deg[0], ap_arr.lat_deg[0]) if ap_arr else (b.lon_deg, b.lat_deg)
+    rta_leg = max(rta_leg, t_leg + 60.0)
+    stage_h = stage_hours or leg_stage_hours(
+        rta_leg - t_leg, turns_to_round(land, float(d_lon), float(d_lat), float(a_lon),
+                                        float(a_lat)))
     span_s = search_window_s(terms, env.model,
                              float(inverse(d_lon, d_lat, a_lon, a_lat)[1]), rta_leg - t_leg)
-    n_stages = (max(1, math.ceil(span_s / (stage_hours * 3600.0)) - 1)
+    n_stages = (max(1, math.ceil(span_s / (stage_h * 3600.0)) - 1)
                 if span_s < rta_leg - t_leg else 0)  # 0: the whole window
     problem = RouteProblem(float(d_lon), float(d_lat), float(a_lon), float(a_lat), t_leg,
-                           rta_leg, lim, stage_s=stage_hours * 3600.0, n_stages=n_stages,
+                           rta_leg, lim, stage_s=stage_h * 3600.0, n_stages=n_stages,
                            objective=objective,
                            objective_per_t_fuel=terms.per_t_fuel if terms else 1.0,
                            objective_per_h=terms.per_h if terms else 0.0,
@@ -493,14 +550,15 @@ def _previous_arrival(previous: RoutePlan | None, port: Port,
 def _lane_rpm(env: Environment, a: Port, b: Port, ap_dep, ap_arr, depart_s: float,
               rta_s: float, lim: RouteLimits) -> float:
     """Approach RPM: calm water RPM of the mean speed that meets the RTA on the approaches
-    plus the great circle between their sea ends, within the engine range."""
+    plus the sea lane between their sea ends, within the engine range."""
     ends = [(a.lon_deg, a.lat_deg), (b.lon_deg, b.lat_deg)]
     if ap_dep is not None:
         ends[0] = (ap_dep.lon_deg[-1], ap_dep.lat_deg[-1])
     if ap_arr is not None:
         ends[1] = (ap_arr.lon_deg[0], ap_arr.lat_deg[0])
+    # the sea lane between the approaches' ends (round the land the great circle crosses)
     length = (approach_length_m(ap_dep) + approach_length_m(ap_arr)
-              + float(inverse(*ends[0], *ends[1])[1]))
+              + sea_distance_m(*(round(float(v), 4) for v in (*ends[0], *ends[1]))))
     speed = length / max(rta_s - depart_s, 3600.0)
     model = env.model
     if hasattr(model, "rpm_for_speed"):
@@ -562,7 +620,8 @@ def _legs_of(ev: RouteEvaluation, pre: RouteEvaluation | None,
 
 
 def _assemble(ports, problems, results, baselines, sources, approaches, env, spec, method,
-              objective, depart_s, rta_s, leg_rtas, gens, evals, compute_s) -> RoutePlan:
+              objective, depart_s, rta_s, leg_rtas, gens, evals, compute_s,
+              deadlines) -> RoutePlan:
     wps: list[Waypoint] = []
     flags = 0
     plan_parts, base_parts, spans, fixed = [], [], [], []
@@ -592,7 +651,7 @@ def _assemble(ports, problems, results, baselines, sources, approaches, env, spe
                 spans.append((start, len(wps) - 1))
             if part is ev:  # approaches are fixed pilotage: their flags inform, not decide
                 flags |= int(part.flags[0]) & ~2
-        if float(parts[-1].eta_s[0]) > leg_rtas[k] + 1.0:
+        if float(parts[-1].eta_s[0]) > deadlines[k]:
             flags |= 2
     fuel = sum(float(ev.fuel_t[0]) for ev in plan_parts)
     dist = sum(float(ev.distance_m[0]) for ev in plan_parts) / 1852.0

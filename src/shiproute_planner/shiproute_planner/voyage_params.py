@@ -42,6 +42,12 @@ def check_parameter(name: str, value: Any) -> str | None:
         return f"{name} must name a port, a UN/LOCODE or 'lat,lon'"
     if name == "ship" and not str(value).strip():
         return "ship must name a bundled ship or a ship file"
+    if name == "stage_hours" and value == 0.0:
+        return None  # derived from the voyage
+    if name == "port_calls":
+        from .voyage.node_calls import port_calls_reason
+
+        return port_calls_reason(str(value))
     if name == "ship_model":
         return _ship_model_reason(str(value))
     if name == "fuel_type" and str(value).strip().upper() not in ("", *CO2_FACTOR_T_PER_T):

@@ -12,6 +12,8 @@ from datetime import UTC, datetime
 from .checks.voyage import VoyageCheck, check_position, check_voyage
 from .errors import InvalidVoyageError
 from .geo.ports import Port
+from .voyage.node_calls import port_calls_parameter
+from .voyage.port_calls import PortCall, check_port_call
 from .voyage_params import parse_utc
 
 
@@ -25,6 +27,7 @@ class VoyageRequest:
     rta_s: float
     ship: str
     objective: str
+    port_calls: tuple[PortCall, ...] = ()  # replaces the current calls (empty: direct)
 
 
 @dataclass(frozen=True)
@@ -70,7 +73,9 @@ def check_voyage_request(req: VoyageRequest, *, origin: str, ship: str, objectiv
     check = check_voyage(start, dest, depart_s, rta_s, req.ship.strip() or ship,
                          objective=req.objective.strip() or objective, method=method,
                          ship_model=ship_model)
-    params: dict[str, object] = {"destination": dest}
+    calls = check_calls(req.port_calls, depart_s, rta_s)
+    params: dict[str, object] = {"destination": dest,
+                                 "port_calls": port_calls_parameter(calls)}
     if req.rta_s != 0.0:
         params["rta"] = _iso(rta_s)
     if req.ship.strip():
@@ -79,6 +84,28 @@ def check_voyage_request(req: VoyageRequest, *, origin: str, ship: str, objectiv
         params["objective"] = req.objective.strip()
     text = (f"voyage to {check.destination.name} set: RTA {_iso(rta_s)}, "
             f"{check.great_circle_nm:.0f} NM great circle from {check.origin.name}")
+    if calls:
+        text += f"; calling at {', '.join(c.port for c in calls)}"
     if check.rta_warning:
         text += f"; {check.rta_warning}, flagged FLAG_RTA"
     return CheckedVoyage(params, text, check)
+
+
+def check_calls(calls: tuple[PortCall, ...], depart_s: float | None,
+                rta_s: float) -> tuple[PortCall, ...]:
+    """Port calls whose ports resolve to water and whose windows are well formed (within the
+    voyage), else InvalidVoyageError / PortNotFoundError naming the call."""
+    from .geo.landmask import default_land_mask
+    from .geo.ports import resolve_port
+
+    land = default_land_mask()
+    for call in calls:
+        if not call.port:
+            raise InvalidVoyageError("a port call names no port")
+        check_port_call(call, depart_s if depart_s is not None else -1e18)
+        for what, t in (("earliest", call.earliest_s), ("latest", call.latest_s)):
+            if t is not None and t > rta_s:
+                raise InvalidVoyageError(f"port call {call.port}: {what} arrival {_iso(t)} is "
+                                         f"after the RTA {_iso(rta_s)}")
+        resolve_port(call.port, land)
+    return calls

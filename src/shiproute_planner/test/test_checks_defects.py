@@ -143,7 +143,7 @@ def test_rejected_keys_bounded() -> None:
 
 
 @pytest.mark.parametrize(("name", "value", "word"), [
-    ("stage_hours", 1000.0, "stage_hours"), ("stage_hours", 0.0, "stage_hours"),
+    ("stage_hours", 1000.0, "stage_hours"), ("stage_hours", 0.05, "stage_hours"),
     ("budget_s", 1e5, "budget_s"), ("budget_s", math.nan, "budget_s"),
     ("rng_seed", -1, "rng_seed"), ("rta", "yesterday", "rta"), ("rta", "1900-01-01Z", "rta"),
     ("destination", " ", "destination"), ("objective", "speed", "objective"),
@@ -155,8 +155,8 @@ def test_parameters_have_ranges_with_reasons(name: str, value: object, word: str
 
 
 def test_default_parameters_accepted() -> None:
-    for name, value in (("stage_hours", 12.0), ("budget_s", 3.0), ("rng_seed", 0),
-                        ("rta", "2026-03-16T18:00:00Z"), ("min_replan_interval_s", 3600.0)):
+    for name, value in (("stage_hours", 12.0), ("stage_hours", 0.0), ("budget_s", 3.0),
+                        ("rng_seed", 0), ("rta", "2026-03-16T18:00:00Z"), ("min_replan_interval_s", 3600.0)):
         assert check_parameter(name, value) is None
 
 

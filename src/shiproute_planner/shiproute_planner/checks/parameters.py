@@ -24,10 +24,13 @@ class Range:
 
 
 RANGES: dict[str, Range] = {
+    "rta_tolerance_s": Range(
+        0.0, 86400.0, "s", "an arrival up to a day after the RTA may count as on time, not "
+        "more; 0 means exactly on time"),
     "stage_hours": Range(
-        1.0, 24.0, "h", "forecasts are 1-6 hourly and a storm crosses a 12 h stage in 12 h; "
-        "longer stages sample the weather too sparsely to see it (and under 1 h a 13-day "
-        "voyage has over 300 genes)"),
+        0.1, 24.0, "h", "0 derives it from the voyage; forecasts are 1-6 hourly and a storm "
+        "crosses a 12 h stage in 12 h, so longer stages sample the weather too sparsely; under "
+        "6 minutes a stage is shorter than the ship's turn"),
     "budget_s": Range(
         0.05, 3600.0, "s", "a plan needs a few generations (> 50 ms) and must arrive before "
         "the next forecast cycle (< 1 h)"),

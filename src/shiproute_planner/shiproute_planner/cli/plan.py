@@ -34,7 +34,11 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--from", dest="origin", required=True, help="port name, UN/LOCODE or lat,lon")
     ap.add_argument("--to", dest="destination", required=True)
     ap.add_argument("--via", action="append", default=[],
-                    help="intermediate port (repeatable); optional '@TIME' sets its RTA")
+                    metavar="PORT[@EARLIEST..LATEST][+BERTH_H]",
+                    help="port call (repeatable): optional arrival window (ISO UTC times or "
+                         "offsets after departure such as 3d; either end may be left out; "
+                         "'@TIME' alone is a latest arrival) and berth time in hours; the "
+                         "leg times are scheduled together for the least fuel")
     ap.add_argument("--depart", required=True, help="ISO 8601 UTC, e.g. 2026-03-03T18:00Z")
     ap.add_argument("--rta", required=True,
                     help="required time of arrival: ISO time or duration after departure (13d)")
@@ -79,7 +83,12 @@ def build_parser() -> argparse.ArgumentParser:
                     help="wall time (3s) or route evaluations (4000ev: reproducible); "
                          "default 3s, for the front 1s per plan")
     ap.add_argument("--seed", type=int, default=0, help="random seed")
-    ap.add_argument("--stage-hours", type=float, default=12.0)
+    ap.add_argument("--stage-hours", type=float, default=None,
+                    help="stage duration [h] (default: from the voyage, 12 h for an ocean "
+                         "crossing, shorter so a short passage gets ~12 stages)")
+    ap.add_argument("--rta-tolerance", default="5m",
+                    help="an arrival this much after the RTA (or a port's latest arrival) "
+                         "is on time (default 5m; e.g. 0, 90s, 10m)")
     ap.add_argument("--seed-pool", default=None, help="seed pool directory")
     ap.add_argument("--out", default=".", help="output directory")
     ap.add_argument("--name", default=None, help="output file stem (default from ports)")
@@ -142,7 +151,8 @@ def main(argv: list[str]) -> int:
             budget=args.budget or (f"{args.front_points}s" if args.objective == "front"
                                    else "3s"),
             loading=args.loading, fuel_type=args.fuel_type, fuel_price_usd_per_t=args.fuel_price,
-            charter_usd_per_day=args.charter_rate, front_points=args.front_points)
+            charter_usd_per_day=args.charter_rate, front_points=args.front_points,
+            rta_tolerance=args.rta_tolerance)
         forecast = (load_forecast(args.forecast, waves_from_wind=not args.no_wave_estimate)
                     if args.forecast else None)
         # build the sampler outside the budget: --budget is planning time, not file loading
@@ -234,5 +244,11 @@ def format_summary(plan) -> str:
                      f"{', '.join(_short(n) for n in fc['fields'])}")
         for f in fc.get("source_files", []):
             lines.append(f"  from     {f}")
+    for row in plan.extra.get("port_calls", ()):
+        window = (f"  window {row['earliest']}..{row['latest']}"
+                  if row["earliest"] or row["latest"] else "")
+        lines.append(f"call       {row['port']:<24s} arrive {row['arrival']}  depart "
+                     f"{row['departure']}{window}"
+                     + ("" if row["in_window"] else "  LATE"))
     lines += [f"warning    {w}" for w in plan.warnings]
     return "\n".join(lines)

@@ -1,0 +1,1 @@
+"""Voyages of every shape: port calls, leg schedules and stage lengths."""

@@ -1,0 +1,140 @@
+"""The legs of a voyage as the schedule sees them: sea-lane distance per leg (searoute's
+shortest sea lane, which goes round continents where the great circle cannot), canal legs at
+their transit speed, and the port call at each leg's end."""
+
+from __future__ import annotations
+
+import functools
+import itertools
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from ..geo.geodesy import inverse, wrap_lon
+from ..geo.ports import Port
+from ..route_check import M_PER_NM
+from .port_calls import PortCall
+from .schedule import FuelRate, LegSpec, fuel_rate_of
+
+KNOT_M_S = M_PER_NM / 3600.0
+
+
+def turns_to_round(land: Any, lon0: float, lat0: float, lon1: float, lat1: float) -> int:
+    """Capes and straits a leg must round: the sea lane's turns when the great circle between
+    the leg's ends crosses land, else 0 (the open sea needs no extra stages)."""
+    from ..geo.geodesy import great_circle_points
+
+    d = float(inverse(lon0, lat0, lon1, lat1)[1])
+    n = int(min(2000, max(8, d / 5000.0)))  # a sample every ~5 km
+    lon, lat = great_circle_points(lon0, lat0, lon1, lat1, n)
+    inner = slice(1, -1)  # the ends are the approaches' sea ends (or ports)
+    if not np.any(land.is_land(np.asarray(lon)[inner], np.asarray(lat)[inner])):
+        return 0
+    return lane_turns(round(lon0, 4), round(lat0, 4), round(lon1, 4), round(lat1, 4))
+
+
+@functools.lru_cache(maxsize=256)
+def lane_turns(lon0: float, lat0: float, lon1: float, lat1: float,
+               tolerance_deg: float = 0.1, min_turn_deg: float = 20.0) -> int:
+    """Turns of the shortest sea lane between two points: vertices of the lane simplified to
+    `tolerance_deg` (~6 NM) where it turns by more than `min_turn_deg`, i.e. the capes and
+    straits a route must round (a great circle drawn in lon/lat bends, it does not turn)."""
+    import searoute
+    import shapely
+
+    try:
+        feat = searoute.searoute([float(wrap_lon(lon0)), lat0], [float(wrap_lon(lon1)), lat1])
+        c = np.asarray(feat["geometry"]["coordinates"], dtype=float)
+    except Exception:  # no lane known: nothing to round
+        return 0
+    if c.ndim != 2 or c.shape[0] < 3:
+        return 0
+    c[:, 0] = np.unwrap(c[:, 0], period=360.0)
+    simple = np.asarray(shapely.simplify(shapely.LineString(c), tolerance_deg,
+                                         preserve_topology=False).coords)
+    if simple.shape[0] < 3:
+        return 0
+    x, y = simple[:-1], simple[1:]
+    course = np.degrees(np.arctan2((y[:, 0] - x[:, 0]) * np.cos(np.radians(x[:, 1])),
+                                   y[:, 1] - x[:, 1]))
+    turn = np.abs((np.diff(course) + 180.0) % 360.0 - 180.0)
+    return int(np.sum(turn > min_turn_deg))
+
+
+@functools.lru_cache(maxsize=256)
+def sea_distance_m(lon0: float, lat0: float, lon1: float, lat1: float) -> float:
+    """Length of the shortest sea lane between two points [m] (great circle if none)."""
+    import searoute
+
+    direct = float(inverse(lon0, lat0, lon1, lat1)[1])
+    try:
+        feat = searoute.searoute([float(wrap_lon(lon0)), lat0], [float(wrap_lon(lon1)), lat1])
+        c = np.asarray(feat["geometry"]["coordinates"], dtype=float)
+    except Exception:  # searoute has no lane here: the great circle is all we know
+        return direct
+    if c.ndim != 2 or c.shape[0] < 2:
+        return direct
+    lon = np.concatenate([[lon0], c[:, 0], [lon1]])
+    lat = np.concatenate([[lat0], c[:, 1], [lat1]])
+    return max(float(np.sum(inverse(lon[:-1], lat[:-1], lon[1:], lat[1:])[1])), direct)
+
+
+def calm_fuel_rate(model: Any, rpm_min: float, rpm_max: float) -> FuelRate:
+    """The ship model's calm-water fuel rate over its RPM range, fitted for the schedule."""
+    from ..ship import SeaState
+
+    def speed_fuel(rpm: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        perf = model.evaluate(rpm, np.zeros_like(rpm), SeaState.calm(rpm.size))
+        return np.asarray(perf.stw_m_s, float), np.asarray(perf.fuel_t_per_h, float)
+
+    return fuel_rate_of(speed_fuel, rpm_min, rpm_max)
+
+
+def leg_specs(ports: Sequence[Port], calls: dict[int, PortCall],
+              canal_legs: dict[int, Any]) -> list[LegSpec]:
+    """One LegSpec per leg ports[k] -> ports[k+1]; `calls` maps an end-port index of `ports`
+    to its call, `canal_legs` a leg index to (canal, reversed)."""
+    from ..canals import canal_line
+
+    out = []
+    for k, (a, b) in enumerate(itertools.pairwise(ports)):
+        call = calls.get(k + 1)
+        window = ({} if call is None else
+                  {"earliest_s": call.earliest_s, "latest_s": call.latest_s,
+                   "berth_s": call.berth_s})
+        if k in canal_legs:
+            canal, rev = canal_legs[k]
+            lon, lat = canal_line(canal, rev)
+            length = float(np.sum(inverse(lon[:-1], lat[:-1], lon[1:], lat[1:])[1]))
+            out.append(LegSpec(b.name, length, length / (canal.transit_kn * KNOT_M_S), **window))
+            continue
+        d = sea_distance_m(round(a.lon_deg, 4), round(a.lat_deg, 4), round(b.lon_deg, 4),
+                           round(b.lat_deg, 4))
+        out.append(LegSpec(b.name, d, None, **window))
+    return out
+
+
+def cube_law_rate(v_min_m_s: float = 4.0, v_max_m_s: float = 12.0) -> FuelRate:
+    """A fuel rate proportional to speed cubed (propeller law) for models without a
+    calm-water evaluation: the schedule's shape without the ship's numbers."""
+    return FuelRate(v_min_m_s, v_max_m_s, (0.05, 0.0, 0.0, 0.0))
+
+
+def voyage_schedule(ports: Sequence[Port], calls: dict[int, PortCall],
+                    canal_legs: dict[int, Any], depart_s: float, rta_s: float, model: Any,
+                    rpm_min: float, rpm_max: float
+                    ) -> tuple[list[LegSpec], Any, list[str], FuelRate]:
+    """(legs, Schedule, notes, fuel rate): the fuel-optimal schedule of a multi-port voyage
+    (the rate re-schedules the legs left as each leg is planned)."""
+    from .schedule import plan_schedule
+
+    notes: list[str] = []
+    try:
+        rate = calm_fuel_rate(model, rpm_min, rpm_max)
+    except Exception as exc:  # a model without calm-water evaluation: say so, use the law
+        rate = cube_law_rate()
+        notes.append(f"leg schedule estimated with the propeller (cube) law: the ship model "
+                     f"gives no calm-water fuel rate ({exc})")
+    legs = leg_specs(ports, calls, canal_legs)
+    return legs, plan_schedule(legs, depart_s, rta_s, rate), notes, rate
