@@ -10,8 +10,8 @@ from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
+from shiproute_core.geodesy import inverse, wrap_lon
 
-from ..geo.geodesy import inverse, wrap_lon
 from ..geo.ports import Port
 from ..route_check import M_PER_NM
 from .port_calls import PortCall
@@ -23,7 +23,7 @@ KNOT_M_S = M_PER_NM / 3600.0
 def turns_to_round(land: Any, lon0: float, lat0: float, lon1: float, lat1: float) -> int:
     """Capes and straits a leg must round: the sea lane's turns when the great circle between
     the leg's ends crosses land, else 0 (the open sea needs no extra stages)."""
-    from ..geo.geodesy import great_circle_points
+    from shiproute_core.geodesy import great_circle_points
 
     d = float(inverse(lon0, lat0, lon1, lat1)[1])
     n = int(min(2000, max(8, d / 5000.0)))  # a sample every ~5 km
