@@ -22,10 +22,15 @@ import xarray as xr  # noqa: E402
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus  # noqa: E402
 from rclpy.executors import SingleThreadedExecutor  # noqa: E402
 from rosproc import RosProcess, random_domain_id, ros_context, spin_until  # noqa: E402
-from shiproute_weather.convert import msgs_to_dataset  # noqa: E402
-from shiproute_weather.loaders import open_forecast  # noqa: E402
-from shiproute_weather.node import CYCLE_TOPIC, LOAD_SERVICE, SLICES_TOPIC, latched  # noqa: E402
-from shiproute_weather.record import without_record  # noqa: E402
+from shiproute_weather.ros.convert import msgs_to_dataset  # noqa: E402
+from shiproute_weather.ingest.loaders import open_forecast  # noqa: E402
+from shiproute_weather.ros.node import (  # noqa: E402
+    CYCLE_TOPIC,
+    LOAD_SERVICE,
+    SLICES_TOPIC,
+    latched,
+)
+from shiproute_weather.ingest.record import without_record  # noqa: E402
 from weather_fixtures import small_canonical, write_nc  # noqa: E402
 
 from shiproute_msgs.msg import ForecastCycle, ForecastSlice  # noqa: E402
@@ -203,7 +208,7 @@ def test_several_files_make_one_cycle_with_its_record(tmp_path: Path) -> None:
     """Wind from one file and currents from another (own grid and time step) via the load
     service and via the watched directory: one cycle whose announcement names each field's
     file and the load's notes (waves estimated from wind), also on /diagnostics."""
-    from shiproute_weather import canonical as cv
+    from shiproute_weather.contract import canonical as cv
 
     (tmp_path / "watch").mkdir()
     wind = small_canonical(n_time=5, cycle_id="wind-2026030312")[[cv.WIND_U, cv.WIND_V]]

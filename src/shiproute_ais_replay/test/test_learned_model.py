@@ -115,7 +115,7 @@ def test_tabulated_model_agrees_with_the_learned_model(learned) -> None:
 def test_plan_with_the_learned_model_serves_the_true_ship_better(learned) -> None:
     from shiproute_planner.learned.reevaluate import reevaluate
     from shiproute_planner.planning import plan_voyage
-    from shiproute_weather.sampling import ForecastSampler
+    from shiproute_weather.sampling.sampler import ForecastSampler
 
     ship, ds, _, _, model, path = learned
     sampler = ForecastSampler(ds)

@@ -68,7 +68,7 @@ def _warm_up(log) -> None:
     from shiproute_planner.geo.landmask import default_land_mask
     from shiproute_planner.geo.ports import resolve_port
     from shiproute_planner.planning import plan_voyage
-    from shiproute_weather.sampling import ForecastSampler
+    from shiproute_weather.sampling.sampler import ForecastSampler
     from shiproute_weather.scenarios import scenario_dataset
 
     log("warming the planner's compiled kernels and the voyage region's coastline")

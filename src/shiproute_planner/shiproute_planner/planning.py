@@ -70,7 +70,7 @@ def load_forecast(name_or_path: str | Sequence[str], waves_from_wind: bool = Tru
             raise InvalidVoyageError(
                 f"forecast {str(n)!r} is neither a file nor a bundled scenario "
                 f"({', '.join(scenario_names())})")
-    from shiproute_weather.loaders import open_forecast
+    from shiproute_weather.ingest.loaders import open_forecast
 
     try:
         return open_forecast([str(n) for n in names], waves_from_wind=waves_from_wind)
@@ -97,7 +97,7 @@ def make_environment(ship: Any, forecast: Any = None) -> tuple[Environment, Any]
             sampler = forecast
             cycle = str(getattr(forecast, "cycle_id", "") or "")
         else:
-            from shiproute_weather.sampling import ForecastSampler
+            from shiproute_weather.sampling.sampler import ForecastSampler
 
             sampler = ForecastSampler(forecast)
             cycle = str(forecast.attrs.get("cycle_id", ""))

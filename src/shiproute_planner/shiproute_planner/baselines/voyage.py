@@ -26,7 +26,7 @@ def load_forecast(name_or_path: str):
 
     if name_or_path in scenario_names():
         return scenario_dataset(name_or_path)
-    from shiproute_weather.loaders import open_forecast
+    from shiproute_weather.ingest.loaders import open_forecast
 
     return open_forecast([name_or_path])
 
