@@ -51,7 +51,7 @@ def forecast_sampler(spec: str) -> Any:
         return None
     from shiproute_weather.ingest.loaders import open_forecast
     from shiproute_weather.sampling.sampler import ForecastSampler
-    from shiproute_weather.scenarios import scenario_dataset, scenario_names
+    from shiproute_weather.scenarios.catalogue import scenario_dataset, scenario_names
 
     ds = scenario_dataset(spec) if spec in scenario_names() else open_forecast([spec])
     return ForecastSampler(ds).sample

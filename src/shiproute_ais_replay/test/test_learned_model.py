@@ -28,7 +28,7 @@ FAULTS = Corruption()
 
 @pytest.fixture(scope="module")
 def learned(tmp_path_factory):
-    from shiproute_weather.scenarios import scenario_dataset
+    from shiproute_weather.scenarios.catalogue import scenario_dataset
 
     ship = load_ship("container_4600teu")
     ds = scenario_dataset("storm_march")

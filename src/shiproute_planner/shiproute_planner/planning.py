@@ -60,7 +60,7 @@ def load_forecast(name_or_path: str | Sequence[str], waves_from_wind: bool = Tru
     come from different files) or a bundled scenario name. A file that cannot be used is
     refused with InvalidVoyageError naming it and the reason."""
     from shiproute_weather.errors import WeatherError
-    from shiproute_weather.scenarios import scenario_dataset, scenario_names
+    from shiproute_weather.scenarios.catalogue import scenario_dataset, scenario_names
 
     names = [name_or_path] if isinstance(name_or_path, str | Path) else list(name_or_path)
     if len(names) == 1 and not Path(names[0]).exists() and names[0] in scenario_names():

@@ -12,9 +12,8 @@ import pytest
 import xarray as xr
 from shiproute_planner.errors import InvalidVoyageError
 from shiproute_planner.planning import load_forecast, plan_voyage
-from shiproute_weather.sampling.sampler import ForecastSampler
-
 from shiproute_weather.contract import canonical as cv
+from shiproute_weather.sampling.sampler import ForecastSampler
 
 CMEMS_NATL = Path("/work/shared/data/forecasts/cmems_glo12_currents_2024-01-01_natl.nc")
 TIGGE_2007 = Path("/usr/share/doc/python-grib-doc/examples/ecmwf_tigge.grb")

@@ -18,7 +18,7 @@ from shiproute_planner.errors import ForecastCycleError
 def _cycle(encoding: str = "packed16"):
     """Eight valid times (3-hourly) of the bundled storm forecast and their slice messages."""
     from shiproute_weather.ros.convert import dataset_to_msgs
-    from shiproute_weather.scenarios import scenario_dataset
+    from shiproute_weather.scenarios.catalogue import scenario_dataset
 
     ds = scenario_dataset("storm_march").isel(time=slice(0, 8)).load()
     ds.attrs["cycle_id"] = "packer-test"
@@ -58,8 +58,8 @@ def test_slice_fields_are_views_on_the_message_buffers():
 def test_packed_in_any_order_equals_the_sampler_of_the_dataset(encoding):
     """Either encoding: the same bits as a sampler built from the values the messages decode
     to (the dataset itself for float32)."""
+    from shiproute_weather.contract.record import without_record
     from shiproute_weather.ros.convert import msgs_to_dataset
-    from shiproute_weather.ingest.record import without_record
     from shiproute_weather.sampling.sampler import ForecastSampler
 
     ds, msgs = _cycle(encoding)

@@ -6,7 +6,6 @@ from pathlib import Path
 
 import numpy as np
 import xarray as xr
-
 from shiproute_weather.contract import canonical as cv
 
 

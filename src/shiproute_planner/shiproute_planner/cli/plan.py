@@ -84,8 +84,8 @@ def _climatology(path: str | None):
     """The user's monthly climatology dataset, or None; refused with the reason."""
     if not path:
         return None
-    from shiproute_weather.sampling.coverage import load_climatology
     from shiproute_weather.errors import WeatherError
+    from shiproute_weather.ingest.coverage import load_climatology
 
     try:
         return load_climatology(path)

@@ -28,7 +28,7 @@ class LoadedForecast:
 def load_forecast_spec(spec: str) -> LoadedForecast:
     """Load a forecast spec (file, files joined with '+', or bundled scenario)."""
     from shiproute_weather.sampling.sampler import ForecastSampler
-    from shiproute_weather.scenarios import scenario_dataset, scenario_names
+    from shiproute_weather.scenarios.catalogue import scenario_dataset, scenario_names
 
     if spec in scenario_names():
         ds = scenario_dataset(spec)

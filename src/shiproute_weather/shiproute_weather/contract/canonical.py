@@ -9,7 +9,7 @@ import numpy as np
 
 from ..errors import GridError, MissingVariableError
 
-if TYPE_CHECKING:  # annotations only: xarray + pandas are ~50 MB resident in the planner
+if TYPE_CHECKING:  # annotations only: the planner need not keep xarray + pandas resident
     import xarray as xr
 
 WIND_U = "eastward_wind"

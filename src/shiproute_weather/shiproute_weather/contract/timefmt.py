@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Literal
+
 import numpy as np
 
 
@@ -18,7 +20,7 @@ def iso_to_ns(text: str) -> int:
 def ns_to_iso(ns: int) -> str:
     """Canonical ISO 8601 UTC string: seconds resolution unless sub-second parts exist."""
     t = np.datetime64(int(ns), "ns")
-    unit = "s" if ns % 1_000_000_000 == 0 else "ns"
+    unit: Literal["s", "ns"] = "s" if ns % 1_000_000_000 == 0 else "ns"
     return str(np.datetime_as_string(t, unit=unit)) + "Z"
 
 

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import re
 
+from shiproute_core.units import M_S_PER_KNOT
+
 from ..errors import VariableUnitsError
 
 # canonical units -> {normalised source unit: factor to canonical}
@@ -13,8 +15,8 @@ _FACTORS: dict[str, dict[str, float]] = {
         "meters/second": 1.0, "metre/second": 1.0, "meters per second": 1.0,
         "m.s-1": 1.0, "mps": 1.0,
         "cm s-1": 0.01, "cm/s": 0.01, "cm s**-1": 0.01, "centimeters/second": 0.01,
-        "knots": 1852.0 / 3600.0, "knot": 1852.0 / 3600.0, "kt": 1852.0 / 3600.0,
-        "kts": 1852.0 / 3600.0, "kn": 1852.0 / 3600.0,
+        "knots": M_S_PER_KNOT, "knot": M_S_PER_KNOT, "kt": M_S_PER_KNOT,
+        "kts": M_S_PER_KNOT, "kn": M_S_PER_KNOT,
         "km h-1": 1 / 3.6, "km/h": 1 / 3.6, "kph": 1 / 3.6, "km h**-1": 1 / 3.6,
     },
     "m": {"m": 1.0, "meter": 1.0, "meters": 1.0, "metre": 1.0, "metres": 1.0,

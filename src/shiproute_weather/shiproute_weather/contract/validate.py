@@ -7,14 +7,14 @@ from collections.abc import Iterable
 import numpy as np
 import xarray as xr
 
-from . import canonical as cv
 from ..errors import GridError, MissingVariableError, ValueRangeError
-from ..ingest.outliers import CURRENT_SPEED_MAX_M_S, WIND_SPEED_MAX_M_S
+from . import canonical as cv
+from .limits import CURRENT_SPEED_MAX_M_S, WIND_SPEED_MAX_M_S
 
 #: Physical limits (the same as `outliers`, which masks what lies beyond them when a file is
 #: read): Hs 0-30 m, |wind| < 100 m/s, periods 0-40 s, currents below 5 m/s, directions
 #: 0-360 deg. A dataset built in memory that breaks them is refused here.
-__all__ = ["CURRENT_SPEED_MAX_M_S", "WIND_SPEED_MAX_M_S", "validate"]
+__all__ = ["validate"]
 
 
 def _check_range(ds: xr.Dataset, name: str, where: str) -> None:

@@ -12,6 +12,8 @@ import subprocess
 import sys
 import time
 
+from shiproute_core.topics import FORECAST_CYCLE, FORECAST_SLICES
+
 _SUBSCRIBER = r"""
 import sys, time, rclpy
 from rclpy.qos import QoSProfile, HistoryPolicy, ReliabilityPolicy, DurabilityPolicy
@@ -24,9 +26,9 @@ qos = lambda d: QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=d,
                            durability=DurabilityPolicy.TRANSIENT_LOCAL)
 got = {}
 cycle = []
-node.create_subscription(ForecastSlice, sys.argv[2] + "/slices",
+node.create_subscription(ForecastSlice, sys.argv[3],
                          lambda m: got.__setitem__(m.slice_index, m.slice_count), qos(depth))
-node.create_subscription(ForecastCycle, sys.argv[2] + "/cycle", cycle.append, qos(1))
+node.create_subscription(ForecastCycle, sys.argv[2], cycle.append, qos(1))
 print("ready", flush=True)
 while rclpy.ok():
     rclpy.spin_once(node, timeout_sec=0.05)
@@ -58,21 +60,21 @@ def _parse(argv: list[str]) -> argparse.Namespace:
 def main(argv: list[str] | None = None) -> int:
     """Entry point of `shiproute bench weather`."""
     args = _parse(sys.argv[1:] if argv is None else argv)
-    from ..scenarios import scenario_path
+    from ..scenarios.catalogue import scenario_path
 
     path = args.file or str(scenario_path(args.scenario))  # generation is not timed
     domain = random.Random().randint(0, 101)
     env = {**os.environ, "ROS_DOMAIN_ID": str(domain),
            "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST"}
     os.environ.update({k: env[k] for k in ("ROS_DOMAIN_ID", "ROS_AUTOMATIC_DISCOVERY_RANGE")})
-    topic = "/shiproute/forecast"
-    sub = subprocess.Popen([sys.executable, "-u", "-c", _SUBSCRIBER, "200", topic], env=env,
+    sub = subprocess.Popen([sys.executable, "-u", "-c", _SUBSCRIBER, "200", FORECAST_CYCLE,
+                            FORECAST_SLICES], env=env,
                            stdout=subprocess.PIPE, text=True, start_new_session=True)
     try:
         assert sub.stdout is not None
         if "ready" not in sub.stdout.readline():
             raise RuntimeError("benchmark subscriber did not start")
-        result = _run(path, topic, sub, args.timeout_s, args.encoding)
+        result = _run(path, sub, args.timeout_s, args.encoding)
     finally:
         if sub.poll() is None:
             sub.terminate()
@@ -94,21 +96,21 @@ def main(argv: list[str] | None = None) -> int:
     return 0
 
 
-def _run(path: str, topic: str, sub: subprocess.Popen[str], timeout_s: float,
+def _run(path: str, sub: subprocess.Popen[str], timeout_s: float,
          encoding: str) -> dict:
     import rclpy
 
     from shiproute_msgs.msg import ForecastCycle, ForecastSlice
 
-    from ..ros.convert import DEFAULT_SLICE_ENCODING, cycle_to_msg, slice_to_msg, wire_bytes
     from ..ingest.cycle_builder import CycleConfig, build_cycle
-    from ..ros.node import latched
     from ..ingest.stream import load_slices, streamable, warm_array_backends
+    from ..ros.convert import DEFAULT_SLICE_ENCODING, cycle_to_msg, slice_to_msg, wire_bytes
+    from ..ros.node import latched
 
     rclpy.init()
     node = rclpy.create_node("bench_weather_publisher")
-    cyc_pub = node.create_publisher(ForecastCycle, topic + "/cycle", latched(1))
-    sl_pub = node.create_publisher(ForecastSlice, topic + "/slices", latched(200))
+    cyc_pub = node.create_publisher(ForecastCycle, FORECAST_CYCLE, latched(1))
+    sl_pub = node.create_publisher(ForecastSlice, FORECAST_SLICES, latched(200))
     deadline = time.monotonic() + 30.0
     while sl_pub.get_subscription_count() == 0 and time.monotonic() < deadline:
         time.sleep(0.05)

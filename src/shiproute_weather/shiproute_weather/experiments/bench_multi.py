@@ -16,7 +16,7 @@ def make_sources(scenario: str = "storm_march") -> tuple[Path, Path]:
     """The two files, derived once from a bundled scenario (not timed)."""
 
     from ..contract import canonical as cv
-    from ..scenarios import scenario_dataset, scenario_path
+    from ..scenarios.catalogue import scenario_dataset, scenario_path
 
     base = scenario_path(scenario)
     wind_waves = base.with_name(f"{base.stem}.bench-windwaves.nc")
@@ -38,9 +38,9 @@ def make_sources(scenario: str = "storm_march") -> tuple[Path, Path]:
 
 
 def main() -> None:
-    from ..ros.convert import DEFAULT_SLICE_ENCODING, slice_to_msg
     from ..ingest.cycle_builder import CycleConfig, build_cycle
     from ..ingest.stream import warm_array_backends
+    from ..ros.convert import DEFAULT_SLICE_ENCODING, slice_to_msg
 
     a, b = make_sources()
     warm_array_backends()  # as the weather node does at start

@@ -1,2 +1,3 @@
 """Forecast files (GRIB1/2, NetCDF, projected grids, several sources) -> one validated
-canonical dataset, and from it the bounded cycle of slices the node publishes."""
+canonical dataset; the bounded cycle of slices the node publishes; a forecast's coverage of a
+voyage in time (persistence, monthly climatology beyond it)."""

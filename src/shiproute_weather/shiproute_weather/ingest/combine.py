@@ -10,8 +10,8 @@ import xarray as xr
 
 from ..contract import canonical as cv
 from ..errors import GridError
-from .regrid import regrid
 from ..wire.slices import snap_grid
+from .regrid import regrid
 
 #: a field of a file with fewer valid times than the cycle's is held this long beyond its own
 #: span [h] (the planner's own persistence bound beyond the whole cycle is the same default)
@@ -160,7 +160,7 @@ def combine(datasets: Sequence[xr.Dataset], target: int | None = None) -> xr.Dat
         sub = d[new] if i == target else _onto(d, new, base)
         merged.update({n: sub[n] for n in new})
         members.update(_members_onto(d, new, base) if i != target else {
-            k: d[k] for k in d.data_vars if str(k).startswith("ensemble_")
+            str(k): d[k] for k in d.data_vars if str(k).startswith("ensemble_")
             and str(k)[9:] in new})
     ordered = {n: merged[n] for n in cv.CANONICAL_ORDER if n in merged}
     ordered.update(members)

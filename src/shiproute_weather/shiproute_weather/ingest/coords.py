@@ -16,9 +16,9 @@ def _find(ds: xr.Dataset, names: tuple[str, ...], standard: str) -> str | None:
     for n in names:
         if n in ds.coords or n in ds.dims:
             return n
-    for n, c in ds.coords.items():
+    for name, c in ds.coords.items():
         if c.attrs.get("standard_name") == standard or c.attrs.get("axis") == standard[:1].upper():
-            return str(n)
+            return str(name)
     return None
 
 
@@ -78,7 +78,7 @@ def make_regular_lonlat(ds: xr.Dataset, where: str) -> xr.Dataset:
     """Regrid 1-D point grids (reduced lat/lon or Gaussian) to regular; 2-D coords rejected."""
     if ds["latitude"].ndim == 1 and ds["latitude"].dims == ds["longitude"].dims and \
             ds["latitude"].dims[0] not in ("latitude",):
-        return regrid_reduced(ds, ds["latitude"].dims[0])
+        return regrid_reduced(ds, str(ds["latitude"].dims[0]))
     if ds["latitude"].ndim == 2 and ds["longitude"].dims == ds["latitude"].dims:
         from .projected import regrid_projected  # pyproj only for projected grids
 

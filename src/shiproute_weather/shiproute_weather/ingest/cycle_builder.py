@@ -9,11 +9,11 @@ import numpy as np
 import xarray as xr
 
 from ..contract import canonical as cv
-from .combine import Box, subset
+from ..contract.record import load_notes
 from ..errors import SliceError
-from .loaders import open_forecast
-from .record import load_notes
 from ..wire.slices import CycleInfo, SliceData, cycle_info, dataset_to_slices, snap_grid
+from .combine import Box, subset
+from .loaders import open_forecast
 
 #: Default bound on one ForecastSlice message (field bytes). A 0.5 deg North Pacific grid
 #: (105 x 261) with 13 fields is 1.43 MB; larger sources are thinned (grid stride) to fit.

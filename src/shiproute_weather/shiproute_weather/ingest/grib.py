@@ -133,7 +133,8 @@ def open_grib(path: Path) -> xr.Dataset:
     return merged
 
 
-def _variables(ds: xr.Dataset, grid_relative: set[str] = frozenset()) -> list[xr.Dataset]:
+def _variables(ds: xr.Dataset,
+               grid_relative: set[str] | frozenset[str] = frozenset()) -> list[xr.Dataset]:
     """Each wanted variable of one cfgrib hypercube, level dims reduced, names harmonised."""
     out = []
     for name in list(ds.data_vars):

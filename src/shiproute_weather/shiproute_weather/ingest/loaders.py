@@ -9,11 +9,11 @@ import numpy as np
 import xarray as xr
 
 from ..contract import canonical as cv
-from .combine import combine
+from ..contract.validate import validate
 from ..errors import ForecastFileError, MissingVariableError, WeatherError
+from .combine import combine
 from .grib import open_grib
 from .normalise import to_canonical
-from ..contract.validate import validate
 from .wind_waves import estimate_waves, has_waves
 
 

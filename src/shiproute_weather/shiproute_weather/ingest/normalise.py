@@ -9,6 +9,11 @@ import numpy as np
 import xarray as xr
 
 from ..contract import canonical as cv
+from ..contract.timefmt import canonical_iso
+from ..contract.units import si_factor
+from ..errors import GridError, MissingVariableError
+from ..physics.spectral import to_tm01_factor
+from ..wire.slices import snap_grid
 from .coords import (
     ascending_latitude,
     make_regular_lonlat,
@@ -18,7 +23,6 @@ from .coords import (
     require_monotonic,
     utc_naive_times,
 )
-from ..errors import GridError, MissingVariableError
 from .namemap import (
     CURRENT_DIR_NAMES,
     CURRENT_SPEED_NAMES,
@@ -28,10 +32,6 @@ from .namemap import (
     lookup,
 )
 from .outliers import mask_outliers
-from ..wire.slices import snap_grid
-from ..physics.spectral import to_tm01_factor
-from ..contract.timefmt import canonical_iso
-from ..contract.units import si_factor
 
 _DIMS = ("time", "latitude", "longitude")
 #: prefix of the variables holding every ensemble member of a canonical field
@@ -73,7 +73,7 @@ def _pick_level(da: xr.DataArray, d: str, where: str) -> xr.DataArray:
 def _surface(da: xr.DataArray, where: str) -> xr.DataArray:
     """Level dims reduced (10 m wind, surface waves and currents); a member dim is kept first."""
     for d in [d for d in da.dims if d not in _DIMS and d not in MEMBER_DIMS]:
-        da = _pick_level(da, d, where)
+        da = _pick_level(da, str(d), where)
     members = [d for d in da.dims if d in MEMBER_DIMS]
     if len(members) > 1:
         raise GridError(where, f"variable {da.name!r} has several member dims {members}")
@@ -240,8 +240,8 @@ def to_canonical(raw: xr.Dataset, where: str) -> xr.Dataset:
         raise MissingVariableError(where, "any forecast variable", _EXPECTED)
     member_values, member_dim = _member_info(ds, chosen)
     out, members, used = _split_members(out, member_values, member_dim)
-    data = {c: (_DIMS, out[c].astype(np.float32, copy=False)) for c in cv.CANONICAL_ORDER
-            if c in out}
+    data: dict[str, tuple[tuple[str, ...], np.ndarray]] = {
+        c: (_DIMS, out[c].astype(np.float32, copy=False)) for c in cv.CANONICAL_ORDER if c in out}
     data.update({f"{ENSEMBLE_PREFIX}{c}": (("member", *_DIMS), members[c].astype(np.float32))
                  for c in cv.CANONICAL_ORDER if c in members})
     coords = {"time": ds["time"].values, "latitude": ds["latitude"].values,

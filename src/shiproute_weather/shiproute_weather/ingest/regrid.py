@@ -13,7 +13,7 @@ import xarray as xr
 
 from ..contract import canonical as cv
 
-#: the sampler's rule (`_interp_kernel.MIN_VALID_WEIGHT`), kept here so numba is not imported
+#: the sampler's rule (`interp_kernel.MIN_VALID_WEIGHT`), kept here so numba is not imported
 MIN_VALID_WEIGHT = 0.5
 
 
@@ -76,7 +76,7 @@ def regrid(ds: xr.Dataset, latitudes_deg: np.ndarray, longitudes_deg: np.ndarray
         parts = ([np.sin(np.deg2rad(a)), np.cos(np.deg2rad(a))] if name in
                  cv.DIRECTION_VARIABLES else [a])
         res = []
-        cache: dict[int, list[tuple[np.ndarray, np.ndarray]]] = {}
+        cache: dict[int, tuple[np.ndarray, np.ndarray]] = {}
         for p_i, part in enumerate(parts):
             vals = np.empty(shape)
             for j in range(dst_t.size):

@@ -13,10 +13,11 @@ from __future__ import annotations
 
 import numpy as np
 import xarray as xr
+from shiproute_core.units import S_PER_HOUR
 
 from ..contract import canonical as cv
-from ..physics.landmask import sea_mask
 from ..physics.fetch import direction_bin, fetch_by_direction_m
+from ..physics.landmask import sea_mask
 from ..physics.wave_growth import grow_step, jonswap_tm01_over_tp
 
 #: the first valid time's wind is taken to have blown this long already [h]
@@ -64,7 +65,7 @@ def estimate_waves(ds: xr.Dataset) -> xr.Dataset:
         v = np.nan_to_num(v_all[i].astype(np.float64))
         speed = np.hypot(u, v)
         from_deg = np.rad2deg(np.arctan2(-u, -v)) % 360.0
-        dt = SPIN_UP_H * 3600.0 if i == 0 else float(t_s[i] - t_s[i - 1])
+        dt = SPIN_UP_H * S_PER_HOUR if i == 0 else float(t_s[i] - t_s[i - 1])
         f = np.take_along_axis(fetch, direction_bin(from_deg)[None], axis=0)[0]
         hs, tp = grow_step(hs, from_deg if prev_dir is None else prev_dir, speed, from_deg,
                            f, dt)

@@ -19,6 +19,7 @@ from builtin_interfaces.msg import Time
 from shiproute_msgs.msg import ForecastCycle, ForecastField, ForecastSlice
 
 from ..errors import PackingError
+from ..wire.packing import PackedField, field_values, pack_field, unpack_field
 from ..wire.slices import (
     CycleInfo,
     FieldData,
@@ -28,7 +29,6 @@ from ..wire.slices import (
     dataset_to_slices,
     slices_to_dataset,
 )
-from ..wire.packing import PackedField, field_values, pack_field, unpack_field
 
 FRAME_ID = "wgs84"
 #: field encodings of a ForecastSlice: 16-bit simple packing, or exact float32
@@ -48,7 +48,7 @@ def time_to_ns(t: Time) -> int:
 
 def _array(typecode: str, values: np.ndarray) -> array.array:
     a = array.array(typecode)
-    a.frombytes(memoryview(np.ascontiguousarray(values)).cast("B"))
+    a.frombytes(np.ascontiguousarray(values).data.cast("B"))
     return a
 
 

@@ -1,8 +1,9 @@
 """Weather node: loads forecast cycles (files, watched directory, service) and serves them.
 
-Topics (see README.md): /shiproute/forecast/cycle (ForecastCycle, reliable, transient-local,
-depth 1), /shiproute/forecast/slices (ForecastSlice, reliable, transient-local, depth =
-max_slices), /diagnostics (DiagnosticArray). Service: /shiproute/forecast/load (LoadForecast).
+Topics (names in `shiproute_core.topics`, see README.md): FORECAST_CYCLE (ForecastCycle,
+reliable, transient-local, depth 1), FORECAST_SLICES (ForecastSlice, reliable,
+transient-local, depth = max_slices), DIAGNOSTICS (DiagnosticArray). Service: FORECAST_LOAD
+(LoadForecast).
 """
 
 from __future__ import annotations
@@ -14,6 +15,7 @@ import time
 import uuid
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import rclpy
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
@@ -23,11 +25,23 @@ from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+from shiproute_core.topics import DIAGNOSTICS, FORECAST_CYCLE, FORECAST_LOAD, FORECAST_SLICES
 
 from shiproute_msgs.msg import ForecastCycle, ForecastSlice
 from shiproute_msgs.srv import LoadForecast
 
+from ..errors import WeatherError
 from ..ingest.combine import Box
+from ..ingest.cycle_builder import (
+    MAX_SLICE_BYTES,
+    MAX_SLICES,
+    CycleConfig,
+    build_cycle,
+    corridor_box,
+)
+from ..ingest.stream import load_slices, streamable, warm_array_backends
+from ..ingest.watch import DirectoryWatcher
+from ..scenarios.catalogue import scenario_path
 from .convert import (
     DEFAULT_SLICE_ENCODING,
     SLICE_ENCODINGS,
@@ -36,22 +50,8 @@ from .convert import (
     slice_to_msg,
     wire_bytes,
 )
-from ..ingest.cycle_builder import (
-    MAX_SLICE_BYTES,
-    MAX_SLICES,
-    CycleConfig,
-    build_cycle,
-    corridor_box,
-)
-from ..errors import WeatherError
 from .heap import return_freed_memory, return_large_blocks_at_once
-from ..scenarios import scenario_path
-from ..ingest.stream import load_slices, streamable, warm_array_backends
-from ..ingest.watch import DirectoryWatcher
 
-CYCLE_TOPIC = "/shiproute/forecast/cycle"
-SLICES_TOPIC = "/shiproute/forecast/slices"
-LOAD_SERVICE = "/shiproute/forecast/load"
 DIAG_NAME = "shiproute_weather: forecast"
 
 
@@ -72,22 +72,28 @@ class LoadRequest:
     result: tuple[bool, str, str] = (False, "", "")
 
 
+
+def _list_value(param: Parameter) -> list[Any]:
+    """A list parameter's values ([] when unset)."""
+    values: list[Any] = list(param.value or [])
+    return values
+
 class WeatherNode(Node):
     """Thin ROS shell round `cycle_builder.build_cycle`; loading runs in a worker thread."""
 
     def __init__(self) -> None:
         super().__init__("shiproute_weather")
         p = self.declare_parameter
-        files = list(p("forecast_files", [""]).value or [])
+        files = _list_value(p("forecast_files", [""]))
         scenario = str(p("scenario", "").value)
         watch_dir = str(p("watch_dir", "").value)
         self.settle_s = float(p("settle_s", 1.0).value)
         watch_period_s = float(p("watch_period_s", 0.5).value)
-        region = [float(x) for x in (p("region", [0.0]).value or [])]
-        corridor = [float(x) for x in (p("corridor_lat_lon_deg", [0.0]).value or [])]
+        region = [float(x) for x in _list_value(p("region", [0.0]))]
+        corridor = [float(x) for x in _list_value(p("corridor_lat_lon_deg", [0.0]))]
         margin = float(p("corridor_margin_deg", 5.0).value)
         self.max_slices = int(p("max_slices", MAX_SLICES).value)
-        required = [str(x) for x in (p("required_fields", [""]).value or []) if x]
+        required = [str(x) for x in _list_value(p("required_fields", [""])) if x]
         self.cfg_base = CycleConfig(
             box=self._box(region, corridor, margin),
             slice_interval_s=float(p("slice_interval_s", 0.0).value),
@@ -107,12 +113,12 @@ class WeatherNode(Node):
         self.add_on_set_parameters_callback(self._on_set_parameters)
         self.publish_period_s = float(p("publish_period_s", 0.0).value)
 
-        self.cycle_pub = self.create_publisher(ForecastCycle, CYCLE_TOPIC, latched(1))
-        self.slice_pub = self.create_publisher(ForecastSlice, SLICES_TOPIC,
+        self.cycle_pub = self.create_publisher(ForecastCycle, FORECAST_CYCLE, latched(1))
+        self.slice_pub = self.create_publisher(ForecastSlice, FORECAST_SLICES,
                                                latched(self.max_slices))
-        self.diag_pub = self.create_publisher(DiagnosticArray, "/diagnostics", 10)
+        self.diag_pub = self.create_publisher(DiagnosticArray, DIAGNOSTICS, 10)
         self.srv_group = ReentrantCallbackGroup()
-        self.create_service(LoadForecast, LOAD_SERVICE, self._on_load,
+        self.create_service(LoadForecast, FORECAST_LOAD, self._on_load,
                             callback_group=self.srv_group)
         timers = MutuallyExclusiveCallbackGroup()
         self.create_timer(diag_period_s, self._publish_diagnostics, callback_group=timers)
@@ -207,7 +213,7 @@ class WeatherNode(Node):
                 info, slices, notes = build_cycle(req.paths, self.cfg_base)
             # the whole cycle is encoded before it is announced: an encoding failure leaves
             # the last good cycle in force, and the announcement is followed by slices at
-            # the transport's pace (~2 ms per slice of encoding no longer sits in between)
+            # the transport's pace (no encoding sits in between)
             encoding = str(self.get_parameter("slice_encoding").value)
             kept: list[ForecastSlice] = []
             for k in range(len(slices)):
@@ -231,7 +237,7 @@ class WeatherNode(Node):
             m.publication_id = publication
             self.slice_pub.publish(m)
             if self.publish_period_s <= 0:
-                kept[k] = None  # type: ignore[call-overload]  # in the DDS history now: free it
+                kept[k] = None  # in the DDS history now: free it
         if self.publish_period_s <= 0:
             kept = []
         dt = time.monotonic() - t0
@@ -258,7 +264,7 @@ class WeatherNode(Node):
         is freed at once instead of sitting beside the new cycle while it is published, the
         peak of every load. Subscribers match the new writer and get the whole new cycle."""
         old = self.slice_pub
-        self.slice_pub = self.create_publisher(ForecastSlice, SLICES_TOPIC,
+        self.slice_pub = self.create_publisher(ForecastSlice, FORECAST_SLICES,
                                                latched(self.max_slices))
         self.destroy_publisher(old)
 

@@ -2,7 +2,7 @@
 
 numba has no float16 type on the CPU, so half-precision fields are held as uint16 bit patterns:
 written (rounded to nearest, ties to even, exactly as numpy's ``astype(np.float16)``) by the
-packing kernel (`_pack_kernel`: by the CPU's conversion instruction, or by `half_bits` here
+packing kernel (`pack_kernel`: by the CPU's conversion instruction, or by `half_bits` here
 where there is none) and read back through `HALF_TO_FLOAT32`.
 """
 

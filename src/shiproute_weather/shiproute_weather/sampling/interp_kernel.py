@@ -1,8 +1,11 @@
 """Numba kernel: NaN-aware trilinear (time, latitude, longitude) interpolation on a regular grid.
 
 The field array may be float32/float64, or uint16 holding IEEE 754 binary16 (half precision)
-bit patterns (see `_half_kernel`): numba has no float16 on the CPU, so half-precision storage
+bit patterns (see `half_kernel`): numba has no float16 on the CPU, so half-precision storage
 is read through a 65,536-entry float32 table (256 kB, stays in cache).
+
+Public API: `ForecastSampler` calls `trilinear`, and so may compiled code of other packages
+(the planner's route kernels), with the arrays `sampler_arrays` exposes.
 """
 
 from __future__ import annotations
@@ -26,7 +29,8 @@ def node_value(data: np.ndarray, it: int, iy: int, ix: int, c: int) -> float:
     return float(HALF_TO_FLOAT32[v]) if data.dtype == np.uint16 else float(v)
 
 
-@overload(node_value, jit_options={"cache": True})
+# numba caches overloads with this option; its typed options dict does not list the key
+@overload(node_value, jit_options={"cache": True})  # type: ignore[typeddict-unknown-key]
 def _node_value_impl(data, it, iy, ix, c):
     if data.dtype == types.uint16:
         def half(data, it, iy, ix, c):

@@ -47,38 +47,38 @@ _C4, _C6, _C8 = _F(0.04166664555668831), _F(-0.0013887315290048718), _F(2.443308
 
 
 @intrinsic
-def _bits(typingctx, x):  # type: ignore[no-untyped-def]
+def _bits(typingctx, x):
     """Bit pattern (uint32) of a float32 scalar: a register move, no memory round trip."""
     if x != types.float32:
         return None
 
-    def codegen(context, builder, signature, args):  # type: ignore[no-untyped-def]
+    def codegen(context, builder, signature, args):
         return builder.bitcast(args[0], ir.IntType(32))
 
     return types.uint32(types.float32), codegen
 
 
 @intrinsic
-def _fptrunc_half(typingctx, x):  # type: ignore[no-untyped-def]
+def _fptrunc_half(typingctx, x):
     """binary16 bits of a float32 by LLVM's fptrunc (x86 F16C vcvtps2ph, AArch64 fcvt)."""
     if x != types.float32:
         return None
 
-    def codegen(context, builder, signature, args):  # type: ignore[no-untyped-def]
+    def codegen(context, builder, signature, args):
         return builder.bitcast(builder.fptrunc(args[0], ir.HalfType()), ir.IntType(16))
 
     return types.uint16(types.float32), codegen
 
 
-def _pointer_intrinsic(dtype: types.Number):  # type: ignore[no-untyped-def]
+def _pointer_intrinsic(dtype: types.Number):
     ptr = types.CPointer(dtype)
 
     @intrinsic
-    def at(typingctx, address):  # type: ignore[no-untyped-def]
+    def at(typingctx, address):
         if not isinstance(address, types.Integer):
             return None
 
-        def codegen(context, builder, signature, args):  # type: ignore[no-untyped-def]
+        def codegen(context, builder, signature, args):
             return builder.inttoptr(args[0], context.get_value_type(ptr))
 
         return ptr(address), codegen
@@ -113,12 +113,12 @@ if _hardware_half():
     @njit(cache=True, nogil=True, inline="always")
     def half_of(x: np.float32) -> np.uint16:
         """binary16 bits of a float32, rounded to nearest even (numpy's astype(float16))."""
-        return _fptrunc_half(x)
+        return _fptrunc_half(x)  # type: ignore[call-arg]  # numba passes the typing context
 else:  # pragma: no cover - x86-64 CPUs have F16C since 2012
     @njit(cache=True, nogil=True, inline="always")
     def half_of(x: np.float32) -> np.uint16:
         """binary16 bits of a float32, rounded to nearest even (numpy's astype(float16))."""
-        return np.uint16(half_bits(_bits(x)))
+        return np.uint16(half_bits(_bits(x)))  # type: ignore[call-arg]  # as above
 
 
 @njit(cache=True)

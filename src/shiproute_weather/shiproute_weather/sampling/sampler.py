@@ -3,19 +3,10 @@
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .interp_kernel import MIN_VALID_WEIGHT, trilinear
-from .pack_kernel import (
-    CODES_DIRECTION,
-    CODES_SCALAR,
-    F32_DIRECTION,
-    F32_SCALAR,
-    address,
-    pack_half_channels,
-)
 from ..contract.canonical import (
     DIRECTION_VARIABLES,
     Grid,
@@ -25,6 +16,15 @@ from ..contract.canonical import (
 )
 from ..errors import MissingVariableError
 from ..wire.packing import PackedField, unpack_field
+from .interp_kernel import MIN_VALID_WEIGHT, trilinear
+from .pack_kernel import (
+    CODES_DIRECTION,
+    CODES_SCALAR,
+    F32_DIRECTION,
+    F32_SCALAR,
+    address,
+    pack_half_channels,
+)
 
 if TYPE_CHECKING:  # xarray is only needed by whoever passes a Dataset
     import xarray as xr
@@ -51,7 +51,7 @@ def pack_fields(out: np.ndarray, variables: Sequence[str],
     `PackedField` of 16-bit wire codes, out.shape[:-1] values each (in C order, any shape);
     scalars as they are, directions [deg] as the sine and cosine of the angle.
 
-    A float16 `out` is written by one fused numba kernel (`_pack_kernel.pack_half_channels`:
+    A float16 `out` is written by one fused numba kernel (`sampling.pack_kernel.pack_half_channels`:
     decode, sine/cosine and half rounding in a single blocked pass; the planner runs this for
     every slice of every cycle it receives); float32 `out` through numpy."""
     if out.dtype == np.float16:
@@ -102,7 +102,7 @@ def _pack_half(dst: np.ndarray, variables: Sequence[str],
 
 def _flat(a: np.ndarray, dtype: type, size: int, name: str) -> np.ndarray:
     """C-contiguous flat array of `dtype` (a view when it already is one) of `size` values."""
-    flat = np.ascontiguousarray(a, dtype=dtype).reshape(-1)
+    flat: np.ndarray = np.ascontiguousarray(a, dtype=dtype).reshape(-1)
     if flat.size != size:
         raise ValueError(f"field {name!r} has {flat.size} values, expected {size}")
     return flat
@@ -125,6 +125,10 @@ class ForecastSampler:
     packed elsewhere (e.g. slice by slice as a cycle arrives) without another copy.
     """
 
+    #: what the cycle holds and where each field came from (`record.cycle_record`), or None
+    #: when the sampler was packed from elsewhere without one
+    record: dict[str, Any] | None
+
     def __init__(self, ds: xr.Dataset, variables: Iterable[str] | None = None,
                  dtype: np.dtype | type = np.float32) -> None:
         names = present_variables(ds) if variables is None else list(variables)
@@ -139,7 +143,7 @@ class ForecastSampler:
         pack_fields(data, names, lambda n: ds[n].transpose("time", "latitude",
                                                            "longitude").values)
         self._init(data, times_s, grid, names)
-        from ..ingest.record import cycle_record
+        from ..contract.record import cycle_record
 
         self.record = cycle_record(ds)
 
@@ -159,9 +163,7 @@ class ForecastSampler:
     def _init(self, data: np.ndarray, times_s: np.ndarray, grid: Grid,
               names: list[str]) -> None:
         self.variables: tuple[str, ...] = tuple(names)
-        #: what the cycle holds and where each field came from (`record.cycle_record`), or
-        #: None when the sampler was packed from elsewhere without one
-        self.record: dict | None = None
+        self.record = None
         self.grid = grid
         self.times_s = np.ascontiguousarray(times_s, dtype=np.float64)
         if self.times_s.size > 1 and np.any(np.diff(self.times_s) <= 0):

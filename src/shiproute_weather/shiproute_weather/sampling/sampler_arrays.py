@@ -17,7 +17,7 @@ from .sampler import ForecastSampler
 
 @dataclass(frozen=True)
 class SamplerArrays:
-    """Arguments of `_interp_kernel.trilinear` and where each variable's channel sits.
+    """Arguments of `sampling.interp_kernel.trilinear` and where each variable's channel sits.
 
     `channels[name]` is the channel index of a scalar variable, or of the sine channel of a
     direction variable (its cosine follows at index + 1).
@@ -36,7 +36,7 @@ class SamplerArrays:
 
 def sampler_arrays(sampler: ForecastSampler) -> SamplerArrays:
     """The packed arrays of `sampler` (no copy; half-precision storage as its uint16 bits,
-    which `_interp_kernel.trilinear` reads)."""
+    which `sampling.interp_kernel.trilinear` reads)."""
     channels: dict[str, int] = {}
     c = 0
     for name in sampler.variables:

@@ -1,11 +1,6 @@
 """Bundled synthetic storm scenarios (North Pacific, deterministic, written as NetCDF).
 
-The one entry point for callers outside this room: a scenario's name -> its canonical dataset
-or file. Planning never needs this room except to resolve a scenario name given as forecast.
+One entry point for callers outside this room: `scenarios.catalogue` (`scenario_names`,
+`scenario_dataset`, `scenario_path`), a scenario's name -> its canonical dataset or file.
+Planning needs this room only to resolve a scenario name given as the forecast.
 """
-
-from __future__ import annotations
-
-from .catalogue import scenario_dataset, scenario_names, scenario_path
-
-__all__ = ["scenario_dataset", "scenario_names", "scenario_path"]

@@ -3,15 +3,16 @@
 from __future__ import annotations
 
 import numpy as np
+from shiproute_core.units import S_PER_HOUR
 
 from ..contract import canonical as cv
+from ..physics.fetch import direction_bin, fetch_by_direction_m
 from ..physics.landmask import sea_mask
+from ..physics.wave_growth import grow_step, jonswap_tm01_over_tp
 from .swell import distances_and_bearings, radiate
 from .synth_currents import steady_currents, with_wind_drift
 from .synth_seas import BackgroundSwell, background_swell, combine
-from ..physics.fetch import direction_bin, fetch_by_direction_m
 from .synth_wind import Season, TrackPoint, total_wind, track_at, translation_m_s, wave_phases
-from ..physics.wave_growth import grow_step, jonswap_tm01_over_tp
 
 SPIN_UP_STEPS = 8
 WIND_SEA_GAMMA = 3.3
@@ -75,7 +76,7 @@ def build_fields(season: Season, swell: BackgroundSwell, track: list[TrackPoint]
     phases = wave_phases(rng)
     sea = sea_mask(lat, lon, float(lat[1] - lat[0]))
     u, v = _wind_series(season, track, phases, lat, lon, hours)
-    dt_s = float(hours[1] - hours[0]) * 3600.0
+    dt_s = float(hours[1] - hours[0]) * S_PER_HOUR
     fetch = fetch_by_direction_m(sea, lat, lon)
     ws_hs, ws_tp, ws_dir = _wind_sea(u, v, fetch, dt_s)
     ws_tm = ws_tp * jonswap_tm01_over_tp(WIND_SEA_GAMMA)
@@ -90,7 +91,7 @@ def build_fields(season: Season, swell: BackgroundSwell, track: list[TrackPoint]
         if src.size:
             dist, brg = distances_and_bearings(src[:, 1], src[:, 2], lat, lon)
             e, es, ec, eot = radiate(hours, src[:, 0], src[:, 3], src[:, 4], src[:, 5], src[:, 6],
-                                     dist, brg, dt_s / 3600.0)
+                                     dist, brg, dt_s / S_PER_HOUR)
             st_hs = 4.0 * np.sqrt(e)
             st_dir = np.rad2deg(np.arctan2(es, ec)) % 360.0
             st_t = np.where(eot > 0, e / np.maximum(eot, 1e-12), 10.0)

@@ -15,6 +15,7 @@ import math
 
 import numpy as np
 from numba import njit, prange
+from shiproute_core.units import S_PER_HOUR
 
 G = 9.81
 DISSIPATION_LENGTH_M = 4.0e6
@@ -78,12 +79,14 @@ def radiate(times_h: np.ndarray, src_h: np.ndarray, src_hs: np.ndarray, src_tp: 
             cb = math.cos(math.radians(brg))
             # only valid times whose dispersive period lies within 3 sigma of the source peak
             tp = src_tp[s]
-            age_lo_h = 4.0 * math.pi * d / (G * tp * (1.0 + 3.0 * SPECTRAL_WIDTH)) / 3600.0
-            age_hi_h = 4.0 * math.pi * d / (G * tp * max(1.0 - 3.0 * SPECTRAL_WIDTH, 0.1)) / 3600.0
+            age_lo_h = (4.0 * math.pi * d / (G * tp * (1.0 + 3.0 * SPECTRAL_WIDTH))
+                        / S_PER_HOUR)
+            age_hi_h = (4.0 * math.pi * d / (G * tp * max(1.0 - 3.0 * SPECTRAL_WIDTH, 0.1))
+                        / S_PER_HOUR)
             it_lo = max(0, math.ceil((src_h[s] + age_lo_h - t0_h) / dt_h))
             it_hi = min(nt - 1, math.floor((src_h[s] + age_hi_h - t0_h) / dt_h))
             for it in range(it_lo, it_hi + 1):
-                age_s = (times_h[it] - src_h[s]) * 3600.0
+                age_s = (times_h[it] - src_h[s]) * S_PER_HOUR
                 if age_s <= 0.0:
                     continue
                 period = 4.0 * math.pi * d / (G * age_s)
@@ -92,7 +95,7 @@ def radiate(times_h: np.ndarray, src_h: np.ndarray, src_hs: np.ndarray, src_tp: 
                     continue
                 window = math.exp(-0.5 * z * z)
                 # emissions every dt_src_h map onto a period interval dT = T dt / age
-                norm = (dt_src_h * 3600.0 / age_s) / (SPECTRAL_WIDTH * math.sqrt(2 * math.pi))
+                norm = (dt_src_h * S_PER_HOUR / age_s) / (SPECTRAL_WIDTH * math.sqrt(2 * math.pi))
                 e = e_src * window * norm * decay * directional * taper
                 energy[iy, ix, it] += e
                 e_sin[iy, ix, it] += e * sb

@@ -6,6 +6,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+
 @dataclass(frozen=True)
 class BackgroundSwell:
     """Seasonal swell from distant storms: height (m) field parameters, direction, period."""

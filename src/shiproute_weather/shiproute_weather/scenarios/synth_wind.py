@@ -12,6 +12,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from shiproute_core.units import S_PER_HOUR
 
 EARTH_RADIUS_M = 6_371_000.0
 OMEGA_EARTH = 7.2921e-5
@@ -67,7 +68,7 @@ def background_wind(season: Season, lat_deg: np.ndarray, lon_deg: np.ndarray,
     x_m = np.deg2rad(lon_deg) * EARTH_RADIUS_M * np.cos(np.deg2rad(45.0))
     y_m = np.deg2rad(lat_deg) * EARTH_RADIUS_M
     envelope = np.exp(-(((lat_deg - s.westerly_lat_deg) / 18.0) ** 2))
-    t_s = hours * 3600.0
+    t_s = hours * S_PER_HOUR
     amp = s.wave_amplitude_m_s / np.sqrt(phases.shape[0] / 2.0)
     for k, l_, ph, c in phases:
         arg = k * (x_m - c * t_s) + l_ * y_m + ph
@@ -94,7 +95,7 @@ def translation_m_s(track: list[TrackPoint], hours: float) -> tuple[float, float
     b = track_at(track, min(hours + 1.5, track[-1].hours))
     if a is None or b is None or b.hours <= a.hours:
         return 0.0, 0.0
-    dt = (b.hours - a.hours) * 3600.0
+    dt = (b.hours - a.hours) * S_PER_HOUR
     lat_mid = np.deg2rad(0.5 * (a.lat_deg + b.lat_deg))
     ue = np.deg2rad(b.lon_deg - a.lon_deg) * EARTH_RADIUS_M * np.cos(lat_mid) / dt
     vn = np.deg2rad(b.lat_deg - a.lat_deg) * EARTH_RADIUS_M / dt

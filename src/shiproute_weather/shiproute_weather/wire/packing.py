@@ -5,10 +5,9 @@ value = float32(add_offset + scale_factor * code), computed in float64; code 655
 finite values and rounds to the nearest code, so a decoded value is within scale_factor / 2
 of the original (plus one float32 rounding). The forecast sources are themselves packed at
 12-16 bits and the planner stores half precision, so this loses nothing the consumers keep,
-at half the bytes of float32. Plain numpy (~1.5 ms per 13-field slice): the weather node
-encodes a whole cycle before announcing it, and loading compiled kernels would cost it
-~60 MB of resident memory; the planner decodes inside its own compiled packing kernel
-(`_pack_kernel`).
+at half the bytes of float32. Plain numpy: the weather node encodes a whole cycle before
+announcing it and stays free of compiled kernels (their resident memory); the planner decodes
+inside its own compiled packing kernel (`sampling.pack_kernel`).
 """
 
 from __future__ import annotations
@@ -79,7 +78,7 @@ def unpack_field(packed: PackedField, out: np.ndarray | None = None) -> np.ndarr
         raise ValueError(f"output array {out.dtype}{out.shape} does not fit {codes.size} "
                          "float32 values")
     values = float(packed.add_offset) + float(packed.scale_factor) * codes.astype(np.float64)
-    out[...] = values  # float64 -> float32: one rounding, as `_pack_kernel.decode`
+    out[...] = values  # float64 -> float32: one rounding, as `sampling.pack_kernel.decode`
     out[codes == MISSING_CODE] = np.nan
     return out
 

@@ -15,8 +15,8 @@ import numpy as np
 import xarray as xr
 
 from ..contract import canonical as cv
-from ..errors import SliceError
 from ..contract.timefmt import iso_to_ns, ns_to_iso
+from ..errors import SliceError
 from .packing import PackedField, unpack_field
 
 

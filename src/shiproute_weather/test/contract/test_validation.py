@@ -6,6 +6,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from shiproute_weather.contract import canonical as cv
+from shiproute_weather.contract.validate import validate
 from shiproute_weather.errors import (
     ForecastFileError,
     MissingVariableError,
@@ -14,10 +16,7 @@ from shiproute_weather.errors import (
     WeatherError,
 )
 from shiproute_weather.ingest.loaders import open_forecast
-from shiproute_weather.contract.validate import validate
 from weather_fixtures import small_canonical, write_nc
-
-from shiproute_weather.contract import canonical as cv
 
 
 def test_wave_height_out_of_range(tmp_path: Path) -> None:

@@ -7,12 +7,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 import xarray as xr
+from shiproute_core.units import M_S_PER_KNOT
+from shiproute_weather.contract import canonical as cv
 from shiproute_weather.ingest.loaders import open_file, open_forecast
 from shiproute_weather.physics.spectral import to_tm01_factor
 
-from shiproute_weather.contract import canonical as cv
-
-KN = 1852.0 / 3600.0
+KN = M_S_PER_KNOT
 TIMES = np.datetime64("2026-03-03T12:00", "ns") + np.arange(3) * np.timedelta64(6, "h")
 
 

@@ -9,12 +9,11 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from shiproute_weather.contract import canonical as cv
+from shiproute_weather.contract.record import load_notes
 from shiproute_weather.ingest.loaders import open_file, open_forecast
 from shiproute_weather.ingest.projected import grid_to_earth, x_axis_bearing_deg
-from shiproute_weather.ingest.record import load_notes
 from shiproute_weather.physics.spectral import to_tm01_factor
-
-from shiproute_weather.contract import canonical as cv
 
 eccodes = pytest.importorskip("eccodes")
 EXAMPLES = Path("/usr/share/doc/python-grib-doc/examples")

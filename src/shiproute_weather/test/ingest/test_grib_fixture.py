@@ -6,9 +6,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from shiproute_weather.ingest.loaders import open_forecast
-
 from shiproute_weather.contract import canonical as cv
+from shiproute_weather.ingest.loaders import open_forecast
 
 eccodes = pytest.importorskip("eccodes")
 

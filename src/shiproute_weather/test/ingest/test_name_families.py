@@ -11,11 +11,10 @@ from pathlib import Path
 import netCDF4
 import numpy as np
 import pytest
-from shiproute_weather.ingest.loaders import open_file, open_forecast
-from shiproute_weather.ingest.record import load_notes
-from shiproute_weather.physics.spectral import to_tm01_factor
-
 from shiproute_weather.contract import canonical as cv
+from shiproute_weather.contract.record import load_notes
+from shiproute_weather.ingest.loaders import open_file, open_forecast
+from shiproute_weather.physics.spectral import to_tm01_factor
 
 LAT = np.array([45.0, 44.0, 43.0, 42.0])  # providers serve north -> south
 LON = np.array([300.0, 301.0, 302.0, 303.0, 304.0])  # 0..360 frame (60 W .. 56 W)

@@ -9,12 +9,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 import xarray as xr
+from shiproute_weather.errors import WeatherError
 from shiproute_weather.ingest.combine import Box
 from shiproute_weather.ingest.cycle_builder import CycleConfig, build_cycle, corridor_box
-from shiproute_weather.errors import WeatherError
-from shiproute_weather.wire.slices import slices_to_dataset
 from shiproute_weather.ingest.stream import load_slices, streamable
 from shiproute_weather.ingest.watch import DirectoryWatcher
+from shiproute_weather.wire.slices import slices_to_dataset
 from weather_fixtures import small_canonical, write_nc
 
 

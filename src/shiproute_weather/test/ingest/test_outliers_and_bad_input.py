@@ -8,13 +8,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 import xarray as xr
+from shiproute_weather.contract import canonical as cv
+from shiproute_weather.contract.record import load_notes
 from shiproute_weather.errors import WeatherError
 from shiproute_weather.ingest.loaders import open_forecast
 from shiproute_weather.ingest.outliers import masked_counts
-from shiproute_weather.ingest.record import load_notes
 from weather_fixtures import small_canonical, write_nc
-
-from shiproute_weather.contract import canonical as cv
 
 
 def _with(ds: xr.Dataset, name: str, index: tuple, value: float) -> None:

@@ -11,13 +11,12 @@ from pathlib import Path
 
 import numpy as np
 import xarray as xr
+from shiproute_weather.contract import canonical as cv
 from shiproute_weather.ingest.cycle_builder import CycleConfig
 from shiproute_weather.ingest.loaders import open_forecast
-from shiproute_weather.wire.slices import slices_to_dataset
 from shiproute_weather.ingest.stream import BLOCK_TIMES, load_slices
+from shiproute_weather.wire.slices import slices_to_dataset
 from weather_fixtures import small_canonical
-
-from shiproute_weather.contract import canonical as cv
 
 STEP = 0.01  # packing step of every int16 variable
 

@@ -6,10 +6,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from shiproute_weather.contract import canonical as cv
 from shiproute_weather.ingest.loaders import open_file, open_forecast
 from shiproute_weather.sampling.sampler import ForecastSampler
-
-from shiproute_weather.contract import canonical as cv
 
 EXAMPLES = Path("/usr/share/doc/python-grib-doc/examples")
 pytestmark = pytest.mark.skipif(
@@ -64,8 +63,8 @@ def test_truncated_grib_is_reported_with_its_name(tmp_path: Path) -> None:
 
 
 def test_real_gfs_wind_only_grib2_gets_waves_estimated_or_is_refused() -> None:
+    from shiproute_weather.contract.record import load_notes
     from shiproute_weather.errors import MissingVariableError
-    from shiproute_weather.ingest.record import load_notes
 
     path = EXAMPLES / "gfs.t12z.pgrbf120.2p5deg.grib2"  # real NCEP GFS: 10 m wind, no waves
     ds = open_forecast([path])

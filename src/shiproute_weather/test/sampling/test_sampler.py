@@ -6,10 +6,9 @@ import math
 
 import numpy as np
 import pytest
+from shiproute_weather.contract import canonical as cv
 from shiproute_weather.sampling.sampler import MIN_VALID_WEIGHT, ForecastSampler
 from weather_fixtures import small_canonical
-
-from shiproute_weather.contract import canonical as cv
 
 
 def brute(ds, name, lon, lat, t_s):

@@ -4,14 +4,13 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from shiproute_weather.contract import canonical as cv
 from shiproute_weather.sampling.half_kernel import float32_to_half_bits
 from shiproute_weather.sampling.interp_kernel import trilinear
 from shiproute_weather.sampling.pack_kernel import BLOCK, F32_SCALAR, pack_half_channels
-from shiproute_weather.sampling.sampler_arrays import sampler_arrays
 from shiproute_weather.sampling.sampler import ForecastSampler
+from shiproute_weather.sampling.sampler_arrays import sampler_arrays
 from weather_fixtures import small_canonical
-
-from shiproute_weather.contract import canonical as cv
 
 HALF_EPS = 2.0**-11  # binary16 rounding: |x - half(x)| <= 2^-11 |x| in the normal range
 

@@ -6,13 +6,16 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from shiproute_weather.contract import canonical as cv
+from shiproute_weather.scenarios.catalogue import (
+    FORMAT_VERSION,
+    SCENARIOS,
+    scenario_dataset,
+    scenario_path,
+)
 from shiproute_weather.scenarios.fields import build_fields
-from shiproute_weather.scenarios.catalogue import FORMAT_VERSION, SCENARIOS
-from shiproute_weather.scenarios import scenario_dataset, scenario_path
 from shiproute_weather.scenarios.synth_seas import MARCH_SWELL
 from shiproute_weather.scenarios.synth_wind import MARCH
-
-from shiproute_weather.contract import canonical as cv
 
 BUSAN = (35.08, 129.11)
 LONG_BEACH = (33.69, -118.25)

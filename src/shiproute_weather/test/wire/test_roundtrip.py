@@ -8,8 +8,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 import xarray as xr
+from shiproute_weather.contract.record import without_record
 from shiproute_weather.ingest.loaders import open_forecast
-from shiproute_weather.ingest.record import without_record
 from shiproute_weather.wire.slices import dataset_to_slices, slices_to_dataset
 from weather_fixtures import small_canonical, write_nc
 

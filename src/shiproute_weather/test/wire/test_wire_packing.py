@@ -85,13 +85,13 @@ def test_unpack_checks_the_output_array() -> None:
 
 def test_messages_carry_exactly_one_encoding_per_field() -> None:
     pytest.importorskip("shiproute_msgs.msg")
+    from shiproute_weather.errors import SliceError
     from shiproute_weather.ros.convert import (
         check_encoding,
         field_values,
         msg_to_slice,
         slice_to_msg,
     )
-    from shiproute_weather.errors import SliceError
     from shiproute_weather.wire.slices import FieldData, SliceData, SliceGrid
 
     rng = np.random.default_rng(3)

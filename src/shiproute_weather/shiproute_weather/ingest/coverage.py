@@ -17,9 +17,10 @@ from datetime import UTC, datetime
 
 import numpy as np
 import xarray as xr
+from shiproute_core.units import S_PER_DAY, S_PER_HOUR
 
 from ..errors import ForecastCoverageError
-from .sampler import ForecastSampler
+from ..sampling.sampler import ForecastSampler
 
 #: default persistence beyond the forecast's ends [h]: a day, after which a held field says
 #: little more than climatology
@@ -49,7 +50,7 @@ class TimeCoverage:
 
     @property
     def voyage_h(self) -> float:
-        return max(self.voyage_end_s - self.voyage_start_s, 0.0) / 3600.0
+        return max(self.voyage_end_s - self.voyage_start_s, 0.0) / S_PER_HOUR
 
     @property
     def covered_pct(self) -> float:
@@ -77,17 +78,17 @@ class TimeCoverage:
 
 
 def _overlap_h(a0: float, a1: float, b0: float, b1: float) -> float:
-    return max(min(a1, b1) - max(a0, b0), 0.0) / 3600.0
+    return max(min(a1, b1) - max(a0, b0), 0.0) / S_PER_HOUR
 
 
 def time_coverage(times_s: np.ndarray, start_s: float, end_s: float,
                   persistence_h: float = PERSISTENCE_H, climatology: str = "") -> TimeCoverage:
     """Split the voyage [start_s, end_s] into forecast, persistence and calm hours."""
     t0, t1 = float(times_s[0]), float(times_s[-1])
-    p = persistence_h * 3600.0
+    p = persistence_h * S_PER_HOUR
     fc = _overlap_h(start_s, end_s, t0, t1)
     pers = _overlap_h(start_s, end_s, t1, t1 + p) + _overlap_h(start_s, end_s, t0 - p, t0)
-    total = max(end_s - start_s, 0.0) / 3600.0
+    total = max(end_s - start_s, 0.0) / S_PER_HOUR
     return TimeCoverage(t0, t1, start_s, end_s, persistence_h, fc, pers,
                         max(total - fc - pers, 0.0), climatology)
 
@@ -106,8 +107,8 @@ def climatology_slices(sampler: ForecastSampler, clim: xr.Dataset, start_s: floa
     """Slices of a monthly climatology on the sampler's grid and channels: one at `start_s`
     (its month) and one at the middle of every later month up to past `until_s`. A field the
     climatology lacks is missing (calm); a month it lacks is refused."""
-    from ..ingest.regrid import regrid
-    from .sampler import pack_fields
+    from ..sampling.sampler import pack_fields
+    from .regrid import regrid
 
     months = {int(str(t)[5:7]): k for k, t in enumerate(clim["time"].values.astype(
         "datetime64[M]"))}
@@ -132,8 +133,10 @@ def climatology_slices(sampler: ForecastSampler, clim: xr.Dataset, start_s: floa
         on = regrid(one, g.latitudes_deg, g.longitudes_deg, one["time"].values)
         out = np.empty((1, g.n_lat, g.n_lon, sampler._data.shape[3]), dtype=sampler.dtype)
         nan = np.full((g.n_lat, g.n_lon), np.nan, dtype=np.float32)
-        pack_fields(out, sampler.variables,
-                    lambda n, on=on, nan=nan: on[n].values[0] if n in on else nan)
+        def month_values(n: str, on: xr.Dataset = on, nan: np.ndarray = nan) -> np.ndarray:
+            return on[n].values[0] if n in on else nan
+
+        pack_fields(out, sampler.variables, month_values)
         slices.append(out)
     return slices, stamps
 
@@ -150,12 +153,12 @@ def bounded_in_time(sampler: ForecastSampler, persistence_h: float = PERSISTENCE
     """
     data = sampler._data
     t = sampler.times_s
-    p = max(persistence_h, 0.0) * 3600.0
+    p = max(persistence_h, 0.0) * S_PER_HOUR
     nan = np.full((1, *data.shape[1:]), np.nan, dtype=data.dtype)
     head, tail = [nan], [nan]
     head_t, tail_t = [t[0] - p - _STEP_S], [t[-1] + p + _STEP_S]
     if climatology is not None:
-        end = max(until_s if until_s is not None else t[-1], t[-1] + p) + 31 * 86400.0
+        end = max(until_s if until_s is not None else t[-1], t[-1] + p) + 31 * S_PER_DAY
         tail, tail_t = climatology_slices(sampler, climatology, t[-1] + p + _STEP_S, end)
     if p > 0:
         head.append(data[:1])
@@ -173,8 +176,8 @@ def bounded_in_time(sampler: ForecastSampler, persistence_h: float = PERSISTENCE
 def load_climatology(path: str) -> xr.Dataset:
     """A monthly climatology file as a canonical dataset (one valid time per month of any
     year; nothing is estimated: a field it lacks stays calm)."""
-    from ..ingest.loaders import open_file
     from ..contract.validate import validate
+    from .loaders import open_file
 
     ds = validate(open_file(path), path)
     months = ds["time"].values.astype("datetime64[M]").astype(int) % 12

@@ -5,12 +5,11 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from shiproute_weather.sampling.coverage import bounded_in_time, require_overlap, time_coverage
+from shiproute_weather.contract import canonical as cv
 from shiproute_weather.errors import ForecastCoverageError
+from shiproute_weather.ingest.coverage import bounded_in_time, require_overlap, time_coverage
 from shiproute_weather.sampling.sampler import ForecastSampler
 from weather_fixtures import small_canonical
-
-from shiproute_weather.contract import canonical as cv
 
 
 def test_persistence_is_bounded_then_calm() -> None:

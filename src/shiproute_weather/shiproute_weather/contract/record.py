@@ -11,7 +11,7 @@ from typing import Any
 
 import numpy as np
 
-from ..contract import canonical as cv
+from . import canonical as cv
 
 _WAVES = (cv.WAVE_HS, cv.WIND_WAVE_HS, cv.SWELL_HS)
 _GROUPS = {"wind": (cv.WIND_U, cv.WIND_V), "waves": _WAVES,
