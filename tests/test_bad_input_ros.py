@@ -208,7 +208,7 @@ PACIFIC = (10.0, 5.0, 11, 115.0, 5.0, 27)  # 10..60 N, 115..245 E every 5 deg
 
 @pytest.fixture(scope="module")
 def nodes(tmp_path_factory: pytest.TempPathFactory):
-    from shiproute_weather.scenarios import scenario_path
+    from shiproute_weather.scenarios.catalogue import scenario_path
 
     work = tmp_path_factory.mktemp("bad_input")
     forecast = work / "calm_june.nc"

@@ -55,7 +55,7 @@ def _field(name: str, units: str, convention: str, n: int, seed: int) -> Any:
 def _packed_field(name: str, units: str, convention: str, n: int, seed: int) -> Any:
     """A field in 16-bit simple packing (ForecastField.msg): codes 0 (the minimum), 65534 (the
     maximum) and 65535 (missing) included; float32 `data` left empty."""
-    from shiproute_weather.wire_packing import pack_field
+    from shiproute_weather.wire.packing import pack_field
 
     from shiproute_msgs.msg import ForecastField
 
@@ -191,8 +191,8 @@ def test_every_message_type_round_trips_across_processes(ros_peer: Any) -> None:
     assert data_out.shape == (61 * 121,)
     assert np.isnan(data_out[::7]).all() and np.isfinite(data_out[1:7]).all()
     assert np.array_equal(data_in.view(np.uint32), data_out.view(np.uint32))  # bit-exact, -0.0
-    from shiproute_weather.convert import field_values
-    from shiproute_weather.wire_packing import unpack_field
+    from shiproute_weather.ros.convert import field_values
+    from shiproute_weather.wire.packing import unpack_field
 
     for packed_in, packed_out in ((sent["ForecastSlice"].fields[3],
                                    received["ForecastSlice"].fields[3]),

@@ -145,8 +145,8 @@ def _check_flagged(plan: Any) -> None:
 
 
 def test_plan_replan_on_new_cycle_corrupt_file_half_cycle_and_restart(tmp_path: Path) -> None:
-    from shiproute_weather.convert import dataset_to_msgs
-    from shiproute_weather.scenarios import scenario_dataset, scenario_path
+    from shiproute_weather.ros.convert import dataset_to_msgs
+    from shiproute_weather.scenarios.catalogue import scenario_dataset, scenario_path
 
     watch, pool, out = tmp_path / "watch", tmp_path / "pool", tmp_path / "plans"
     watch.mkdir()

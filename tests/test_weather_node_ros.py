@@ -22,10 +22,11 @@ import xarray as xr  # noqa: E402
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus  # noqa: E402
 from rclpy.executors import SingleThreadedExecutor  # noqa: E402
 from rosproc import RosProcess, random_domain_id, ros_context, spin_until  # noqa: E402
-from shiproute_weather.convert import msgs_to_dataset  # noqa: E402
-from shiproute_weather.loaders import open_forecast  # noqa: E402
-from shiproute_weather.node import CYCLE_TOPIC, LOAD_SERVICE, SLICES_TOPIC, latched  # noqa: E402
-from shiproute_weather.record import without_record  # noqa: E402
+from shiproute_core.topics import FORECAST_CYCLE, FORECAST_LOAD, FORECAST_SLICES  # noqa: E402
+from shiproute_weather.contract.record import without_record  # noqa: E402
+from shiproute_weather.ingest.loaders import open_forecast  # noqa: E402
+from shiproute_weather.ros.convert import msgs_to_dataset  # noqa: E402
+from shiproute_weather.ros.node import latched  # noqa: E402
 from weather_fixtures import small_canonical, write_nc  # noqa: E402
 
 from shiproute_msgs.msg import ForecastCycle, ForecastSlice  # noqa: E402
@@ -40,8 +41,8 @@ class Listener:
         self.cycles: list[ForecastCycle] = []
         self.slices: list[ForecastSlice] = []
         self.diags: list[DiagnosticStatus] = []
-        self.node.create_subscription(ForecastCycle, CYCLE_TOPIC, self.cycles.append, latched(1))
-        self.node.create_subscription(ForecastSlice, SLICES_TOPIC, self.slices.append,
+        self.node.create_subscription(ForecastCycle, FORECAST_CYCLE, self.cycles.append, latched(1))
+        self.node.create_subscription(ForecastSlice, FORECAST_SLICES, self.slices.append,
                                       latched(max_slices))
         self.node.create_subscription(DiagnosticArray, "/diagnostics", self._diag, 10)
         self.executor = SingleThreadedExecutor(context=context)
@@ -146,7 +147,7 @@ def test_slice_encoding_parameter(tmp_path: Path) -> None:
             assert _set_encoding(lis, "float32") == (True, "")
             again = small_canonical(n_time=2, seed=3, cycle_id="exact-2026030318")
             path = write_nc(again, tmp_path / "exact.nc")
-            cli = lis.node.create_client(LoadForecast, LOAD_SERVICE)
+            cli = lis.node.create_client(LoadForecast, FORECAST_LOAD)
             assert cli.wait_for_service(timeout_sec=10)
             fut = cli.call_async(LoadForecast.Request(paths=[str(path)]))
             spin_until(lis.executor, fut.done, 60, "load reply")
@@ -189,7 +190,7 @@ def test_new_file_and_corrupt_file(tmp_path: Path) -> None:
             grib = watch.parent / "cut.grib2"
             real = Path("/usr/share/doc/python-grib-doc/examples/gfs.t12z.pgrbf120.2p5deg.grib2")
             grib.write_bytes(real.read_bytes()[:5000] if real.exists() else b"GRIB" + b"\0" * 99)
-            cli = lis.node.create_client(LoadForecast, LOAD_SERVICE)
+            cli = lis.node.create_client(LoadForecast, FORECAST_LOAD)
             assert cli.wait_for_service(timeout_sec=10)
             fut = cli.call_async(LoadForecast.Request(paths=[str(grib)]))
             spin_until(lis.executor, fut.done, 30, "service reply")
@@ -203,7 +204,7 @@ def test_several_files_make_one_cycle_with_its_record(tmp_path: Path) -> None:
     """Wind from one file and currents from another (own grid and time step) via the load
     service and via the watched directory: one cycle whose announcement names each field's
     file and the load's notes (waves estimated from wind), also on /diagnostics."""
-    from shiproute_weather import canonical as cv
+    from shiproute_weather.contract import canonical as cv
 
     (tmp_path / "watch").mkdir()
     wind = small_canonical(n_time=5, cycle_id="wind-2026030312")[[cv.WIND_U, cv.WIND_V]]
@@ -216,7 +217,7 @@ def test_several_files_make_one_cycle_with_its_record(tmp_path: Path) -> None:
         proc.wait_for_line(r"ready", timeout_s=60)
         lis = Listener(ctx)
         try:
-            cli = lis.node.create_client(LoadForecast, LOAD_SERVICE)
+            cli = lis.node.create_client(LoadForecast, FORECAST_LOAD)
             assert cli.wait_for_service(timeout_sec=10)
             fut = cli.call_async(LoadForecast.Request(paths=[str(a), str(b)]))
             spin_until(lis.executor, fut.done, 60, "service reply")

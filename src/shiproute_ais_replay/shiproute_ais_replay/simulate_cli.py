@@ -49,9 +49,9 @@ def forecast_sampler(spec: str) -> Any:
     """Sampler function of a forecast file or bundled scenario name; None for calm water."""
     if not spec:
         return None
-    from shiproute_weather.loaders import open_forecast
-    from shiproute_weather.sampling import ForecastSampler
-    from shiproute_weather.scenarios import scenario_dataset, scenario_names
+    from shiproute_weather.ingest.loaders import open_forecast
+    from shiproute_weather.sampling.sampler import ForecastSampler
+    from shiproute_weather.scenarios.catalogue import scenario_dataset, scenario_names
 
     ds = scenario_dataset(spec) if spec in scenario_names() else open_forecast([spec])
     return ForecastSampler(ds).sample

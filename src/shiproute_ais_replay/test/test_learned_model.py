@@ -28,7 +28,7 @@ FAULTS = Corruption()
 
 @pytest.fixture(scope="module")
 def learned(tmp_path_factory):
-    from shiproute_weather.scenarios import scenario_dataset
+    from shiproute_weather.scenarios.catalogue import scenario_dataset
 
     ship = load_ship("container_4600teu")
     ds = scenario_dataset("storm_march")
@@ -115,7 +115,7 @@ def test_tabulated_model_agrees_with_the_learned_model(learned) -> None:
 def test_plan_with_the_learned_model_serves_the_true_ship_better(learned) -> None:
     from shiproute_planner.learned.reevaluate import reevaluate
     from shiproute_planner.planning import plan_voyage
-    from shiproute_weather.sampling import ForecastSampler
+    from shiproute_weather.sampling.sampler import ForecastSampler
 
     ship, ds, _, _, model, path = learned
     sampler = ForecastSampler(ds)

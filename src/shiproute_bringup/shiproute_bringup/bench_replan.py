@@ -30,7 +30,7 @@ RTA = "2026-03-16T18:00:00Z"
 
 
 def _cycle_files(work: Path, n: int) -> list[Path]:
-    from shiproute_weather.scenarios import scenario_dataset
+    from shiproute_weather.scenarios.catalogue import scenario_dataset
 
     ds = scenario_dataset("storm_march_cycle2")
     out = []
@@ -49,7 +49,7 @@ def run(budget_s: float, repeats: int, log: bool = False) -> dict:
     from rclpy.context import Context
     from rclpy.executors import SingleThreadedExecutor
     from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
-    from shiproute_weather.scenarios import scenario_path
+    from shiproute_weather.scenarios.catalogue import scenario_path
 
     from shiproute_msgs.msg import ForecastCycle, RoutePlan, ShipState
 

@@ -72,7 +72,7 @@ def run(minutes: float, period_s: float, budget_s: float) -> dict:
     from rclpy.context import Context
     from rclpy.executors import SingleThreadedExecutor
     from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
-    from shiproute_weather.scenarios import scenario_path
+    from shiproute_weather.scenarios.catalogue import scenario_path
 
     from shiproute_msgs.msg import (
         ForecastCycle,

@@ -44,7 +44,7 @@ def _voyage_bag(path: Path, log) -> Path:
     from shiproute_ais_replay.cli import main as bag_main
     from shiproute_planner.io.files import write_plan_files
     from shiproute_planner.planning import plan_voyage
-    from shiproute_weather.scenarios import scenario_dataset
+    from shiproute_weather.scenarios.catalogue import scenario_dataset
 
     log(f"making the demo voyage bag {path} (once)")
     forecast = scenario_dataset(FIRST_CYCLE)
@@ -68,8 +68,8 @@ def _warm_up(log) -> None:
     from shiproute_planner.geo.landmask import default_land_mask
     from shiproute_planner.geo.ports import resolve_port
     from shiproute_planner.planning import plan_voyage
-    from shiproute_weather.sampling import ForecastSampler
-    from shiproute_weather.scenarios import scenario_dataset
+    from shiproute_weather.sampling.sampler import ForecastSampler
+    from shiproute_weather.scenarios.catalogue import scenario_dataset
 
     log("warming the planner's compiled kernels and the voyage region's coastline")
     land = default_land_mask()
@@ -83,7 +83,7 @@ def _warm_up(log) -> None:
 
 def prepare(log=print) -> DemoData:
     """Build (or reuse) the scenario files and the voyage bag; warm the compiled kernels."""
-    from shiproute_weather.scenarios import scenario_path
+    from shiproute_weather.scenarios.catalogue import scenario_path
 
     root = data_dir()
     first = scenario_path(FIRST_CYCLE)

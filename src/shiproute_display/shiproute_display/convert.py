@@ -1,7 +1,7 @@
 """The only place where ROS messages become display values and Foxglove messages are made.
 
 Decoding never raises anything but MalformedMessageError, so the node counts a bad message
-and goes on. Forecast fields are read with `shiproute_weather.wire_packing` (packed 16-bit
+and goes on. Forecast fields are read with `shiproute_weather.wire.packing` (packed 16-bit
 or float32, the weather node's wire format) without the weather package's xarray side.
 """
 
@@ -15,7 +15,7 @@ import numpy as np
 from builtin_interfaces.msg import Time
 from sensor_msgs.msg import NavSatFix, NavSatStatus
 from shiproute_weather.errors import SliceError
-from shiproute_weather.wire_packing import PackedField, field_values, unpack_field
+from shiproute_weather.wire.packing import PackedField, field_values, unpack_field
 from std_msgs.msg import Float64
 
 from foxglove_msgs.msg import GeoJSON

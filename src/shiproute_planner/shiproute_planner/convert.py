@@ -15,9 +15,9 @@ import numpy as np
 from builtin_interfaces.msg import Time
 from geometry_msgs.msg import PoseStamped
 from nav_msgs.msg import Path
-from shiproute_weather.canonical import Grid
+from shiproute_weather.contract.canonical import Grid
 from shiproute_weather.errors import SliceError
-from shiproute_weather.wire_packing import field_values
+from shiproute_weather.wire.packing import field_values
 
 from shiproute_msgs.msg import ForecastSlice, RouteWaypoint, RpmProfile, RpmStage, ShipState
 from shiproute_msgs.msg import RoutePlan as RoutePlanMsg

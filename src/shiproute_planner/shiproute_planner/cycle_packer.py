@@ -5,9 +5,10 @@ The planner node keeps no copy of a cycle besides its sampler: each slice is wri
 so the sampler is ready when the last slice lands. Slices valid more than `KEEP_BEHIND_S`
 before the ship's time are received but not stored: re-plans start at the ship's time, and the
 pages of an array that are never written cost no memory. Storage is half precision by
-default (see `shiproute_weather.sampling.STORAGE_DTYPES`); fields arrive as float32 or 16-bit
-packed codes and are decoded, turned into sine/cosine (directions) and rounded to half in one
-numba pass per slice (`shiproute_weather.sampling.pack_fields`), without the GIL.
+default (see `shiproute_weather.sampling.sampler.STORAGE_DTYPES`); fields arrive as float32
+or 16-bit packed codes and are decoded, turned into sine/cosine (directions) and rounded to
+half in one numba pass per slice (`shiproute_weather.sampling.sampler.pack_fields`), without
+the GIL.
 """
 
 from __future__ import annotations
@@ -18,8 +19,13 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from shiproute_weather.canonical import CANONICAL_ORDER, Grid
-from shiproute_weather.sampling import FieldValues, ForecastSampler, channel_count, pack_fields
+from shiproute_weather.contract.canonical import CANONICAL_ORDER, Grid
+from shiproute_weather.sampling.sampler import (
+    FieldValues,
+    ForecastSampler,
+    channel_count,
+    pack_fields,
+)
 
 from .errors import ForecastCycleError
 

@@ -1,7 +1,7 @@
 """What a plan was made with: forecast fields and their files, time coverage, route off the grid.
 
 `prepare_forecast` refuses a forecast that misses the voyage and bounds its persistence in
-time (`shiproute_weather.coverage`); `forecast_statement` states, once the route is known,
+time (`shiproute_weather.ingest.coverage`); `forecast_statement` states, once the route is known,
 the fields used and where they came from, the valid-time range, the hours (and %) of the
 voyage the forecast covers, what was used beyond it, and the hours and miles of the route
 outside the forecast grid. The statement goes into `RoutePlan.extra["forecast"]` (the JSON
@@ -32,8 +32,8 @@ def prepare_forecast(sampler: Any, depart_s: float, rta_s: float,
     when the voyage may run beyond them."""
     if sampler is None or not hasattr(sampler, "times_s"):
         return sampler
-    from shiproute_weather.coverage import bounded_in_time, require_overlap
     from shiproute_weather.errors import ForecastCoverageError
+    from shiproute_weather.ingest.coverage import bounded_in_time, require_overlap
 
     times = getattr(sampler, "forecast_times_s", sampler.times_s)
     cycle = (getattr(sampler, "record", None) or {}).get("cycle_id", "") or "forecast"
@@ -73,7 +73,7 @@ def forecast_statement(sampler: Any, plan: Any, persistence_h: float
     if sampler is None:
         return ({"used": False}, ["no forecast: planned in calm water (no wind, waves or "
                                   "currents)"])
-    from shiproute_weather.coverage import time_coverage
+    from shiproute_weather.ingest.coverage import time_coverage
 
     record = getattr(sampler, "record", None) or {}
     times = np.asarray(getattr(sampler, "forecast_times_s", sampler.times_s))

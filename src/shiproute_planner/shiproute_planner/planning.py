@@ -75,7 +75,7 @@ def load_forecast(name_or_path: str | Sequence[str], waves_from_wind: bool = Tru
     come from different files) or a bundled scenario name. A file that cannot be used is
     refused with InvalidVoyageError naming it and the reason."""
     from shiproute_weather.errors import WeatherError
-    from shiproute_weather.scenarios import scenario_dataset, scenario_names
+    from shiproute_weather.scenarios.catalogue import scenario_dataset, scenario_names
 
     names = [name_or_path] if isinstance(name_or_path, str | Path) else list(name_or_path)
     if len(names) == 1 and not Path(names[0]).exists() and names[0] in scenario_names():
@@ -85,7 +85,7 @@ def load_forecast(name_or_path: str | Sequence[str], waves_from_wind: bool = Tru
             raise InvalidVoyageError(
                 f"forecast {str(n)!r} is neither a file nor a bundled scenario "
                 f"({', '.join(scenario_names())})")
-    from shiproute_weather.loaders import open_forecast
+    from shiproute_weather.ingest.loaders import open_forecast
 
     try:
         return open_forecast([str(n) for n in names], waves_from_wind=waves_from_wind)
@@ -112,7 +112,7 @@ def make_environment(ship: Any, forecast: Any = None) -> tuple[Environment, Any]
             sampler = forecast
             cycle = str(getattr(forecast, "cycle_id", "") or "")
         else:
-            from shiproute_weather.sampling import ForecastSampler
+            from shiproute_weather.sampling.sampler import ForecastSampler
 
             sampler = ForecastSampler(forecast)
             cycle = str(forecast.attrs.get("cycle_id", ""))

@@ -9,8 +9,8 @@ import pytest
 
 @functools.lru_cache(maxsize=4)
 def _sampler(name: str):
-    from shiproute_weather.sampling import ForecastSampler
-    from shiproute_weather.scenarios import scenario_dataset
+    from shiproute_weather.sampling.sampler import ForecastSampler
+    from shiproute_weather.scenarios.catalogue import scenario_dataset
 
     return ForecastSampler(scenario_dataset(name))
 

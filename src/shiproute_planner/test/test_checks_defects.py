@@ -29,7 +29,7 @@ from shiproute_planner.errors import (
 from shiproute_planner.intake_keys import RejectedKeys, assembly_key
 from shiproute_planner.ship.errors import UnknownShipError
 from shiproute_planner.voyage_params import check_parameter
-from shiproute_weather.canonical import Grid
+from shiproute_weather.contract.canonical import Grid
 
 REF_S = 1780488000.0  # 2026-06-03T12:00Z
 PACIFIC = Grid(10.0, 5.0, 11, 115.0, 5.0, 27)

@@ -22,8 +22,8 @@ from shiproute_planner.checks.ship_state import OPTIONAL_RANGES, check_ship_stat
 from shiproute_planner.cycle_packer import CyclePacker, SliceFields
 from shiproute_planner.errors import ForecastCycleError, ParameterError, PlannerError
 from shiproute_planner.ship.errors import ShipModelError
-from shiproute_weather.canonical import VARIABLES, Grid
-from shiproute_weather.wire_packing import PackedField
+from shiproute_weather.contract.canonical import VARIABLES, Grid
+from shiproute_weather.wire.packing import PackedField
 
 FUZZ = settings(max_examples=1000, deadline=None, suppress_health_check=[
     HealthCheck.too_slow, HealthCheck.data_too_large])

@@ -33,7 +33,7 @@ def forecast_file(tmp_path_factory) -> str:
     """storm_march cut to the test passages (20-45 N, 115-155 E, 6 days) as a NetCDF file: the
     forecast-file path of the fleet, and quick for every worker to load."""
     import xarray as xr
-    from shiproute_weather.scenarios import scenario_path
+    from shiproute_weather.scenarios.catalogue import scenario_path
 
     path = tmp_path_factory.mktemp("forecast") / "storm_march_cut.nc"
     with xr.open_dataset(scenario_path("storm_march")) as ds:

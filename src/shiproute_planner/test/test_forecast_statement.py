@@ -12,9 +12,8 @@ import pytest
 import xarray as xr
 from shiproute_planner.errors import InvalidVoyageError
 from shiproute_planner.planning import load_forecast, plan_voyage
-from shiproute_weather.sampling import ForecastSampler
-
-from shiproute_weather import canonical as cv
+from shiproute_weather.contract import canonical as cv
+from shiproute_weather.sampling.sampler import ForecastSampler
 
 CMEMS_NATL = Path("/work/shared/data/forecasts/cmems_glo12_currents_2024-01-01_natl.nc")
 TIGGE_2007 = Path("/usr/share/doc/python-grib-doc/examples/ecmwf_tigge.grb")
@@ -131,7 +130,7 @@ def test_node_path_states_the_cycle_announcement() -> None:
 
     from shiproute_planner.convert import cycle_record
     from shiproute_planner.forecast_statement import forecast_statement
-    from shiproute_weather.canonical import Grid
+    from shiproute_weather.contract.canonical import Grid
 
     from shiproute_msgs.msg import ForecastCycle
 

@@ -17,8 +17,8 @@ from shiproute_planner.errors import ForecastCycleError
 @functools.lru_cache(maxsize=2)
 def _cycle(encoding: str = "packed16"):
     """Eight valid times (3-hourly) of the bundled storm forecast and their slice messages."""
-    from shiproute_weather.convert import dataset_to_msgs
-    from shiproute_weather.scenarios import scenario_dataset
+    from shiproute_weather.ros.convert import dataset_to_msgs
+    from shiproute_weather.scenarios.catalogue import scenario_dataset
 
     ds = scenario_dataset("storm_march").isel(time=slice(0, 8)).load()
     ds.attrs["cycle_id"] = "packer-test"
@@ -32,7 +32,7 @@ def _fields(encoding: str = "packed16"):
 
 
 def test_slice_fields_are_views_on_the_message_buffers():
-    from shiproute_weather.wire_packing import PackedField, unpack_field
+    from shiproute_weather.wire.packing import PackedField, unpack_field
 
     ds, msgs = _cycle("float32")
     s = _fields("float32")[3]
@@ -58,9 +58,9 @@ def test_slice_fields_are_views_on_the_message_buffers():
 def test_packed_in_any_order_equals_the_sampler_of_the_dataset(encoding):
     """Either encoding: the same bits as a sampler built from the values the messages decode
     to (the dataset itself for float32)."""
-    from shiproute_weather.convert import msgs_to_dataset
-    from shiproute_weather.record import without_record
-    from shiproute_weather.sampling import ForecastSampler
+    from shiproute_weather.contract.record import without_record
+    from shiproute_weather.ros.convert import msgs_to_dataset
+    from shiproute_weather.sampling.sampler import ForecastSampler
 
     ds, msgs = _cycle(encoding)
     fields = _fields(encoding)
@@ -110,7 +110,7 @@ def test_slices_older_than_the_ship_are_not_kept():
 def test_an_inconsistent_slice_fails_its_cycle_and_later_slices_are_ignored():
     import dataclasses
 
-    from shiproute_weather.canonical import Grid
+    from shiproute_weather.contract.canonical import Grid
 
     fields = _fields()
     asm: CycleAssembler[SliceFields] = CycleAssembler(sink=lambda _c, s: CyclePacker(s))

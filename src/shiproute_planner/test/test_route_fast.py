@@ -81,7 +81,7 @@ def test_fast_and_exact_evaluations_agree_on_random_populations(storm_problem, l
 
 def test_fill_sea_matches_seastate_from_forecast(storm_sampler):
     from shiproute_planner.ship import SeaState
-    from shiproute_weather.sampler_arrays import sampler_arrays
+    from shiproute_weather.sampling.sampler_arrays import sampler_arrays
 
     rng = np.random.default_rng(5)
     n = 500
@@ -94,7 +94,7 @@ def test_fill_sea_matches_seastate_from_forecast(storm_sampler):
             sample[key] = np.clip(sample[key], 0.5, 30.0)
     ref = SeaState.from_forecast(sample)
     a = sampler_arrays(storm_sampler)
-    from shiproute_weather._interp_kernel import trilinear
+    from shiproute_weather.sampling.interp_kernel import trilinear
 
     wx = np.empty((a.data.shape[3], n))
     trilinear(a.data, a.times_s, a.lat0_deg, a.dlat_deg, a.lon0_deg, a.dlon_deg, a.periodic,

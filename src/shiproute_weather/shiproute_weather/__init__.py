@@ -1,4 +1,9 @@
-"""shiproute_weather: forecast loading, canonical dataset, sampling, scenarios (ROS-free).
+"""shiproute_weather: forecast files -> canonical dataset -> sampling, wire slices and the node.
+
+Rooms, each importing only rooms listed before it: `contract` (canonical dataset), `physics`
+(wave physics), `wire` (slices, 16-bit packing), `sampling` (sampler, kernels), `ingest`
+(files -> canonical dataset -> cycle; time coverage), `scenarios` (synthetic storms), then
+`ros` (node, messages) and `experiments` (benches). Only `ros` touches ROS types.
 
 Public entry points (imported lazily so `import shiproute_weather` stays light):
 `open_forecast`, `ForecastSampler`, `scenario_dataset`, `scenario_path`, `scenario_names`.
@@ -17,9 +22,9 @@ import pyproj  # noqa: F401
 __all__ = ["ForecastSampler", "open_forecast", "scenario_dataset", "scenario_names",
            "scenario_path"]
 
-_WHERE = {"ForecastSampler": "sampling", "open_forecast": "loaders",
-          "scenario_dataset": "scenarios", "scenario_names": "scenarios",
-          "scenario_path": "scenarios"}
+_WHERE = {"ForecastSampler": "sampling.sampler", "open_forecast": "ingest.loaders",
+          "scenario_dataset": "scenarios.catalogue", "scenario_names": "scenarios.catalogue",
+          "scenario_path": "scenarios.catalogue"}
 
 
 def __getattr__(name: str) -> Any:

@@ -28,7 +28,7 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def _scenarios(args: argparse.Namespace) -> int:
-    from .scenarios import SCENARIOS, data_dir, scenario_path
+    from .scenarios.catalogue import SCENARIOS, data_dir, scenario_path
 
     names = args.names or list(SCENARIOS)
     for n in names:
@@ -46,9 +46,9 @@ def _scenarios(args: argparse.Namespace) -> int:
 def _describe(files: list[str]) -> str:
     import numpy as np
 
-    from .canonical import VARIABLES, present_variables
-    from .loaders import open_forecast
-    from .record import field_record, load_notes
+    from .contract.canonical import VARIABLES, present_variables
+    from .contract.record import field_record, load_notes
+    from .ingest.loaders import open_forecast
 
     ds = open_forecast(files)
     lat, lon, t = ds["latitude"].values, ds["longitude"].values, ds["time"].values
@@ -73,8 +73,8 @@ def _describe(files: list[str]) -> str:
 def _convert(args: argparse.Namespace) -> int:
     import numpy as np
 
-    from .combine import Box, subset
-    from .loaders import open_forecast
+    from .ingest.combine import Box, subset
+    from .ingest.loaders import open_forecast
 
     ds = open_forecast(args.files)
     if args.region:
@@ -85,7 +85,7 @@ def _convert(args: argparse.Namespace) -> int:
                "chunksizes": (1,) * (ds[n].ndim - 2) + (ny, nx),
                "_FillValue": np.float32(np.nan)} for n in ds.data_vars}
     ds.to_netcdf(out, engine="netcdf4", encoding=enc)
-    print(f"wrote {out} ({', '.join(ds.data_vars)})")
+    print(f"wrote {out} ({', '.join(str(n) for n in ds.data_vars)})")
     return 0
 
 

@@ -6,8 +6,7 @@ from pathlib import Path
 
 import numpy as np
 import xarray as xr
-
-from shiproute_weather import canonical as cv
+from shiproute_weather.contract import canonical as cv
 
 
 def small_canonical(n_time: int = 5, lat: tuple[float, float, float] = (30.0, 40.0, 0.5),

@@ -52,8 +52,8 @@ def run(voyages: int = 5, seed: int = 1, budget_s: float = 3.0) -> dict:
     from shiproute_planner.learned.train import TrainConfig, train
     from shiproute_planner.planning import plan_voyage
     from shiproute_planner.ship import load_ship
-    from shiproute_weather.sampling import ForecastSampler
-    from shiproute_weather.scenarios import scenario_dataset
+    from shiproute_weather.sampling.sampler import ForecastSampler
+    from shiproute_weather.scenarios.catalogue import scenario_dataset
 
     from .cli import prepare
     from .synth import Corruption, HullChange, simulate_fleet_records, true_ship, write_bag

@@ -182,7 +182,7 @@ def join_met(records: Records, forecasts: Sequence) -> dict[str, np.ndarray]:
     Records outside every dataset's time span get NaN (the cleaning drops them)."""
     from shiproute_planner.learned.features import SEA_COLUMNS
     from shiproute_planner.ship import SeaState
-    from shiproute_weather.sampling import ForecastSampler
+    from shiproute_weather.sampling.sampler import ForecastSampler
 
     c = records.columns
     out = {k: np.full(len(records), np.nan) for k in SEA_COLUMNS}

@@ -116,7 +116,7 @@ def simulate_fleet_records(ship, forecast, n_voyages: int, start_s: float, seed:
                            ) -> Records:
     """Records of ``n_voyages`` consecutive voyages of the true ship (see the module doc)."""
     import numba
-    from shiproute_weather.sampling import ForecastSampler
+    from shiproute_weather.sampling.sampler import ForecastSampler
 
 
     rng = np.random.default_rng(seed)

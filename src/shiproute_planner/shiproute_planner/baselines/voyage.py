@@ -22,11 +22,11 @@ DEFAULT_DEPARTURE_AFTER_REFERENCE_H = 6.0  # the reference case sails 6 h after 
 
 def load_forecast(name_or_path: str):
     """A bundled scenario by name, else a forecast file through the weather loaders."""
-    from shiproute_weather.scenarios import scenario_dataset, scenario_names
+    from shiproute_weather.scenarios.catalogue import scenario_dataset, scenario_names
 
     if name_or_path in scenario_names():
         return scenario_dataset(name_or_path)
-    from shiproute_weather.loaders import open_forecast
+    from shiproute_weather.ingest.loaders import open_forecast
 
     return open_forecast([name_or_path])
 

@@ -77,8 +77,8 @@ def evals_per_s(env, land, plan_problem: RouteProblem, pop: int = 200, reps: int
 
 def run(budget_s: float, warm_budget_s: float, ref_factor: float, seed: int) -> dict:
     """Run the benchmark and return its JSON-able result."""
-    from shiproute_weather.sampling import ForecastSampler
-    from shiproute_weather.scenarios import scenario_dataset
+    from shiproute_weather.sampling.sampler import ForecastSampler
+    from shiproute_weather.scenarios.catalogue import scenario_dataset
 
     t0 = time.perf_counter()
     land = default_land_mask()

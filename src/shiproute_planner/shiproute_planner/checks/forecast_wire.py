@@ -14,9 +14,9 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from shiproute_weather.canonical import VARIABLES, Grid
-from shiproute_weather.sampling import channel_count
-from shiproute_weather.wire_packing import PackedField
+from shiproute_weather.contract.canonical import VARIABLES, Grid
+from shiproute_weather.sampling.sampler import channel_count
+from shiproute_weather.wire.packing import PackedField
 
 from ..cycle_packer import SliceFields
 from ..errors import ForecastCycleError, StaleForecastError

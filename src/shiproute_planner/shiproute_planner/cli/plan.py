@@ -118,8 +118,8 @@ def _climatology(path: str | None):
     """The user's monthly climatology dataset, or None; refused with the reason."""
     if not path:
         return None
-    from shiproute_weather.coverage import load_climatology
     from shiproute_weather.errors import WeatherError
+    from shiproute_weather.ingest.coverage import load_climatology
 
     try:
         return load_climatology(path)
@@ -158,7 +158,7 @@ def main(argv: list[str]) -> int:
         # build the sampler outside the budget: --budget is planning time, not file loading
         env_forecast = None
         if forecast is not None:
-            from shiproute_weather.sampling import ForecastSampler
+            from shiproute_weather.sampling.sampler import ForecastSampler
 
             env_forecast = ForecastSampler(forecast)
         keywords = dict(

@@ -27,13 +27,13 @@ class LoadedForecast:
 
 def load_forecast_spec(spec: str) -> LoadedForecast:
     """Load a forecast spec (file, files joined with '+', or bundled scenario)."""
-    from shiproute_weather.sampling import ForecastSampler
-    from shiproute_weather.scenarios import scenario_dataset, scenario_names
+    from shiproute_weather.sampling.sampler import ForecastSampler
+    from shiproute_weather.scenarios.catalogue import scenario_dataset, scenario_names
 
     if spec in scenario_names():
         ds = scenario_dataset(spec)
     else:
-        from shiproute_weather.loaders import open_forecast
+        from shiproute_weather.ingest.loaders import open_forecast
 
         ds = open_forecast([str(p) for p in forecast_files(spec)])
     return LoadedForecast(ds, ForecastSampler(ds), str(ds.attrs.get("cycle_id", "")))

@@ -62,7 +62,7 @@ def forecast_files(spec: str) -> list[Path]:
     parts = [s for s in spec.split("+") if s]
     if all(Path(s).is_file() for s in parts):
         return [Path(s).resolve() for s in parts]
-    from shiproute_weather.scenarios import scenario_names, scenario_path
+    from shiproute_weather.scenarios.catalogue import scenario_names, scenario_path
 
     if spec in scenario_names():
         return [scenario_path(spec)]

@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 from numba import njit
-from shiproute_weather._interp_kernel import trilinear as _trilinear_parallel
+from shiproute_weather.sampling.interp_kernel import trilinear as _trilinear_parallel
 
 from ..geo._kernels import _FINE, chord_sample, segment_ends
 from . import _fast_kernels as fk

@@ -65,7 +65,7 @@ class FastEvaluator:
         self._ship = (par, *tables)
         self._rpm_lo, self._rpm_hi = float(self._limits[0, 0]), float(self._limits[0, 1])
         if env.sampler is not None:
-            from shiproute_weather.sampler_arrays import sampler_arrays
+            from shiproute_weather.sampling.sampler_arrays import sampler_arrays
 
             a = sampler_arrays(env.sampler)
             chan = np.array([a.channels.get(v, -1) for v in fk.SEA_VARIABLES], dtype=np.int64)
@@ -189,7 +189,7 @@ def fast_evaluator(problem: RouteProblem, env: Environment,
     if not isinstance(env.model, FastModel):
         return None
     if env.sampler is not None:
-        from shiproute_weather.sampling import ForecastSampler
+        from shiproute_weather.sampling.sampler import ForecastSampler
 
         if not isinstance(env.sampler, ForecastSampler):
             return None

@@ -1,0 +1,1 @@
+"""Benchmarks of the weather package (`shiproute bench weather`): not part of the product."""

@@ -1,0 +1,89 @@
+"""Build a publishable cycle from forecast files: load, validate, subset, thin, bound sizes."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+import xarray as xr
+
+from ..contract import canonical as cv
+from ..contract.record import load_notes
+from ..errors import SliceError
+from ..wire.slices import CycleInfo, SliceData, cycle_info, dataset_to_slices, snap_grid
+from .combine import Box, subset
+from .loaders import open_forecast
+
+#: Default bound on one ForecastSlice message (field bytes). A 0.5 deg North Pacific grid
+#: (105 x 261) with 13 fields is 1.43 MB; larger sources are thinned (grid stride) to fit.
+MAX_SLICE_BYTES = 4_000_000
+#: Default bound on slices per cycle = depth of the transient-local slice history.
+MAX_SLICES = 200
+
+
+@dataclass(frozen=True)
+class CycleConfig:
+    """How the node turns files into a cycle."""
+
+    box: Box | None = None
+    slice_interval_s: float = 0.0  # 0: every valid time of the source
+    grid_stride: int = 1
+    max_slices: int = MAX_SLICES
+    max_slice_bytes: int = MAX_SLICE_BYTES
+    required: tuple[str, ...] = ()
+    cycle_id: str = ""
+    notes: list[str] = field(default_factory=list)
+    waves_from_wind: bool = True  # estimate waves of a wind-only cycle (else refuse it)
+
+
+def corridor_box(lat_deg: Sequence[float], lon_deg: Sequence[float], margin_deg: float) -> Box:
+    """Bounding box of a route (longitudes unwrapped so it may cross 180) plus a margin."""
+    lon = np.unwrap(np.asarray(lon_deg, dtype=np.float64) % 360.0, period=360.0)
+    lat = np.asarray(lat_deg, dtype=np.float64)
+    return Box(max(-90.0, float(lat.min()) - margin_deg), min(90.0, float(lat.max()) + margin_deg),
+               float(lon.min()) - margin_deg, float(lon.max()) + margin_deg)
+
+
+def thin(ds: xr.Dataset, cfg: CycleConfig) -> tuple[xr.Dataset, list[str]]:
+    """Apply region, time interval, stride and the size/count bounds; notes say what changed."""
+    notes: list[str] = []
+    stride = max(1, cfg.grid_stride)
+    if cfg.box is not None:
+        ds = subset(ds, cfg.box)
+    if cfg.slice_interval_s > 0 and ds.sizes["time"] > 1:
+        t = ds["time"].values.astype("datetime64[ns]").astype(np.int64) / 1e9
+        keep = [0]
+        for i in range(1, t.size):
+            if t[i] - t[keep[-1]] >= cfg.slice_interval_s - 1e-6:
+                keep.append(i)
+        ds = ds.isel(time=keep)
+    n_fields = len(cv.present_variables(ds))
+    while True:
+        ny = -(-ds.sizes["latitude"] // stride)
+        nx = -(-ds.sizes["longitude"] // stride)
+        if ny * nx * 4 * n_fields <= cfg.max_slice_bytes or ny * nx <= 4:
+            break
+        stride += 1
+    if stride > 1:
+        ds = snap_grid(ds.isel(latitude=slice(None, None, stride),
+                               longitude=slice(None, None, stride)))
+        if stride != cfg.grid_stride:
+            notes.append(f"grid thinned by {stride} to keep slices <= {cfg.max_slice_bytes} B")
+    if ds.sizes["time"] > cfg.max_slices:
+        notes.append(f"cycle cut to its first {cfg.max_slices} of {ds.sizes['time']} slices")
+        ds = ds.isel(time=slice(0, cfg.max_slices))
+    return ds, notes
+
+
+def build_cycle(paths: Sequence[str], cfg: CycleConfig
+                ) -> tuple[CycleInfo, list[SliceData], list[str]]:
+    """Load + validate + thin files into the cycle announcement and its slices."""
+    ds = open_forecast(list(paths), required=cfg.required, cycle_id=cfg.cycle_id or None,
+                       waves_from_wind=cfg.waves_from_wind)
+    report = load_notes(ds)
+    ds, notes = thin(ds, cfg)
+    if ds.sizes["time"] == 0:
+        raise SliceError(f"{', '.join(paths)}: no valid time left after thinning")
+    info = replace(cycle_info(ds, paths), notes=tuple(report))
+    return info, list(dataset_to_slices(ds)), report + notes

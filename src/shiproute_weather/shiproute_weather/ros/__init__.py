@@ -1,0 +1,1 @@
+"""The weather node and its message conversion: the only modules touching ROS types."""
