@@ -156,7 +156,8 @@ def test_parameters_have_ranges_with_reasons(name: str, value: object, word: str
 
 def test_default_parameters_accepted() -> None:
     for name, value in (("stage_hours", 12.0), ("stage_hours", 0.0), ("budget_s", 3.0),
-                        ("rng_seed", 0), ("rta", "2026-03-16T18:00:00Z"), ("min_replan_interval_s", 3600.0)):
+                        ("rng_seed", 0), ("rta", "2026-03-16T18:00:00Z"),
+                        ("min_replan_interval_s", 3600.0)):
         assert check_parameter(name, value) is None
 
 
