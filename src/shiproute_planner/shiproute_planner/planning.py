@@ -22,6 +22,7 @@ import numpy as np
 from .approach import Approach, CoastalPassage, approach_length_m, lane_approaches, sail_approach
 from .canals import route_canals, sail_canal
 from .checks.parameters import require_number
+from .coastal_passages import computed_approach, passage_rules, passages_note
 from .depth_setup import depth_limits, with_depth_report
 from .errors import InvalidVoyageError, PlanCancelledError
 from .forecast_statement import forecast_statement, prepare_forecast
@@ -40,6 +41,7 @@ from .plan_types import RoutePlan, Waypoint, reasons_of, waypoints_from_evaluati
 from .route.environment import Environment
 from .route.evaluation import RouteEvaluation
 from .route.problem import RouteLimits, RouteProblem
+from .straits import route_straits, sail_strait
 
 TimeLike = datetime | float | int | str
 
@@ -251,6 +253,11 @@ def plan_voyage(
         raise InvalidVoyageError("the RTA must be after the departure time")
     ports, canal_legs, via_rta, canal_notes = route_canals(ports, spec, list(via_rta))
     warnings += canal_notes
+    strait_legs: dict = {}
+    if coastal_passage:
+        ports, canal_legs, strait_legs, via_rta, _ = route_straits(ports, canal_legs, via_rta)
+    if coastal_passage:
+        warnings.append(passages_note(passage_rules(lim.under_keel)))
     leg_rtas = _leg_rtas(ports, depart_s, rta_s, via_rta)
     env = dataclasses.replace(env, sampler=prepare_forecast(env.sampler, depart_s, rta_s,
                                                             persistence_h, climatology))
@@ -283,6 +290,19 @@ def plan_voyage(
             approaches.append((lead_in, lead_out))
             leg_depart = float((lead_out or ev).eta_s[0])
             continue
+        if k in strait_legs:  # a computed passage between the strait's gates, at sea RPM
+            ev, rpm_s, strait_problem, said = sail_strait(
+                env, strait_legs[k], leg_depart, lim, stage_hours * 3600.0,
+                float(results[-1].legs["rpm"][0, -1]) if results else None)
+            warnings += said
+            results.append(ev)
+            sources.append("strait")
+            problems.append(strait_problem)
+            if with_baseline:
+                baselines.append(("strait", rpm_s, ev))
+            approaches.append((None, None))
+            leg_depart = float(ev.eta_s[0])
+            continue
         under_way = k == 0 and position is not None
         leg = leg_setup(a, b, env, lim, land, leg_depart, search_rtas[k], approach_nm=approach_nm,
                         approach_rpm=approach_rpm, coastal_passage=coastal_passage,
@@ -290,6 +310,7 @@ def plan_voyage(
                         under_way=under_way, previous_plan=previous_plan if under_way else None,
                         position=position if under_way else None, given=given)
         problem, pre, ap_arr, rpm_ap = leg.problem, leg.pre, leg.ap_arr, leg.rpm_ap
+        warnings += [n for n in leg.notes if n not in warnings]
         seeds, gene_seeds = _seeds(problem, pool, a, b, month,
                                    previous_plan if k == 0 else None, position)
         used = time.perf_counter() - t0
@@ -389,6 +410,7 @@ class LegSetup:
     pre: RouteEvaluation | None
     ap_arr: Approach | None
     rpm_ap: float
+    notes: tuple[str, ...] = ()  # how the coastal passages were made (for the plan)
 
 
 def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMask,
@@ -413,6 +435,14 @@ def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMa
             a, b, approach_nm * 1852.0,
             with_dep=not under_way or (coastal is not None and previous_plan is None),
             coastal=coastal, dep_min_m=0.0 if under_way else None)
+    notes: list[str] = []
+    if coastal is not None and kept is None:  # computed on the fine grid, not the lane's cut
+        rules = passage_rules(lim.under_keel)
+        if rest is None:
+            ap_dep, said = computed_approach(ap_dep, a.name, False, rules)
+            notes += said
+        ap_arr, said = computed_approach(ap_arr, b.name, True, rules)
+        notes += said
     if rest is not None:
         ap_dep = rest
     mine_dep, mine_arr = approaches_at(given, a, b)
@@ -432,7 +462,7 @@ def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMa
     problem = RouteProblem(float(d_lon), float(d_lat), float(a_lon), float(a_lat), t_leg,
                            rta_leg, lim, stage_s=stage_hours * 3600.0, objective=objective,
                            dep_name=a.name, arr_name=b.name)
-    return LegSetup(problem, pre, ap_arr, float(rpm_ap))
+    return LegSetup(problem, pre, ap_arr, float(rpm_ap), tuple(notes))
 
 
 def _rest_of_approach(previous: RoutePlan | None,
@@ -567,9 +597,10 @@ def _assemble(ports, problems, results, baselines, sources, approaches, env, spe
             wps.extend(w)
             if part is ev and sources[k] == "canal":
                 fixed.append((start, len(wps) - 1))
-            elif part is ev:
+            elif part is ev and sources[k] != "strait":
                 spans.append((start, len(wps) - 1))
-            if part is ev:  # approaches are fixed pilotage: their flags inform, not decide
+            if part is ev and sources[k] != "strait":  # approaches and strait passages are
+                # computed against land, clearance and depth: their flags inform, not decide
                 flags |= int(part.flags[0]) & ~2
         if float(parts[-1].eta_s[0]) > leg_rtas[k] + 1.0:
             flags |= 2
