@@ -17,6 +17,7 @@ import os
 import numpy as np
 
 from .approach import Approach
+from .errors import PlannerError
 from .geo.datadir import data_dir
 from .geo.geodesy import M_PER_NM
 from .route.passages import (
@@ -47,8 +48,8 @@ def _key(lon: np.ndarray, lat: np.ndarray, rules: PassageRules) -> str:
     h.update(np.round(np.asarray(lon, dtype=float), 6).tobytes())
     h.update(np.round(np.asarray(lat, dtype=float), 6).tobytes())
     bathy = getattr(rules.bathymetry, "description", "")
-    h.update(repr((PASSAGE_CACHE_VERSION, best_land_resolution(), dataclasses.replace(rules, bathymetry=None),
-                   bathy)).encode())
+    h.update(repr((PASSAGE_CACHE_VERSION, best_land_resolution(),
+                   dataclasses.replace(rules, bathymetry=None), bathy)).encode())
     return h.hexdigest()[:20]
 
 
@@ -94,7 +95,7 @@ def computed_approach(ap: Approach | None, port_name: str, arrival: bool,
     where = f"{'arrival at' if arrival else 'departure from'} {port_name}"
     try:
         p = cached_passage(lon, lat, rules)
-    except Exception as exc:  # noqa: BLE001 - any data failure keeps the lane, said aloud
+    except (OSError, ValueError, MemoryError, PlannerError) as exc:  # the lane, said aloud
         return ap, [f"coastal passage ({where}) not computed ({exc}); the sea lane's own "
                     "geometry is sailed, not land-checked before the route check"]
     if p is None:

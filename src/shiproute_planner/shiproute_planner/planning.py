@@ -41,7 +41,7 @@ from .plan_types import RoutePlan, Waypoint, reasons_of, waypoints_from_evaluati
 from .route.environment import Environment
 from .route.evaluation import RouteEvaluation
 from .route.problem import RouteLimits, RouteProblem
-from .straits import route_straits, sail_strait
+from .straits import is_gate, route_straits, sail_strait
 
 TimeLike = datetime | float | int | str
 
@@ -433,7 +433,8 @@ def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMa
     else:
         ap_dep, ap_arr = lane_approaches(
             a, b, approach_nm * 1852.0,
-            with_dep=not under_way or (coastal is not None and previous_plan is None),
+            with_dep=(not under_way or (coastal is not None and previous_plan is None))
+            and not is_gate(a), with_arr=not is_gate(b),  # gates lie in open water
             coastal=coastal, dep_min_m=0.0 if under_way else None)
     notes: list[str] = []
     if coastal is not None and kept is None:  # computed on the fine grid, not the lane's cut

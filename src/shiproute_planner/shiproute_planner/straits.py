@@ -44,6 +44,14 @@ STRAITS: tuple[Strait, ...] = (
 )
 
 
+GATE_NAMES = frozenset(f"{s.name} gate" for s in STRAITS)
+
+
+def is_gate(port) -> bool:
+    """True for a strait gate inserted by `route_straits` (open water: no approach)."""
+    return port.locode == "" and port.name in GATE_NAMES
+
+
 def straits_on_lane(lon_deg: np.ndarray, lat_deg: np.ndarray
                     ) -> list[tuple[int, Strait, bool, int, int]]:
     """Straits a sea-lane polyline passes: (index of the first gate met on the densified
@@ -113,6 +121,7 @@ def sail_strait(env, leg: tuple, depart_s: float, limits, stage_s: float,
 
     from .approach import Approach, sail_approach
     from .coastal_passages import cached_passage, passage_rules
+    from .errors import PlannerError
     from .route.problem import RouteProblem
 
     strait, lane_lon, lane_lat = leg
@@ -122,7 +131,7 @@ def sail_strait(env, leg: tuple, depart_s: float, limits, stage_s: float,
     notes = []
     try:
         p = cached_passage(lane_lon, lane_lat, rules)
-    except Exception as exc:  # noqa: BLE001 - any data failure keeps the lane, said aloud
+    except (OSError, ValueError, MemoryError, PlannerError) as exc:  # the lane, said aloud
         p, why = None, f"not computed ({exc})"
     else:
         why = "no way through navigable water found"
