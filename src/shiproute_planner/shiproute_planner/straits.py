@@ -32,7 +32,7 @@ class Strait:
 
 
 STRAITS: tuple[Strait, ...] = (
-    Strait("Strait of Dover", ((50.70, 1.00), (51.40, 2.05))),
+    Strait("Strait of Dover", ((50.70, 1.00), (51.15, 2.05))),
     Strait("Strait of Gibraltar", ((35.90, -6.20), (36.05, -4.95))),
     Strait("Singapore Strait", ((1.20, 103.55), (1.40, 104.55))),
     Strait("Strait of Hormuz", ((26.25, 55.95), (25.95, 57.05))),
@@ -73,11 +73,22 @@ def straits_on_lane(lon_deg: np.ndarray, lat_deg: np.ndarray
     return sorted(found, key=lambda f: f[0])
 
 
+def _port_in_strait(strait: Strait, port) -> bool:
+    """True when a port lies nearer either gate than the gates lie to each other (inside
+    the strait or at its mouth: Singapore in the Singapore Strait)."""
+    (la0, lo0), (la1, lo1) = strait.gates
+    _, span = inverse(lo0, la0, lo1, la1)
+    _, d = inverse(np.array([port.lon_deg, port.lon_deg]), np.array([port.lat_deg] * 2),
+                   np.array([lo0, lo1]), np.array([la0, la1]))
+    return bool(np.min(d) < float(span))
+
+
 def route_straits(ports: list, canal_legs: dict, via_rta: list
                   ) -> tuple[list, dict, dict, list, list[str]]:
     """Ports with strait gates inserted where the sea lane of a (non-canal) leg runs through
     a strait; returns (ports, canal legs re-indexed, {leg index: (strait, lane part gate to
-    gate (lon, lat))}, via RTAs aligned to the new ports)."""
+    gate (lon, lat))}, via RTAs aligned to the new ports). A strait with one of the leg's
+    ports inside it is left to that port's approach passage."""
     from .ga.seeds import _searoute_coords
     from .geo.ports import Port
 
@@ -97,6 +108,8 @@ def route_straits(ports: list, canal_legs: dict, via_rta: list
                                      2000.0)
         for _, strait, rev, i0, i1 in found:
             g0, g1 = strait.gates[::-1] if rev else strait.gates
+            if _port_in_strait(strait, a) or _port_in_strait(strait, b):
+                continue  # the port's own approach passage covers it
             lo, hi = sorted((i0, i1))
             part_lon = np.asarray(lane[0][lo:hi + 1], dtype=float)
             part_lat = np.asarray(lane[1][lo:hi + 1], dtype=float)

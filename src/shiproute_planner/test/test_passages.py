@@ -171,3 +171,23 @@ def test_dardanelles_passage_is_on_water_at_full_resolution():
     assert near.size >= 1  # Eurasia (Gallipoli and Anatolia are one ring), islands
     for i in near:
         assert not Path(polys.ring(int(i))).contains_points(pts).any()
+
+
+def test_singapore_rotterdam_meets_its_straits_in_order_and_ports_keep_their_own():
+    from shiproute_planner.canals import route_canals
+    from shiproute_planner.geo.ports import lookup_port
+    from shiproute_planner.ship import load_ship
+    from shiproute_planner.straits import route_straits
+
+    ports, canals, _, _ = route_canals([lookup_port("Singapore"), lookup_port("Rotterdam")],
+                                       load_ship("container_4600teu"), [])
+    ports, canals, straits, _, _ = route_straits(ports, canals, [])
+    names = [p.name.replace(" gate", "") for p in ports[1:-1]]
+    assert names == ["Bab-el-Mandeb", "Bab-el-Mandeb", "Suez Canal entrance", "Suez Canal exit",
+                     "Strait of Gibraltar", "Strait of Gibraltar", "Strait of Dover",
+                     "Strait of Dover"]
+    assert sorted(canals) == [3] and sorted(straits) == [1, 5, 7]  # legs between the gates
+    # Singapore lies in the Singapore Strait: its own approach passage threads it
+    ports, _, straits, _, _ = route_straits([lookup_port("Singapore"),
+                                             lookup_port("Hong Kong")], {}, [])
+    assert not straits and len(ports) == 2
