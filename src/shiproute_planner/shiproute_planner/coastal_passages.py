@@ -29,7 +29,7 @@ from .route.passages import (
     passage_length_nm,
 )
 
-PASSAGE_CACHE_VERSION = 1
+PASSAGE_CACHE_VERSION = 2
 SQUAT_SPEED_KN = 12.0  # speed whose squat the passage's depth limit includes
 _MEMO: dict[str, Passage | None] = {}
 
@@ -63,7 +63,8 @@ def cached_passage(lon: np.ndarray, lat: np.ndarray, rules: PassageRules) -> Pas
     p: Passage | None = None
     try:
         with np.load(path) as z:
-            p = (Passage(z["lon"], z["lat"], float(z["c"]), bool(z["d"]), float(z["w"]))
+            p = (Passage(z["lon"], z["lat"], float(z["c"]), bool(z["d"]), float(z["w"]),
+                         float(z["cell"]))
                  if z["lon"].size else None)
         _MEMO[key] = p
         return p
@@ -77,7 +78,7 @@ def cached_passage(lon: np.ndarray, lat: np.ndarray, rules: PassageRules) -> Pas
         empty = np.zeros(0)
         np.savez(tmp, lon=p.lon_deg if p else empty, lat=p.lat_deg if p else empty,
                  c=p.clearance_nm if p else 0.0, d=p.depth_limited if p else False,
-                 w=p.corridor_nm if p else 0.0)
+                 w=p.corridor_nm if p else 0.0, cell=p.cell_nm if p else 0.0)
         os.replace(tmp, path)
     except OSError:
         pass  # read-only data directory: kept in memory only
@@ -100,8 +101,9 @@ def computed_approach(ap: Approach | None, port_name: str, arrival: bool,
                     "geometry is sailed, not land-checked before the route check"]
     if p is None:
         return ap, [f"coastal passage ({where}): no way through navigable water at "
-                    f"{rules.cell_nm:g} NM resolution within {max(rules.corridors_nm):g} NM of "
-                    "the sea lane; the lane's own geometry is sailed (see the route check)"]
+                    f"{rules.fine_cell_nm:g} NM resolution within "
+                    f"{max(rules.corridors_nm):g} NM of the sea lane; the lane's own geometry "
+                    "is sailed (see the route check)"]
     notes = []
     if p.clearance_nm < rules.clearances_nm[0]:
         notes.append(f"coastal passage ({where}): too narrow for {rules.clearances_nm[0]:g} NM "
@@ -110,6 +112,9 @@ def computed_approach(ap: Approach | None, port_name: str, arrival: bool,
         notes.append(f"coastal passage ({where}): no way through water of "
                      f"{rules.required_depth_m:.1f} m (draft, squat at {SQUAT_SPEED_KN:g} kn, "
                      "margin) per the depth grid; passage computed on land and clearance only")
+    if p.cell_nm < rules.cell_nm - 1e-9:
+        notes.append(f"coastal passage ({where}): computed on {p.cell_nm:.2g} NM cells (narrow "
+                     "water)")
     if p.corridor_nm > rules.corridors_nm[0]:
         notes.append(f"coastal passage ({where}): found only {p.corridor_nm:g} NM off the sea "
                      "lane")

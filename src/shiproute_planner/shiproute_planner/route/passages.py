@@ -8,7 +8,8 @@ depth), and the shortest path through navigable cells is found by Dijkstra on th
 corner). Water nearer land than `prefer_off_nm` costs a little more, so a passage keeps
 mid-channel where there is room. The path is straightened (a vertex is dropped while the
 straight line between its neighbours stays in navigable cells) and checked against the land
-polygons every 0.1 NM.
+polygons every 0.4 cells. Where nothing fits at `cell_nm` (a river, sound or fjord narrower
+than a few cells) the grid is refined to `fine_cell_nm` before the corridor is widened.
 
 Clearance: the passage keeps `clearances_nm[0]` (0.5 NM) from land where it can; a strait or
 channel too narrow for it (Bosphorus, Dardanelles, an estuary) gets the largest clearance of
@@ -44,6 +45,7 @@ class PassageRules:
 
     clearances_nm: tuple[float, ...] = (0.5, 0.25, 0.1, 0.0)
     cell_nm: float = 0.25
+    fine_cell_nm: float = 0.1  # tried when nothing fits at `cell_nm` (rivers, sounds, fjords)
     corridors_nm: tuple[float, ...] = (10.0, 30.0)
     berth_nm: float = 3.0
     pilotage_nm: float = 10.0
@@ -61,6 +63,7 @@ class Passage:
     clearance_nm: float
     depth_limited: bool
     corridor_nm: float
+    cell_nm: float = 0.25
 
 
 def _dense_lane(lon: np.ndarray, lat: np.ndarray, step_deg: float) -> tuple[np.ndarray,
@@ -205,7 +208,8 @@ def solve_on_grid(grid: NavGrid, lane_lon: np.ndarray, lane_lat: np.ndarray,
             lon, lat = grid.centre(cells[:, 0], cells[:, 1])
             lon = np.concatenate([lane_lon[:1], lon, lane_lon[-1:]])
             lat = np.concatenate([lane_lat[:1], lat, lane_lat[-1:]])
-            return Passage(lon, lat, c_nm, use_depth, corridor_nm)
+            return Passage(lon, lat, c_nm, use_depth, corridor_nm,
+                           float(grid.dlat_deg * 60.0))
     return None
 
 
@@ -255,8 +259,10 @@ def compute_passage(lane_lon: np.ndarray, lane_lat: np.ndarray, rules: PassageRu
     lane_lat = np.asarray(lane_lat, dtype=float)
     shift = 360.0 * np.round(np.mean(lane_lon) / 360.0)
     lon_f = lane_lon - shift
-    for corridor_nm in rules.corridors_nm:
-        box = grid_box(lon_f, lane_lat, corridor_nm + 2.0, rules.cell_nm)
+    tries = [(rules.corridors_nm[0], rules.cell_nm), (rules.corridors_nm[0], rules.fine_cell_nm),
+             *((w, rules.cell_nm) for w in rules.corridors_nm[1:])]
+    for corridor_nm, cell_nm in tries:
+        box = grid_box(lon_f, lane_lat, corridor_nm + 2.0, cell_nm)
         lon0, lat0, dlon, dlat, rows, cols = box
         if lon0 < -180.0 or lon0 + cols * dlon > 180.0:
             return None  # a box across the antimeridian: not supported, the lane is kept
@@ -265,7 +271,7 @@ def compute_passage(lane_lon: np.ndarray, lane_lat: np.ndarray, rules: PassageRu
         p = solve_on_grid(grid, lon_f, lane_lat, rules, corridor_nm)
         if p is None:
             continue
-        d_lon, d_lat = densify_track(p.lon_deg, p.lat_deg, 0.1 * M_PER_NM)
+        d_lon, d_lat = densify_track(p.lon_deg, p.lat_deg, 0.4 * p.cell_nm * M_PER_NM)
         d_lon, d_lat = np.asarray(d_lon, dtype=float), np.asarray(d_lat, dtype=float)
         _, from_port = inverse(np.full(d_lon.size, p.lon_deg[0]),
                                np.full(d_lat.size, p.lat_deg[0]), d_lon, d_lat)
@@ -273,5 +279,5 @@ def compute_passage(lane_lon: np.ndarray, lane_lat: np.ndarray, rules: PassageRu
         if np.any(on_land(land, d_lon[out], d_lat[out])):
             continue
         return Passage(p.lon_deg + shift, p.lat_deg, p.clearance_nm, p.depth_limited,
-                       corridor_nm)
+                       corridor_nm, p.cell_nm)
     return None
