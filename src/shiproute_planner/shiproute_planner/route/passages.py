@@ -89,8 +89,11 @@ def _distance_from_m(grid: NavGrid, i: np.ndarray, j: np.ndarray) -> np.ndarray:
 
 
 def _shortest_path(free: np.ndarray, cost: np.ndarray, cell_m: tuple[float, float],
-                   start: tuple[int, int], goal: tuple[int, int]) -> np.ndarray | None:
-    """Cells (rows of (i, j)) of the cheapest 16-neighbour path between two free cells."""
+                   pool: np.ndarray, port: tuple[int, int], goal: tuple[int, int]
+                   ) -> np.ndarray | None:
+    """Cells (rows of (i, j)) of the cheapest 16-neighbour path from the cell of `pool`
+    nearest `port` that connects to the free cell `goal` (a harbour pond or a lake next to
+    the berth does not count), in that order; None when no pool cell connects."""
     from scipy.sparse import coo_matrix
     from scipy.sparse.csgraph import dijkstra
 
@@ -117,14 +120,15 @@ def _shortest_path(free: np.ndarray, cost: np.ndarray, cell_m: tuple[float, floa
     n = fi.size
     graph = coo_matrix((np.concatenate(w), (np.concatenate(src), np.concatenate(dst))),
                        shape=(n, n)).tocsr()
-    s, g = int(node[start]), int(node[goal])
-    dist, pred = dijkstra(graph, directed=False, indices=s, return_predecessors=True)
-    if not np.isfinite(dist[g]):
+    g = int(node[goal])
+    dist, pred = dijkstra(graph, directed=False, indices=g, return_predecessors=True)
+    cand = np.flatnonzero(pool[fi, fj] & np.isfinite(dist))
+    if cand.size == 0:
         return None
-    path = [g]
-    while path[-1] != s:
+    path = [int(cand[np.argmin((fi[cand] - port[0]) ** 2 + (fj[cand] - port[1]) ** 2)])]
+    while path[-1] != g:
         path.append(int(pred[path[-1]]))
-    idx = np.array(path[::-1])
+    idx = np.array(path)
     return np.stack([fi[idx], fj[idx]], axis=1)
 
 
@@ -194,14 +198,14 @@ def solve_on_grid(grid: NavGrid, lane_lon: np.ndarray, lane_lat: np.ndarray,
             free = water & (berth | (grid.clearance_m >= c_nm * M_PER_NM))
             if use_depth:
                 free &= ~shallow
-            start = _nearest_free(free & berth if (free & berth).any() else free,
-                                  int(pi[0]), int(pj[0]))
+            pool = free & berth if (free & berth).any() else free
             gi, gj = grid.cell_of(lane_lon[-1:], lane_lat[-1:])
             goal = _nearest_free(free & ~berth if (free & ~berth).any() else free,
                                  int(gi[0]), int(gj[0]))
-            if start is None or goal is None:
+            if goal is None:
                 continue
-            cells = _shortest_path(free, cost, grid.cell_m, start, goal)
+            cells = _shortest_path(free, cost, grid.cell_m, pool, (int(pi[0]), int(pj[0])),
+                                   goal)
             if cells is None:
                 continue
             cells = _straighten(free, cells, 20.0 / (60.0 * grid.dlat_deg))
