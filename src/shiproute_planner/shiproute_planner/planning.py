@@ -603,8 +603,9 @@ def _assemble(ports, problems, results, baselines, sources, approaches, env, spe
             if part is ev and sources[k] != "strait":  # approaches and strait passages are
                 # computed against land, clearance and depth: their flags inform, not decide
                 flags |= int(part.flags[0]) & ~2
-        if float(parts[-1].eta_s[0]) > leg_rtas[k] + 1.0 and sources[k] != "strait":
-            flags |= 2  # a strait passage's time is made up on the optimised leg after it
+        if float(parts[-1].eta_s[0]) > leg_rtas[k] + 1.0 and sources[k] not in (
+                "strait", "canal"):  # inserted points carry no user RTA: a fixed passage's
+            flags |= 2  # time is made up on the optimised leg after it
     fuel = sum(float(ev.fuel_t[0]) for ev in plan_parts)
     dist = sum(float(ev.distance_m[0]) for ev in plan_parts) / 1852.0
     eta = float(plan_parts[-1].eta_s[0])
