@@ -24,6 +24,7 @@ from shiproute_core.geodesy import inverse, unwrap_near
 from .approach import Approach, CoastalPassage, approach_length_m, lane_approaches, sail_approach
 from .canals import route_canals, sail_canal
 from .checks.parameters import require_number
+from .coastal_passages import computed_approach, passage_rules, passages_note
 from .depth_setup import depth_limits, with_depth_report
 from .errors import InvalidVoyageError, PlanCancelledError
 from .forecast_statement import forecast_statement, prepare_forecast
@@ -43,6 +44,7 @@ from .plan_types import RoutePlan, Waypoint, reasons_of, waypoints_from_evaluati
 from .route.environment import Environment
 from .route.evaluation import RouteEvaluation
 from .route.problem import RouteLimits, RouteProblem
+from .straits import is_gate, route_straits, sail_strait
 from .voyage.legs import sea_distance_m, turns_to_round, voyage_schedule
 from .voyage.plan_calls import with_port_calls
 from .voyage.port_calls import PortCall
@@ -290,6 +292,10 @@ def plan_voyage(
     calls = list(port_calls) or _calls_of(via, via_rta, depart_s)
     ports, canal_legs, calls_x, canal_notes = route_canals(ports, spec, calls)
     warnings += canal_notes
+    strait_legs: dict = {}
+    if coastal_passage:
+        ports, canal_legs, strait_legs, calls_x, _ = route_straits(ports, canal_legs, calls_x)
+        warnings.append(passages_note(passage_rules(lim.under_keel)))
     sched = None
     if len(ports) > 2:
         call_at = {k + 1: c for k, c in enumerate(calls_x) if c is not None}
@@ -335,6 +341,21 @@ def plan_voyage(
             arrivals.append(leg_depart)
             leg_depart = _departure(call_at.get(k + 1), leg_depart)
             continue
+        if k in strait_legs:  # a computed passage between the strait's gates, at sea RPM
+            ev, rpm_s, strait_problem, said = sail_strait(
+                env, strait_legs[k], leg_depart, lim, (stage_hours or OCEAN_STAGE_H) * 3600.0,
+                float(results[-1].legs["rpm"][0, -1]) if results else None)
+            warnings += said
+            results.append(ev)
+            sources.append("strait")
+            problems.append(strait_problem)
+            if with_baseline:
+                baselines.append(("strait", rpm_s, ev))
+            approaches.append((None, None))
+            leg_depart = float(ev.eta_s[0])
+            arrivals.append(leg_depart)
+            leg_depart = _departure(call_at.get(k + 1), leg_depart)
+            continue
         under_way = k == 0 and position is not None
         if sched is not None and 0 < k < len(ports) - 2 and not rta_warning:
             # closed loop: the legs left re-scheduled from where and when this one starts
@@ -346,6 +367,7 @@ def plan_voyage(
                         under_way=under_way, previous_plan=previous_plan if under_way else None,
                         position=position if under_way else None, given=given)
         problem, pre, ap_arr, rpm_ap = leg.problem, leg.pre, leg.ap_arr, leg.rpm_ap
+        warnings += [n for n in leg.notes if n not in warnings]
         seeds, gene_seeds = _seeds(problem, pool, a, b, month,
                                    previous_plan if k == 0 else None, position)
         used = time.perf_counter() - t0
@@ -455,6 +477,7 @@ class LegSetup:
     pre: RouteEvaluation | None
     ap_arr: Approach | None
     rpm_ap: float
+    notes: tuple[str, ...] = ()  # how the coastal passages were made (for the plan)
 
 
 def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMask,
@@ -478,8 +501,17 @@ def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMa
     else:
         ap_dep, ap_arr = lane_approaches(
             a, b, approach_nm * 1852.0,
-            with_dep=not under_way or (coastal is not None and previous_plan is None),
+            with_dep=(not under_way or (coastal is not None and previous_plan is None))
+            and not is_gate(a), with_arr=not is_gate(b),  # gates lie in open water
             coastal=coastal, dep_min_m=0.0 if under_way else None)
+    notes: list[str] = []
+    if coastal is not None and kept is None:  # computed on the fine grid, not the lane's cut
+        rules = passage_rules(lim.under_keel)
+        if rest is None:
+            ap_dep, said = computed_approach(ap_dep, a.name, False, rules)
+            notes += said
+        ap_arr, said = computed_approach(ap_arr, b.name, True, rules)
+        notes += said
     if rest is not None:
         ap_dep = rest
     mine_dep, mine_arr = approaches_at(given, a, b)
@@ -510,7 +542,7 @@ def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMa
                            objective_per_t_fuel=terms.per_t_fuel if terms else 1.0,
                            objective_per_h=terms.per_h if terms else 0.0,
                            dep_name=a.name, arr_name=b.name)
-    return LegSetup(problem, pre, ap_arr, float(rpm_ap))
+    return LegSetup(problem, pre, ap_arr, float(rpm_ap), tuple(notes))
 
 
 def _rest_of_approach(previous: RoutePlan | None,
@@ -647,12 +679,14 @@ def _assemble(ports, problems, results, baselines, sources, approaches, env, spe
             wps.extend(w)
             if part is ev and sources[k] == "canal":
                 fixed.append((start, len(wps) - 1))
-            elif part is ev:
+            elif part is ev and sources[k] != "strait":
                 spans.append((start, len(wps) - 1))
-            if part is ev:  # approaches are fixed pilotage: their flags inform, not decide
+            if part is ev and sources[k] != "strait":  # approaches and strait passages are
+                # computed against land, clearance and depth: their flags inform, not decide
                 flags |= int(part.flags[0]) & ~2
-        if float(parts[-1].eta_s[0]) > deadlines[k]:
-            flags |= 2
+        if float(parts[-1].eta_s[0]) > deadlines[k] and sources[k] not in ("strait", "canal"):
+            flags |= 2  # inserted points carry no user RTA: a fixed passage's time is made
+            # up on the optimised leg after it
     fuel = sum(float(ev.fuel_t[0]) for ev in plan_parts)
     dist = sum(float(ev.distance_m[0]) for ev in plan_parts) / 1852.0
     eta = float(plan_parts[-1].eta_s[0])

@@ -201,7 +201,7 @@ def load_depth_grid(path_text: str) -> DepthGrid:
     return grid
 
 
-PREPARED_VERSION = 1
+PREPARED_VERSION = 2
 
 
 def _prepare(grid: DepthGrid, path: Path) -> None:
@@ -221,6 +221,10 @@ def _prepare(grid: DepthGrid, path: Path) -> None:
                 return
         except (OSError, ValueError):
             pass  # rebuilt below
+    if grid.is_coarse:  # a compilation's shelf fill values are "shallow, not known"
+        from .fill_values import shelf_fill_values
+
+        grid.depth_m[np.isin(grid.depth_m, shelf_fill_values(grid.depth_m))] = np.nan
     dry = grid.depth_m <= 0.0
     if grid.is_coarse:  # dry cells and their neighbours: the coastline decides there
         from scipy import ndimage

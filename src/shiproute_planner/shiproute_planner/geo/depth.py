@@ -36,7 +36,9 @@ class Bathymetry:
         """What the depths come from, finest first, with each grid's resolution."""
         parts = []
         for g in self.grids:
-            note = " (coarse: coastal cells smeared, the coastline decides there)" if (
+            note = (" (coarse: coastal cells smeared, the coastline decides there; shelf fill "
+                    "values, whole metres far more frequent than their neighbours, read as "
+                    "unknown)") if (
                 g.is_coarse) else ""
             parts.append(f"{g.name} ({g.resolution_text}){note}")
         return "; ".join(parts)

