@@ -15,11 +15,11 @@ import hashlib
 import os
 
 import numpy as np
+from shiproute_core.geodesy import M_PER_NM
 
 from .approach import Approach
 from .errors import PlannerError
 from .geo.datadir import data_dir
-from .geo.geodesy import M_PER_NM
 from .route.passages import (
     Passage,
     PassageRules,

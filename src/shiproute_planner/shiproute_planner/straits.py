@@ -16,8 +16,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-
-from .geo.geodesy import M_PER_NM, densify_track, inverse, unwrap_near, wrap_lon
+from shiproute_core.geodesy import M_PER_NM, densify_track, inverse, unwrap_near, wrap_lon
 
 NEAR_M = 25_000.0  # a lane "uses" a strait when it passes both gates this close
 

@@ -7,9 +7,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 import shapely
+from shiproute_core.geodesy import densify_track
 from shiproute_planner.geo.bathymetry import DepthGrid
 from shiproute_planner.geo.depth import Bathymetry
-from shiproute_planner.geo.geodesy import densify_track
 from shiproute_planner.geo.gshhg import LandPolygons
 from shiproute_planner.route.passages import (
     PassageRules,

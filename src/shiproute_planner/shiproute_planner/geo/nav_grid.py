@@ -21,8 +21,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-
-from .geodesy import M_PER_NM
+from shiproute_core.geodesy import M_PER_NM
 
 M_PER_DEG_LAT = 60.0 * M_PER_NM
 COARSE_TRUST_CELLS = 1.5  # a coarse grid's depth counts this many of its cells off the coast

@@ -28,8 +28,8 @@ import functools
 from dataclasses import dataclass, field
 
 import numpy as np
+from shiproute_core.geodesy import M_PER_NM, inverse
 
-from ..geo.geodesy import M_PER_NM, inverse
 from ..geo.nav_grid import NavGrid, build_nav_grid, grid_box, land_in_box, on_land
 
 # (d_row, d_col) of the 8 "forward" moves of a 16-neighbour stencil and the cells they cross
@@ -256,7 +256,7 @@ def compute_passage(lane_lon: np.ndarray, lane_lat: np.ndarray, rules: PassageRu
                     polygons=None) -> Passage | None:
     """Passage from `lane[0]` (port) to `lane[-1]` (sea end), continuous longitudes; None
     when no corridor has a way through or the result fails the dense land check."""
-    from ..geo.geodesy import densify_track
+    from shiproute_core.geodesy import densify_track
 
     polygons = polygons if polygons is not None else best_land_polygons()
     lane_lon = np.asarray(lane_lon, dtype=float)
