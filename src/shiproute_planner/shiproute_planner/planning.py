@@ -307,12 +307,11 @@ def plan_voyage(
         call_at, leg_rtas = {}, [rta_s]
     env = dataclasses.replace(env, sampler=prepare_forecast(env.sampler, depart_s, rta_s,
                                                             persistence_h, climatology))
-    rta_warning, earliest_s = ("", rta_s) if sched else _rta_warning(ports, depart_s, rta_s,
-                                                                       spec)
+    rta_warning, earliest_s = _rta_warning(ports, depart_s, rta_s, spec)
     # an RTA beyond reach is searched best effort: over the time the great circle takes at
     # full speed (a lower bound), lateness being a violation the search minimises; a
-    # multi-port schedule never asks a leg for more than the ship can do
-    search_rtas = [earliest_s] if rta_warning else list(leg_rtas)
+    # schedule (ports, canals, straits) never asks a leg for more than the ship can do
+    search_rtas = [*leg_rtas[:-1], earliest_s] if rta_warning else list(leg_rtas)
     is_cancelled = _cancel_fn(cancel)
     rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
     pool = SeedPool(seed_pool_dir) if seed_pool_dir is not None else None

@@ -50,7 +50,8 @@ def check_options(args: argparse.Namespace, options: dict[str, tuple[str, str]],
                   budget_option: str = "") -> None:
     """Raise ParameterError for the first option outside its parameter's range."""
     values: list[tuple[str, str, object]] = [
-        (option, parameter, getattr(args, dest)) for option, (dest, parameter) in options.items()]
+        (option, parameter, getattr(args, dest)) for option, (dest, parameter) in options.items()
+        if getattr(args, dest) is not None]  # None: the option was left to its derived default
     if budget_option:
         text = getattr(args, budget_option.lstrip("-"))
         if text is not None:  # None: the command's default budget
