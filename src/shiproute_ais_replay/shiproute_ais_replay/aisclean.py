@@ -11,8 +11,10 @@ import math
 from collections import Counter
 from dataclasses import dataclass
 
+from shiproute_core.geodesy import distance_m
+from shiproute_core.units import M_S_PER_KNOT
+
 from .aistypes import NAN, AisFix, AisInput, AisStatic
-from .geo import M_S_PER_KN, distance_m
 from .shipstate import ShipStateRecord
 
 MAX_SPEED_KN = 50.0
@@ -77,8 +79,8 @@ def clean_track(mmsi: int, fixes: list[AisFix], statics: list[AisStatic],
             if fix.time_ns == last.time_ns:
                 problem = "duplicate_time"
             else:
-                dist = float(distance_m(last.lat_deg, last.lon_deg, fix.lat_deg, fix.lon_deg))
-                speed_kn = dist / ((fix.time_ns - last.time_ns) * 1e-9) / M_S_PER_KN
+                dist = float(distance_m(last.lon_deg, last.lat_deg, fix.lon_deg, fix.lat_deg))
+                speed_kn = dist / ((fix.time_ns - last.time_ns) * 1e-9) / M_S_PER_KNOT
                 if dist > MIN_JUMP_M and speed_kn > max_speed_kn:
                     jumps += 1
                     problem = "implied_speed" if jumps <= REANCHOR_AFTER else ""

@@ -7,8 +7,9 @@ from dataclasses import dataclass, fields
 from typing import Any
 
 from rosbags.typesys.store import Typestore
+from shiproute_core.geodesy import bearing_deg, distance_m
+from shiproute_core.units import M_S_PER_KNOT
 
-from .geo import M_S_PER_KN, bearing_deg, distance_m
 from .typestore import SHIP_STATE_TYPE
 
 NAN = math.nan
@@ -94,13 +95,13 @@ class NavFixConverter:
         sog_kn, cog_deg = NAN, NAN
         if self._vel is not None and abs(time_ns - self._vel[0]) <= VELOCITY_MAX_AGE_NS:
             _, ve, vn = self._vel
-            sog_kn = math.hypot(ve, vn) / M_S_PER_KN
+            sog_kn = math.hypot(ve, vn) / M_S_PER_KNOT
             cog_deg = math.degrees(math.atan2(ve, vn)) % 360.0
         elif self._prev is not None and 0 < time_ns - self._prev[0] <= FIX_MAX_GAP_NS:
             t0, lat0, lon0 = self._prev
-            dist = float(distance_m(lat0, lon0, lat_deg, lon_deg))
-            sog_kn = dist / ((time_ns - t0) * 1e-9) / M_S_PER_KN
-            cog_deg = float(bearing_deg(lat0, lon0, lat_deg, lon_deg)) if dist > 0 else NAN
+            dist = float(distance_m(lon0, lat0, lon_deg, lat_deg))
+            sog_kn = dist / ((time_ns - t0) * 1e-9) / M_S_PER_KNOT
+            cog_deg = float(bearing_deg(lon0, lat0, lon_deg, lat_deg)) if dist > 0 else NAN
         self._prev = (time_ns, lat_deg, lon_deg)
         return ShipStateRecord(
             time_ns=time_ns, latitude_deg=lat_deg, longitude_deg=lon_deg,

@@ -16,9 +16,10 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from shiproute_core.geodesy import bearing_deg, destination, distance_m
+from shiproute_core.units import M_PER_NM, M_S_PER_KNOT
 
 from .errors import SimulationError
-from .geo import M_S_PER_KN, bearing_deg, destination, distance_m
 from .shipstate import ShipStateRecord
 from .voyage_input import VoyagePlan
 
@@ -82,11 +83,11 @@ class VoyageSimulator:
         if not math.isfinite(rpm):
             stw_kn = p.leg_stw_kn[leg]
             if not math.isfinite(stw_kn) and math.isfinite(p.leg_eta_s[leg]):
-                left_m = float(distance_m(lat, lon, p.lat_deg[leg + 1], p.lon_deg[leg + 1]))
-                stw_kn = left_m / max(p.leg_eta_s[leg] - t_s, 60.0) / M_S_PER_KN
+                left_m = float(distance_m(lon, lat, p.lon_deg[leg + 1], p.lat_deg[leg + 1]))
+                stw_kn = left_m / max(p.leg_eta_s[leg] - t_s, 60.0) / M_S_PER_KNOT
             if math.isfinite(stw_kn):
                 rpm = float(self.model.rpm_for_speed(
-                    np.array(stw_kn * M_S_PER_KN), np.array(heading), sea))
+                    np.array(stw_kn * M_S_PER_KNOT), np.array(heading), sea))
             else:
                 rpm = self.opts.default_rpm
         if not math.isfinite(rpm):
@@ -102,11 +103,11 @@ class VoyageSimulator:
         end_s = t + o.max_duration_s
         while leg < len(p.lat_deg) - 1 and t < end_s:
             tlat, tlon = float(p.lat_deg[leg + 1]), float(p.lon_deg[leg + 1])
-            left_m = float(distance_m(lat, lon, tlat, tlon))
+            left_m = float(distance_m(lon, lat, tlon, tlat))
             if left_m < ARRIVAL_M:
                 leg += 1
                 continue
-            heading = float(bearing_deg(lat, lon, tlat, tlon))
+            heading = float(bearing_deg(lon, lat, tlon, tlat))
             sea = self._sea(lat, lon, t)
             rpm = self._rpm(leg, lat, lon, t, heading, sea)
             perf = self.model.evaluate(np.array(rpm), np.array(heading), sea)
@@ -125,8 +126,8 @@ class VoyageSimulator:
             if reached:
                 lat2, lon2 = tlat, tlon
             else:
-                lat2, lon2 = destination(lat, lon, cog, sog * dt)
-            self.summary.distance_nm += sog * dt / 1852.0
+                lon2, lat2 = destination(lon, lat, cog, sog * dt)
+            self.summary.distance_nm += sog * dt / M_PER_NM
             self.summary.fuel_t += step["fuel"] * dt / 3600.0
             lat, lon, t = float(lat2), float(lon2), t + dt
         self.summary.arrived = leg >= len(p.lat_deg) - 1
@@ -143,13 +144,13 @@ class VoyageSimulator:
             return
         dist = s["sog"] * (times - t0)
         cog = s["cog"] if math.isfinite(s["cog"]) else 0.0
-        lat, lon = destination(np.full(n, lat0), np.full(n, lon0), np.full(n, cog), dist)
+        lon, lat = destination(np.full(n, lon0), np.full(n, lat0), np.full(n, cog), dist)
         z = self.rng.standard_normal((6, n)) if self.opts.noise else np.zeros((6, n))
-        gps_deg = 3.0 / 111_195.0
+        gps_deg = 3.0 / (60 * M_PER_NM)  # 3 m; a minute of latitude is about a nautical mile
         lat = lat + z[0] * gps_deg
         lon = lon + z[1] * gps_deg / max(math.cos(math.radians(lat0)), 0.01)
-        sog_kn = np.maximum(s["sog"] / M_S_PER_KN + 0.05 * z[2], 0.0)
-        stw_kn = np.maximum(s["stw"] / M_S_PER_KN + 0.05 * z[3], 0.0)
+        sog_kn = np.maximum(s["sog"] / M_S_PER_KNOT + 0.05 * z[2], 0.0)
+        stw_kn = np.maximum(s["stw"] / M_S_PER_KNOT + 0.05 * z[3], 0.0)
         heading = (s["heading"] + 0.5 * z[4]) % 360.0
         rpm = np.maximum(s["rpm"] + 0.2 * z[5], 0.0) if s["rpm"] > 0 else np.zeros(n)
         fuel = s["fuel"] * (1.0 + 0.01 * z[5])

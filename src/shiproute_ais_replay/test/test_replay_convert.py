@@ -7,22 +7,23 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from ais_replay_helpers import T0_NS
+from shiproute_core.units import M_S_PER_KNOT
+from ais_replay_helpers import T0_NS, meridian_arc_m
 from shiproute_ais_replay.bagwriter import BagWriter
 from shiproute_ais_replay.replay import ReplayConfig, ReplayEngine
 from shiproute_ais_replay.shipstate import NavFixConverter, ShipStateRecord, to_rosbags
 from shiproute_ais_replay.typestore import build_typestore
 
-# 0.01 deg of latitude on the 6371008.8 m sphere, in metres
-M_PER_CENTIDEG = 6_371_008.8 * math.pi / 180 * 0.01
-KN = 1852.0 / 3600.0
+# 0.01 deg of latitude north from 10 N on the WGS 84 meridian, in metres (about 1106.1 m)
+M_PER_CENTIDEG = meridian_arc_m(10.0, 10.01)
+KN = M_S_PER_KNOT
 
 
 def test_sog_cog_from_consecutive_fixes():
     conv = NavFixConverter(mmsi=7)
     assert math.isnan(conv.feed_fix(0, 10.0, 20.0).sog_kn)  # first fix: unknown
     rec = conv.feed_fix(60 * 10**9, 10.01, 20.0)
-    assert rec.sog_kn == pytest.approx(M_PER_CENTIDEG / 60 / KN, rel=1e-9)  # 36.02 kn
+    assert rec.sog_kn == pytest.approx(M_PER_CENTIDEG / 60 / KN, rel=1e-7)  # 35.83 kn
     assert rec.cog_deg == pytest.approx(0.0, abs=1e-9)
     assert rec.mmsi == 7
 

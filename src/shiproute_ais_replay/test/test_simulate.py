@@ -9,14 +9,17 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from ais_replay_helpers import EQUATOR_DEG_M, meridian_arc_m
 from shiproute_ais_replay.bagreader import BagReader
 from shiproute_ais_replay.cli import main
 from shiproute_ais_replay.shipstate import from_rosbags
 from shiproute_ais_replay.simulate import SimulationOptions, VoyageSimulator
 from shiproute_ais_replay.voyage_input import great_circle, read_rtz
+from shiproute_core.topics import SHIP_STATE
+from shiproute_core.units import M_PER_NM
 
 ship_mod = pytest.importorskip("shiproute_planner.ship")
-DEG_M = 6_371_008.8 * math.pi / 180  # one degree of a great circle [m]
+DEG_M = EQUATOR_DEG_M  # one degree of longitude along the WGS 84 equator [m]
 T0 = 1_772_668_800.0  # 2026-03-05T00:00:00Z
 
 
@@ -37,12 +40,12 @@ def test_great_circle_calm_matches_model(ship_model):
     assert sim.summary.arrived
     assert sim.summary.duration_s == pytest.approx(duration, rel=1e-6)
     assert sim.summary.fuel_t == pytest.approx(fuel * duration / 3600, rel=1e-6)
-    assert sim.summary.distance_nm == pytest.approx(DEG_M / 1852, rel=1e-9)
+    assert sim.summary.distance_nm == pytest.approx(DEG_M / M_PER_NM, rel=1e-9)
     # one state every 10 s from departure, plus the arrival state
     assert len(states) == math.floor(duration / 10) + 1 + 1
     assert states[1].time_ns - states[0].time_ns == 10 * 10**9
     mid = states[len(states) // 2]
-    assert mid.sog_kn == pytest.approx(sog * 3600 / 1852)
+    assert mid.sog_kn == pytest.approx(sog * 3600 / M_PER_NM)
     assert mid.shaft_rpm == 70.0 and mid.heading_deg == pytest.approx(90.0)
     assert mid.latitude_deg == pytest.approx(0.0, abs=1e-9)
     assert mid.longitude_deg == pytest.approx((mid.time_ns / 1e9 - T0) * sog / DEG_M, rel=1e-9)
@@ -73,7 +76,7 @@ def test_rtz_schedule_rpm_then_eta(tmp_path: Path, ship_model):
     v60 = float(model.evaluate(np.array(60.0), np.array(90.0), calm).sog_m_s)
     v70 = float(model.evaluate(np.array(70.0), np.array(0.0), calm).sog_m_s)
     # feasible ETA: first leg at 60 rpm, second leg (due north) at the 70 rpm speed
-    eta_s = round(T0 + 0.5 * DEG_M / v60 + 0.5 * DEG_M / v70)
+    eta_s = round(T0 + 0.5 * DEG_M / v60 + meridian_arc_m(0.0, 0.5) / v70)
     eta_iso = datetime.fromtimestamp(eta_s, tz=UTC).isoformat().replace("+00:00", "Z")
     path = tmp_path / "r.rtz"
     path.write_text(RTZ_TEMPLATE.replace("{eta}", eta_iso))
@@ -103,11 +106,11 @@ def test_simulate_cli_writes_bag(tmp_path: Path, capsys):
     assert report["arrived"]
     reader = BagReader(out)
     states = [from_rosbags(reader.deserialize(m)) for m in reader.messages()
-              if m.topic == "/shiproute/ship_state"]
+              if m.topic == SHIP_STATE]
     assert len(states) == report["states"]
     # sensor noise is small: GPS ~3 m, SOG 0.05 kn
     lat = np.array([s.latitude_deg for s in states[:-1]])
-    assert np.abs(lat).max() < 20 / 111_195
+    assert np.abs(lat).max() < 20 / meridian_arc_m(0.0, 1.0)
     assert np.std([s.sog_kn for s in states[:-1]]) < 0.1
 
 

@@ -18,10 +18,10 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+from shiproute_core.units import M_PER_NM, M_S_PER_KNOT
 
 from .records import COLUMNS, Records
 
-KN = 0.514444
 
 
 @dataclass(frozen=True)
@@ -89,7 +89,8 @@ def true_ship(ship, change: HullChange, mean_draft_offset_m: float = 0.0):
 
 
 def _plan(rng: np.random.Generator, eastbound: bool, legs: int, leg_nm: float):
-    from ..geo import destination
+    from shiproute_core.geodesy import destination
+
     from ..voyage_input import VoyagePlan
 
     lat = [float(rng.uniform(30.0, 44.0))]
@@ -101,7 +102,7 @@ def _plan(rng: np.random.Generator, eastbound: bool, legs: int, leg_nm: float):
             hdg = base + (20.0 if eastbound else -20.0)
         if lat[-1] < 28.0:
             hdg = base - (20.0 if eastbound else -20.0)
-        la, lo = destination(lat[-1], lon[-1], hdg, leg_nm * 1852.0)
+        lo, la = destination(lon[-1], lat[-1], hdg, leg_nm * M_PER_NM)
         lat.append(float(la))
         lon.append(float(lo))
     rpm = rng.uniform(50.0, 92.0, legs)
