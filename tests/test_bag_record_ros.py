@@ -19,9 +19,9 @@ def test_record_live_replay_then_sigint(tmp_path: Path):
     from rclpy.executors import SingleThreadedExecutor
     from rclpy.node import Node
     from rosbags.highlevel import AnyReader
-    from shiproute_ais_replay.bagwriter import BagWriter
-    from shiproute_ais_replay.shipstate import ShipStateRecord, to_rosbags
-    from shiproute_ais_replay.typestore import SHIP_STATE_TYPE, build_typestore
+    from shiproute_ais_replay.bag.bagwriter import BagWriter
+    from shiproute_ais_replay.bag.shipstate import ShipStateRecord, to_rosbags
+    from shiproute_ais_replay.bag.typestore import SHIP_STATE_TYPE, build_typestore
     from std_srvs.srv import SetBool
 
     t0 = 1_772_668_800 * 10**9

@@ -159,8 +159,8 @@ def _text(driver: Any, el_id: str) -> str:
 
 def _ship_along(bridge: Bridge, plan: Any, hours: float, step_h: float = 0.5) -> float:
     """Ship states on the plan from departure for `hours`; returns the last time."""
-    from shiproute_display.convert import plan_from_msg
     from shiproute_display.geometry import position_at
+    from shiproute_display.ros.convert import plan_from_msg
 
     view = plan_from_msg(plan_messages(plan, time.time())[0])
     t = plan.departure_s
@@ -417,8 +417,8 @@ def test_foxglove_topics_and_layout(world, tmp_path):
         assert any(n.startswith("plan ") for n in names) and "own ship" in names
     # the planned RPM is the schedule's RPM at the ship's time (from the plan's legs)
     t = p2.departure_s + 3600.0
-    from shiproute_display.convert import plan_from_msg
     from shiproute_display.geometry import position_at
+    from shiproute_display.ros.convert import plan_from_msg
 
     lat, lon, i = position_at(plan_from_msg(plan_messages(p2, time.time())[0]), t)
     n = len(bridge.planned_rpm)

@@ -23,9 +23,9 @@ RATE = 100.0
 
 
 def _write_bag(path: Path, offsets_s: list[float]) -> Path:
-    from shiproute_ais_replay.bagwriter import BagWriter
-    from shiproute_ais_replay.shipstate import ShipStateRecord, to_rosbags
-    from shiproute_ais_replay.typestore import SHIP_STATE_TYPE, build_typestore
+    from shiproute_ais_replay.bag.bagwriter import BagWriter
+    from shiproute_ais_replay.bag.shipstate import ShipStateRecord, to_rosbags
+    from shiproute_ais_replay.bag.typestore import SHIP_STATE_TYPE, build_typestore
 
     store = build_typestore()
     with BagWriter(path, store) as w:

@@ -5,10 +5,12 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from shiproute_ais_replay.aisbag import OWN_FIX_TOPIC, OWN_STATE_TOPIC, navsatfix
-from shiproute_ais_replay.bagwriter import BagWriter
-from shiproute_ais_replay.shipstate import ShipStateRecord, to_rosbags
-from shiproute_ais_replay.typestore import NAV_SAT_FIX_TYPE, SHIP_STATE_TYPE, build_typestore
+from shiproute_ais_replay.bag.bagwriter import BagWriter
+from shiproute_ais_replay.bag.shipstate import ShipStateRecord, to_rosbags
+from shiproute_ais_replay.bag.statebag import navsatfix
+from shiproute_ais_replay.bag.typestore import NAV_SAT_FIX_TYPE, SHIP_STATE_TYPE, build_typestore
+from shiproute_core.topics import OWN_FIX as OWN_FIX_TOPIC
+from shiproute_core.topics import SHIP_STATE as OWN_STATE_TOPIC
 
 DATA = Path(__file__).parent / "data"
 T0_NS = 1_700_000_000_000_000_000

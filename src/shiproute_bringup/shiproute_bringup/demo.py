@@ -21,6 +21,7 @@ import yaml
 
 from shiproute_bringup import demo_data
 from shiproute_bringup.rosproc import RosProcess, console_script
+from shiproute_core import topics
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -87,7 +88,7 @@ class _Watcher:
                              durability=DurabilityPolicy.TRANSIENT_LOCAL)
         self.plans: list = []
         self.clock_s = 0.0
-        self.node.create_subscription(RoutePlan, "/shiproute/plan/route",
+        self.node.create_subscription(RoutePlan, topics.PLAN_ROUTE,
                                       self.plans.append, latched)
         self.node.create_subscription(
             Clock, "/clock",

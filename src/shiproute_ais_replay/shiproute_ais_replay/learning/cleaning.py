@@ -27,7 +27,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.special import erfc
-
 from shiproute_core.units import M_S_PER_KNOT
 
 from .records import Records

@@ -15,7 +15,8 @@ quantity and unit; a column whose unit is not stated or not known is an error, n
 | drafts | ``draft_fore_m``, ``draft_aft_m`` |
 | optional | ``rudder_angle_deg``, ``water_depth_m``, ``voyage`` (integer id) |
 
-Bags: ShipState messages on /shiproute/ship_state (the fields above, rudder and depth unknown).
+Bags: ShipState messages on the ship-state topic (shiproute_core.topics.SHIP_STATE; the fields
+above, rudder and depth unknown).
 Voyages: the ``voyage`` column, else one per input file, split where the records pause > 6 h.
 """
 
@@ -132,9 +133,10 @@ def _iso_s(text: str) -> float:
 
 def read_bag(path: str | Path) -> dict[str, np.ndarray]:
     """Columns of the ShipState messages of one bag (streamed)."""
-    from ..aisbag import OWN_STATE_TOPIC
-    from ..bagreader import BagReader
-    from ..shipstate import from_rosbags
+    from shiproute_core.topics import SHIP_STATE as OWN_STATE_TOPIC
+
+    from ..bag.bagreader import BagReader
+    from ..bag.shipstate import from_rosbags
 
     reader = BagReader(path)
     out: dict[str, list[float]] = {c: [] for c in COLUMNS}

@@ -18,10 +18,9 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-from shiproute_core.units import M_PER_NM, M_S_PER_KNOT
+from shiproute_core.units import M_PER_NM
 
 from .records import COLUMNS, Records
-
 
 
 @dataclass(frozen=True)
@@ -91,7 +90,7 @@ def true_ship(ship, change: HullChange, mean_draft_offset_m: float = 0.0):
 def _plan(rng: np.random.Generator, eastbound: bool, legs: int, leg_nm: float):
     from shiproute_core.geodesy import destination
 
-    from ..voyage_input import VoyagePlan
+    from ..simulate.voyage_input import VoyagePlan
 
     lat = [float(rng.uniform(30.0, 44.0))]
     lon = [float(rng.uniform(150.0, 165.0) if eastbound else rng.uniform(205.0, 220.0))]
@@ -133,7 +132,7 @@ def simulate_fleet_records(ship, forecast, n_voyages: int, start_s: float, seed:
 
 def _simulate(ship, sampler, n_voyages, start_s, rng, legs, leg_nm, change, corruption,
               rate_hz) -> Records:
-    from ..simulate import SimulationOptions, VoyageSimulator
+    from ..simulate.simulator import SimulationOptions, VoyageSimulator
 
     parts = []
     t = start_s
@@ -218,8 +217,8 @@ def write_csv(records: Records, path: str | Path) -> None:
 
 def write_bag(records: Records, path: str | Path) -> dict[str, int]:
     """MCAP bag of ShipState messages (rudder angle and voyage are not ShipState fields)."""
-    from ..aisbag import write_states
-    from ..shipstate import ShipStateRecord
+    from ..bag.shipstate import ShipStateRecord
+    from ..bag.statebag import write_states
 
     cols = records.columns
 
