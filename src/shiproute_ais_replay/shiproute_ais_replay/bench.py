@@ -137,7 +137,7 @@ def _start_node(bag: Path, rate: float, domain_id: int, field_copy: bool) -> sub
 def _unpause(peer: _Peer) -> None:
     from std_srvs.srv import SetBool
 
-    client = peer.node.create_client(SetBool, "/shiproute_replay/pause")
+    client: Any = peer.node.create_client(SetBool, "/shiproute_replay/pause")
     deadline = time.monotonic() + 30
     while not (client.service_is_ready()
                and peer.node.count_publishers(topics.SHIP_STATE) > 0):
@@ -200,9 +200,12 @@ def _max_lag_ms(arrivals: list[tuple[float, bytes]], rate: float) -> float:
 
     store = build_typestore()
     wall = np.array([w for w, _ in arrivals])
-    stamps = np.array([
-        (lambda m: m.header.stamp.sec + m.header.stamp.nanosec * 1e-9)(
-            store.deserialize_cdr(d, SHIP_STATE_TYPE)) for _, d in arrivals])
+
+    def stamp_s(raw: bytes) -> float:
+        msg: Any = store.deserialize_cdr(raw, SHIP_STATE_TYPE)
+        return float(msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9)
+
+    stamps = np.array([stamp_s(d) for _, d in arrivals])
     due = wall[0] + (stamps - stamps[0]) / rate
     return float(np.max(wall - due) * 1e3)
 

@@ -194,9 +194,11 @@ def run(n_plans: int, n_clients: int, screenshot: str | None) -> dict[str, Any]:
             pid = f"bench-{k:03d}"
             t_pub = time.monotonic()
             publish(plans[(k + 1) % 2], pid, "new forecast cycle bench")
-            wait_until(lambda pid=pid: driver.execute_script(
-                "return window.__display.lastPlanId") == pid, 10, interval_s=0.005,
-                what=f"plan {pid} on the page")
+
+            def on_page(pid: str = pid) -> bool:
+                return bool(driver.execute_script("return window.__display.lastPlanId") == pid)
+
+            wait_until(on_page, 10, interval_s=0.005, what=f"plan {pid} on the page")
             lat_s.append(time.monotonic() - t_pub)
             time.sleep(0.3)
         phase("plans_timed")

@@ -62,10 +62,15 @@ def run(budget_s: float, repeats: int, log: bool = False) -> dict:
     node, latched = peer.node, peer.latched
     cycles: dict[str, float] = {}  # cycle id -> publication stamp [POSIX s]
     plans: dict[str, float] = {}
-    node.create_subscription(ForecastCycle, topics.FORECAST_CYCLE,
-                             lambda m: cycles.setdefault(m.cycle_id, _stamp_s(m)), latched)
-    node.create_subscription(RoutePlan, topics.PLAN_ROUTE,
-                             lambda m: plans.setdefault(m.cycle_id, time.time()), latched)
+
+    def on_cycle(msg: ForecastCycle) -> None:
+        cycles.setdefault(msg.cycle_id, _stamp_s(msg))
+
+    def on_plan(msg: RoutePlan) -> None:
+        plans.setdefault(msg.cycle_id, time.time())
+
+    node.create_subscription(ForecastCycle, topics.FORECAST_CYCLE, on_cycle, latched)
+    node.create_subscription(RoutePlan, topics.PLAN_ROUTE, on_plan, latched)
     pub = node.create_publisher(ShipState, topics.SHIP_STATE, 10)
 
     def spin_until(pred, timeout_s: float, what: str) -> None:

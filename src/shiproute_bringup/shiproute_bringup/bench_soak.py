@@ -19,6 +19,7 @@ import array
 import json
 import sys
 import time
+from typing import Any
 
 from shiproute_bringup.bench_nodes import BenchPeer, peak_rss_mb, rss_mb, start_nodes
 from shiproute_bringup.rosproc import random_domain_id
@@ -85,7 +86,7 @@ def run(minutes: float, period_s: float, budget_s: float) -> dict:
     slice_pub = node.create_publisher(ForecastSlice, topics.FORECAST_SLICES, QoSProfile(
         depth=512, reliability=ReliabilityPolicy.RELIABLE,
         durability=DurabilityPolicy.TRANSIENT_LOCAL))
-    load = node.create_client(LoadForecast, topics.FORECAST_LOAD)
+    load: Any = node.create_client(LoadForecast, topics.FORECAST_LOAD)
     types = {"ForecastCycle": ForecastCycle, "ForecastSlice": ForecastSlice,
              "Field": ForecastField}
 
@@ -135,7 +136,7 @@ def run(minutes: float, period_s: float, budget_s: float) -> dict:
                 slice_pub.publish(s)
                 bad_sent += 1
                 next_bad = now + BAD_EVERY_S
-            dead = [name for name, p in procs.items() if not p.running]
+            dead = [name for name, p in procs.items() if not p.running()]
             if dead:  # reported, with the node's last output on stderr
                 deaths = len(dead)
                 for name in dead:

@@ -171,9 +171,11 @@ def main(argv: list[str] | None = None) -> int:
 
     bringup = RosProcess([console_script("shiproute"), "bringup", str(params)], name="bringup",
                          on_line=node_line)
+    def record_line(_stream: str, line: str) -> None:
+        log.write("[record] " + line + "\n")
+
     record = RosProcess([console_script("shiproute"), "bag", "record", str(out / "recording")],
-                        name="record",
-                        on_line=lambda _s, line: log.write("[record] " + line + "\n"))
+                        name="record", on_line=record_line)
     watcher = _Watcher()
     depart_s = datetime.fromisoformat(demo_data.DEPARTURE.replace("Z", "+00:00")).timestamp()
     second_dropped = False

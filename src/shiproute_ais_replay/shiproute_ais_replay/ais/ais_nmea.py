@@ -99,7 +99,7 @@ def _static(msg: dict, time_ns: int) -> AisStatic | None:
 def decode_lines(lines: Iterable[str]) -> AisInput:
     """Decode NMEA lines into fixes and static records, counting every rejected line."""
     out = AisInput()
-    pending: dict[tuple, tuple[int, int, list[NMEAMessage]]] = {}
+    pending: dict[tuple, tuple[int | None, int, list[NMEAMessage]]] = {}
     for lineno, raw in enumerate(lines):
         if not raw.strip():
             continue
@@ -146,7 +146,7 @@ def _add(out: AisInput, nmea: NMEAMessage, time_ns: int | None) -> None:
         return
     kind = msg.get("msg_type")
     if kind not in POSITION_TYPES and kind not in STATIC_TYPES:
-        out.rejected[f"unsupported_type_{kind}"] += 1
+        out.rejected["unsupported_type_" + str(kind)] += 1
         return
     if time_ns is None:
         out.rejected["no_timestamp"] += 1

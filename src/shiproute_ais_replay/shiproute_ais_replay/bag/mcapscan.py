@@ -73,12 +73,12 @@ def _decompress(kind: str, data: bytes, size: int) -> bytes:
         return data
     if kind == "zstd":
         try:
-            from compression import zstd  # type: ignore[import-not-found]
+            from compression import zstd
         except ImportError:
-            from backports import zstd  # type: ignore[no-redef]
+            from backports import zstd
         return zstd.decompress(data)
     if kind == "lz4":
-        import lz4.frame  # type: ignore[import-untyped]
+        import lz4.frame
 
         return lz4.frame.decompress(data)
     raise ValueError(f"unsupported chunk compression {kind!r}")

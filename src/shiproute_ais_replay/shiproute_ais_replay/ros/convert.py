@@ -48,7 +48,7 @@ def _convert_value(value: Any, ftype: str) -> Any:
     return value
 
 
-def to_rclpy(obj: Any, cls: type) -> Any:
+def to_rclpy(obj: Any, cls: Any) -> Any:
     """Copy every field of a rosbags message object into a new instance of rclpy ``cls``."""
     msg = cls()
     for fname, ftype in cls.get_fields_and_field_types().items():

@@ -60,7 +60,7 @@ class ReplayNode(Node):
     def __init__(self) -> None:
         super().__init__("shiproute_replay")
         p = self.declare_parameter
-        self.bag = p("bag", "").value
+        self.bag: str = p("bag", "").value
         self.serialized = bool(p("publish_serialized", True).value)
         self.publish_clock = bool(p("publish_clock", True).value)
         self.clock_period_s = float(p("clock_period_s", 0.01).value)
@@ -131,7 +131,7 @@ class ReplayNode(Node):
             if pub is None:
                 return
             if self.serialized:
-                self._publish(pub, bytes(ev.data))
+                self._publish(pub, bytes(ev.data or b""))
             else:
                 self._publish(pub, to_rclpy(self.engine.deserialize(ev), pub.msg_type))
         except Exception as exc:  # a bad message must not stop the replay

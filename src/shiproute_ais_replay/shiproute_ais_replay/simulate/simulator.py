@@ -126,7 +126,8 @@ class VoyageSimulator:
             if reached:
                 lat2, lon2 = tlat, tlon
             else:
-                lon2, lat2 = destination(lon, lat, cog, sog * dt)
+                lon_end, lat_end = destination(lon, lat, cog, sog * dt)
+                lon2, lat2 = float(lon_end), float(lat_end)
             self.summary.distance_nm += sog * dt / M_PER_NM
             self.summary.fuel_t += step["fuel"] * dt / 3600.0
             lat, lon, t = float(lat2), float(lon2), t + dt
