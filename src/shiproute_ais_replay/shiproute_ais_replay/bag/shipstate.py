@@ -7,7 +7,6 @@ from dataclasses import dataclass, fields
 from typing import Any
 
 from rosbags.typesys.store import Typestore
-from shiproute_core.geodesy import bearing_deg, distance_m
 from shiproute_core.units import M_S_PER_KNOT
 
 from .typestore import SHIP_STATE_TYPE
@@ -99,6 +98,10 @@ class NavFixConverter:
             cog_deg = math.degrees(math.atan2(ve, vn)) % 360.0
         elif self._prev is not None and 0 < time_ns - self._prev[0] <= FIX_MAX_GAP_NS:
             t0, lat0, lon0 = self._prev
+            # imported here: pyproj is only needed when fixes are converted, so a replay of
+            # ShipState bags does not load it
+            from shiproute_core.geodesy import bearing_deg, distance_m
+
             dist = float(distance_m(lon0, lat0, lon_deg, lat_deg))
             sog_kn = dist / ((time_ns - t0) * 1e-9) / M_S_PER_KNOT
             cog_deg = float(bearing_deg(lon0, lat0, lon_deg, lat_deg)) if dist > 0 else NAN
