@@ -27,6 +27,8 @@ from typing import Any
 
 import pytest
 
+from shiproute_core import topics
+
 REPO = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPO / "src/shiproute_display/test"))
 
@@ -70,18 +72,18 @@ class Bridge:
 
     def __init__(self, ctx: Any) -> None:
         self.node = rclpy.create_node("display_test_bridge", context=ctx)
-        self.pub_plan = self.node.create_publisher(RoutePlan, "/shiproute/plan/route", LATCHED)
-        self.pub_profile = self.node.create_publisher(RpmProfile, "/shiproute/plan/rpm_profile",
+        self.pub_plan = self.node.create_publisher(RoutePlan, topics.PLAN_ROUTE, LATCHED)
+        self.pub_profile = self.node.create_publisher(RpmProfile, topics.PLAN_RPM_PROFILE,
                                                       LATCHED)
-        self.pub_ship = self.node.create_publisher(ShipState, "/shiproute/ship_state", 10)
+        self.pub_ship = self.node.create_publisher(ShipState, topics.SHIP_STATE, 10)
         self.geojson: list[str] = []
         self.ship_fix: list[NavSatFix] = []
         self.planned_rpm: list[float] = []
-        self.node.create_subscription(GeoJSON, "/shiproute/display/geojson",
+        self.node.create_subscription(GeoJSON, topics.DISPLAY_GEOJSON,
                                       lambda m: self.geojson.append(m.geojson), LATCHED)
-        self.node.create_subscription(NavSatFix, "/shiproute/display/ship_fix",
+        self.node.create_subscription(NavSatFix, topics.DISPLAY_SHIP_FIX,
                                       self.ship_fix.append, 10)
-        self.node.create_subscription(Float64, "/shiproute/display/planned_rpm",
+        self.node.create_subscription(Float64, topics.DISPLAY_PLANNED_RPM,
                                       lambda m: self.planned_rpm.append(m.data), 10)
         self.executor = SingleThreadedExecutor(context=ctx)
         self.executor.add_node(self.node)
@@ -159,8 +161,8 @@ def _text(driver: Any, el_id: str) -> str:
 
 def _ship_along(bridge: Bridge, plan: Any, hours: float, step_h: float = 0.5) -> float:
     """Ship states on the plan from departure for `hours`; returns the last time."""
-    from shiproute_display.convert import plan_from_msg
     from shiproute_display.geometry import position_at
+    from shiproute_display.ros.convert import plan_from_msg
 
     view = plan_from_msg(plan_messages(plan, time.time())[0])
     t = plan.departure_s
@@ -385,8 +387,8 @@ def _check_recording(world: dict, tmp_path: Path) -> None:
     from mcap.reader import make_reader
 
     out = tmp_path / "rec"
-    rec = RosProcess.script("shiproute", "bag", "record", str(out), "/shiproute/display/geojson",
-                            "/shiproute/display/ship_fix", "--duration", "8",
+    rec = RosProcess.script("shiproute", "bag", "record", str(out), topics.DISPLAY_GEOJSON,
+                            topics.DISPLAY_SHIP_FIX, "--duration", "8",
                             domain_id=world["display"].domain_id, name="record")
     assert rec.wait(40) == 0, rec.output
     (mcap_file,) = out.glob("*.mcap")
@@ -397,8 +399,7 @@ def _check_recording(world: dict, tmp_path: Path) -> None:
         assert schemas["foxglove_msgs/msg/GeoJSON"].strip().endswith("string geojson")
         assert "sensor_msgs/msg/NavSatFix" in schemas
         texts = []
-        topics = ["/shiproute/display/geojson"]
-        for _schema, channel, message in reader.iter_messages(topics=topics):
+        for _schema, channel, message in reader.iter_messages(topics=[topics.DISPLAY_GEOJSON]):
             assert channel.message_encoding == "cdr"
             # CDR of a message with one string: 4-byte encapsulation, uint32 length, bytes + NUL
             n = int.from_bytes(message.data[4:8], "little")
@@ -417,8 +418,8 @@ def test_foxglove_topics_and_layout(world, tmp_path):
         assert any(n.startswith("plan ") for n in names) and "own ship" in names
     # the planned RPM is the schedule's RPM at the ship's time (from the plan's legs)
     t = p2.departure_s + 3600.0
-    from shiproute_display.convert import plan_from_msg
     from shiproute_display.geometry import position_at
+    from shiproute_display.ros.convert import plan_from_msg
 
     lat, lon, i = position_at(plan_from_msg(plan_messages(p2, time.time())[0]), t)
     n = len(bridge.planned_rpm)
@@ -434,13 +435,13 @@ def test_foxglove_topics_and_layout(world, tmp_path):
     _check_recording(world, tmp_path)
 
     layout = json.loads(LAYOUT.read_text())
-    topics = {name for name, _ in bridge.node.get_topic_names_and_types()}
+    live = {name for name, _ in bridge.node.get_topic_names_and_types()}
     named = _layout_topics(layout)
-    assert named and named <= topics, f"layout names missing topics {named - topics}"
+    assert named and named <= live, f"layout names missing topics {named - live}"
     panels = {k.split("!")[0] for k in layout["configById"]}
     assert {"map", "Plot"} <= panels
-    # the bridge node must also publish /shiproute/plan/route for the RawMessages panel
-    assert "/shiproute/plan/route" in named
+    # the bridge node must also publish the plan route topic for the RawMessages panel
+    assert topics.PLAN_ROUTE in named
 
 
 def _layout_topics(layout: dict) -> set[str]:

@@ -19,7 +19,7 @@ pytestmark = [pytest.mark.ros]
 
 @pytest.fixture(scope="module")
 def peer(tmp_path_factory: pytest.TempPathFactory):
-    from shiproute_weather.scenarios import scenario_path
+    from shiproute_weather.scenarios.catalogue import scenario_path
 
     work = tmp_path_factory.mktemp("front_goal")
     forecast = work / "calm_june.nc"

@@ -16,6 +16,8 @@ import numpy as np
 import pytest
 import rosproc
 
+from shiproute_core import topics
+
 pytestmark = pytest.mark.ros
 
 T0_NS = 1_772_668_800 * 10**9
@@ -23,16 +25,16 @@ RATE = 100.0
 
 
 def _write_bag(path: Path, offsets_s: list[float]) -> Path:
-    from shiproute_ais_replay.bagwriter import BagWriter
-    from shiproute_ais_replay.shipstate import ShipStateRecord, to_rosbags
-    from shiproute_ais_replay.typestore import SHIP_STATE_TYPE, build_typestore
+    from shiproute_ais_replay.bag.bagwriter import BagWriter
+    from shiproute_ais_replay.bag.shipstate import ShipStateRecord, to_rosbags
+    from shiproute_ais_replay.bag.typestore import SHIP_STATE_TYPE, build_typestore
 
     store = build_typestore()
     with BagWriter(path, store) as w:
-        w.add_topic("/shiproute/ship_state", SHIP_STATE_TYPE)
+        w.add_topic(topics.SHIP_STATE, SHIP_STATE_TYPE)
         for i, off in enumerate(offsets_s):
             rec = ShipStateRecord(T0_NS + int(off * 1e9), 30.0, 140.0 + 1e-4 * i, sog_kn=12.0)
-            w.write_message("/shiproute/ship_state", rec.time_ns, to_rosbags(store, rec))
+            w.write_message(topics.SHIP_STATE, rec.time_ns, to_rosbags(store, rec))
     return path
 
 
@@ -54,7 +56,7 @@ class Peer:
         self.states: list[tuple[float, int]] = []  # (wall s, stamp ns)
         self.clock: list[tuple[float, int]] = []
         self.diag: list[dict[str, str]] = []
-        self.node.create_subscription(ShipState, "/shiproute/ship_state", self._on_state,
+        self.node.create_subscription(ShipState, topics.SHIP_STATE, self._on_state,
                                       QoSProfile(depth=1000))
         self.node.create_subscription(
             Clock, "/clock", lambda m: self.clock.append(
@@ -103,7 +105,7 @@ def test_timing_clock_and_diagnostics_at_100x(tmp_path: Path):
     dom = rosproc.random_domain_id()
     with _replay(bag, dom), rosproc.ros_context(dom) as ctx:
         peer = Peer(ctx)
-        peer.until(lambda: peer.node.count_publishers("/shiproute/ship_state") > 0, 20,
+        peer.until(lambda: peer.node.count_publishers(topics.SHIP_STATE) > 0, 20,
                    "replay publisher")
         assert peer.pause(False).success
         peer.until(lambda: len(peer.states) == len(offsets), 30, "all states")
@@ -133,7 +135,7 @@ def test_pause_resume_and_seek(tmp_path: Path):
     dom = rosproc.random_domain_id()
     with _replay(bag, dom), rosproc.ros_context(dom) as ctx:
         peer = Peer(ctx)
-        peer.until(lambda: peer.node.count_publishers("/shiproute/ship_state") > 0, 20,
+        peer.until(lambda: peer.node.count_publishers(topics.SHIP_STATE) > 0, 20,
                    "replay publisher")
         peer.spin_for(0.5)
         assert peer.states == []  # start_paused holds everything

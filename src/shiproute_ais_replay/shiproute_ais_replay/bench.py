@@ -17,6 +17,8 @@ import time
 from pathlib import Path
 from typing import Any
 
+from shiproute_core import topics
+
 BUSAN = (35.08, 129.08)
 LONG_BEACH = (33.70, -118.25)
 TARGET_MSGS_PER_S = 5000.0
@@ -32,10 +34,10 @@ def bench_bag(days: float, rebuild: bool = False) -> tuple[Path, float]:
         return path, 0.0
     from shiproute_planner.ship import PhysicsModel, bundled_ships, load_ship
 
-    from .aisbag import write_states
-    from .simulate import SimulationOptions, VoyageSimulator
-    from .simulate_cli import default_ship
-    from .voyage_input import great_circle
+    from .bag.statebag import write_states
+    from .simulate.simulate_cli import default_ship
+    from .simulate.simulator import SimulationOptions, VoyageSimulator
+    from .simulate.voyage_input import great_circle
 
     t0 = time.monotonic()
     ship = load_ship(default_ship(bundled_ships()))
@@ -82,9 +84,9 @@ class _Peer:
         self.ex.add_node(self.node)
         self.arrivals: list[tuple[float, bytes]] = []
         self.diag: dict[str, str] = {}
-        self.node.create_subscription(DiagnosticArray, "/diagnostics", self._on_diag, 10)
+        self.node.create_subscription(DiagnosticArray, topics.DIAGNOSTICS, self._on_diag, 10)
         self._sub = self.sub_node.create_subscription(
-            ShipState, "/shiproute/ship_state", lambda _m: None,
+            ShipState, topics.SHIP_STATE, lambda _m: None,
             QoSProfile(history=HistoryPolicy.KEEP_ALL, depth=1),
             raw=True)
         self._keep = keep_payload
@@ -135,10 +137,10 @@ def _start_node(bag: Path, rate: float, domain_id: int, field_copy: bool) -> sub
 def _unpause(peer: _Peer) -> None:
     from std_srvs.srv import SetBool
 
-    client = peer.node.create_client(SetBool, "/shiproute_replay/pause")
+    client: Any = peer.node.create_client(SetBool, "/shiproute_replay/pause")
     deadline = time.monotonic() + 30
     while not (client.service_is_ready()
-               and peer.node.count_publishers("/shiproute/ship_state") > 0):
+               and peer.node.count_publishers(topics.SHIP_STATE) > 0):
         if time.monotonic() > deadline:
             raise RuntimeError("replay node did not come up within 30 s")
         peer.spin(0.1)
@@ -194,13 +196,16 @@ def _max_lag_ms(arrivals: list[tuple[float, bytes]], rate: float) -> float:
     """Largest lateness of an arrival behind the schedule anchored at the first message."""
     import numpy as np
 
-    from .typestore import SHIP_STATE_TYPE, build_typestore
+    from .bag.typestore import SHIP_STATE_TYPE, build_typestore
 
     store = build_typestore()
     wall = np.array([w for w, _ in arrivals])
-    stamps = np.array([
-        (lambda m: m.header.stamp.sec + m.header.stamp.nanosec * 1e-9)(
-            store.deserialize_cdr(d, SHIP_STATE_TYPE)) for _, d in arrivals])
+
+    def stamp_s(raw: bytes) -> float:
+        msg: Any = store.deserialize_cdr(raw, SHIP_STATE_TYPE)
+        return float(msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9)
+
+    stamps = np.array([stamp_s(d) for _, d in arrivals])
     due = wall[0] + (stamps - stamps[0]) / rate
     return float(np.max(wall - due) * 1e3)
 
@@ -217,7 +222,7 @@ def main(argv: list[str] | None = None) -> int:
                     help="node deserialises and field-copies instead of publishing CDR bytes")
     args = ap.parse_args(argv if argv is not None else sys.argv[1:])
     os.environ.setdefault("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
-    from .bagreader import BagReader
+    from .bag.bagreader import BagReader
 
     bag, gen_s = bench_bag(args.days, args.rebuild)
     total = BagReader(bag).expected_count() or 0

@@ -18,7 +18,7 @@ def _iso(t_ns: int) -> str:
 def bag_info(path: str | Path) -> dict:
     """Topics, types, counts, time span, duration and size of a bag (no message decoding
     when metadata or an MCAP summary exists; otherwise a streaming scan)."""
-    from .bagreader import BagReader
+    from .bag.bagreader import BagReader
 
     reader = BagReader(path)
     topics = reader.topics()
@@ -69,10 +69,10 @@ def cmd_info(args: argparse.Namespace) -> int:
 
 def cmd_from_ais(args: argparse.Namespace) -> int:
     """Convert NMEA or CSV AIS data to a bag and report what cleaning removed."""
-    from .ais_csv import read_csv
-    from .ais_nmea import read_nmea
-    from .aisbag import write_tracks
-    from .aisclean import clean
+    from .ais.ais_csv import read_csv
+    from .ais.ais_nmea import read_nmea
+    from .ais.aisbag import write_tracks
+    from .ais.aisclean import clean
 
     src = Path(args.input)
     is_csv = args.format == "csv" or (args.format == "auto" and src.suffix.lower() == ".csv")
@@ -112,7 +112,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="fixes implying a faster jump are rejected")
     p.add_argument("--no-fix", action="store_true", help="do not write NavSatFix")
     p.set_defaults(func=cmd_from_ais)
-    from .simulate_cli import add_simulate_parser
+    from .simulate.simulate_cli import add_simulate_parser
 
     add_simulate_parser(sub)
     p = sub.add_parser("record", help="record live topics into a rosbag2 MCAP bag")
@@ -126,7 +126,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _record(args: argparse.Namespace) -> int:
-    from .record_node import record_main
+    from .ros.record_node import record_main
 
     return record_main(args)
 

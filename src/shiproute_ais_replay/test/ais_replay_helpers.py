@@ -2,15 +2,30 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
-from shiproute_ais_replay.aisbag import OWN_FIX_TOPIC, OWN_STATE_TOPIC, navsatfix
-from shiproute_ais_replay.bagwriter import BagWriter
-from shiproute_ais_replay.shipstate import ShipStateRecord, to_rosbags
-from shiproute_ais_replay.typestore import NAV_SAT_FIX_TYPE, SHIP_STATE_TYPE, build_typestore
+from shiproute_ais_replay.bag.bagwriter import BagWriter
+from shiproute_ais_replay.bag.shipstate import ShipStateRecord, to_rosbags
+from shiproute_ais_replay.bag.statebag import navsatfix
+from shiproute_ais_replay.bag.typestore import NAV_SAT_FIX_TYPE, SHIP_STATE_TYPE, build_typestore
+from shiproute_core.topics import OWN_FIX as OWN_FIX_TOPIC
+from shiproute_core.topics import SHIP_STATE as OWN_STATE_TOPIC
 
 DATA = Path(__file__).parent / "data"
 T0_NS = 1_700_000_000_000_000_000
+WGS84_A_M = 6_378_137.0  # WGS 84 semi-major axis (NIMA TR8350.2)
+WGS84_F = 1 / 298.257223563  # WGS 84 flattening
+EQUATOR_DEG_M = WGS84_A_M * math.pi / 180  # one degree along the equator (a geodesic) [m]
+
+
+def meridian_arc_m(lat0_deg: float, lat1_deg: float) -> float:
+    """Meridian arc [m] on WGS 84 from the radius of curvature M(phi) = a(1-e2)/(1-e2 sin2)^1.5
+    at the mid latitude (midpoint rule: relative error < 1e-8 over arcs below one degree)."""
+    e2 = WGS84_F * (2 - WGS84_F)
+    mid = math.radians(0.5 * (lat0_deg + lat1_deg))
+    m_radius = WGS84_A_M * (1 - e2) / (1 - e2 * math.sin(mid) ** 2) ** 1.5
+    return m_radius * math.radians(lat1_deg - lat0_deg)
 
 
 def make_states(n: int, dt_s: float = 1.0) -> list[ShipStateRecord]:

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 from ais_replay_helpers import make_states, write_bag
-from shiproute_ais_replay.shipstate import ShipStateRecord
+from shiproute_ais_replay.bag.shipstate import ShipStateRecord
 
 
 @pytest.fixture

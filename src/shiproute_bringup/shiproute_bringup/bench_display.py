@@ -24,6 +24,8 @@ import threading
 import time
 from typing import Any
 
+from shiproute_core import topics
+
 TARGETS = {"page_load_s": 2.0, "plan_to_page_s": 1.0, "display_rss_mb": 150.0}
 
 
@@ -89,8 +91,8 @@ def run(n_plans: int, n_clients: int, screenshot: str | None) -> dict[str, Any]:
     import rclpy
     from rclpy.executors import SingleThreadedExecutor
     from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
-    from shiproute_display.convert import plan_from_msg
     from shiproute_display.geometry import position_at
+    from shiproute_display.ros.convert import plan_from_msg
     from shiproute_display.samples import load_sample_plan
     from shiproute_planner.convert import plan_to_msg, plan_to_rpm_profile, time_msg
 
@@ -110,9 +112,9 @@ def run(n_plans: int, n_clients: int, screenshot: str | None) -> dict[str, Any]:
     node = rclpy.create_node("display_bench", context=ctx)
     latched = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
                          durability=DurabilityPolicy.TRANSIENT_LOCAL)
-    pub_plan = node.create_publisher(RoutePlan, "/shiproute/plan/route", latched)
-    pub_prof = node.create_publisher(RpmProfile, "/shiproute/plan/rpm_profile", latched)
-    pub_ship = node.create_publisher(ShipState, "/shiproute/ship_state", 10)
+    pub_plan = node.create_publisher(RoutePlan, topics.PLAN_ROUTE, latched)
+    pub_prof = node.create_publisher(RpmProfile, topics.PLAN_RPM_PROFILE, latched)
+    pub_ship = node.create_publisher(ShipState, topics.SHIP_STATE, 10)
     ex = SingleThreadedExecutor(context=ctx)
     ex.add_node(node)
     stop_spin = threading.Event()
@@ -192,9 +194,11 @@ def run(n_plans: int, n_clients: int, screenshot: str | None) -> dict[str, Any]:
             pid = f"bench-{k:03d}"
             t_pub = time.monotonic()
             publish(plans[(k + 1) % 2], pid, "new forecast cycle bench")
-            wait_until(lambda pid=pid: driver.execute_script(
-                "return window.__display.lastPlanId") == pid, 10, interval_s=0.005,
-                what=f"plan {pid} on the page")
+
+            def on_page(pid: str = pid) -> bool:
+                return bool(driver.execute_script("return window.__display.lastPlanId") == pid)
+
+            wait_until(on_page, 10, interval_s=0.005, what=f"plan {pid} on the page")
             lat_s.append(time.monotonic() - t_pub)
             time.sleep(0.3)
         phase("plans_timed")

@@ -21,9 +21,9 @@ import tempfile
 import time
 from pathlib import Path
 
-import psutil
-
-from shiproute_bringup.rosproc import RosProcess, console_script, random_domain_id
+from shiproute_bringup.bench_nodes import BenchPeer, peak_rss_mb, rss_mb, start_nodes
+from shiproute_bringup.rosproc import RosProcess, random_domain_id
+from shiproute_core import topics
 
 DEPART_S = 1772560800.0  # 2026-03-03T18:00:00Z
 RTA = "2026-03-16T18:00:00Z"
@@ -45,10 +45,6 @@ def _cycle_files(work: Path, n: int) -> list[Path]:
 
 def run(budget_s: float, repeats: int, log: bool = False) -> dict:
     """Start the nodes, measure `repeats` re-plans, return the figures."""
-    import rclpy
-    from rclpy.context import Context
-    from rclpy.executors import SingleThreadedExecutor
-    from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
     from shiproute_weather.scenarios.catalogue import scenario_path
 
     from shiproute_msgs.msg import ForecastCycle, RoutePlan, ShipState
@@ -59,27 +55,23 @@ def run(budget_s: float, repeats: int, log: bool = False) -> dict:
     watch.mkdir()
     (watch / "storm_march.nc").symlink_to(scenario_path("storm_march"))
     files = _cycle_files(work, repeats)
-    weather = RosProcess([console_script("shiproute_weather_node"), "--ros-args",
-                          "-p", f"watch_dir:={watch}", "-p", "watch_period_s:=0.1",
-                          "-p", "settle_s:=0.1"], domain_id=dom, name="weather")
-    planner = RosProcess([console_script("shiproute_planner_node"), "--ros-args",
-                          "-p", f"rta:={RTA}", "-p", f"budget_s:={budget_s}",
-                          "-p", f"seed_pool_dir:={work / 'pool'}"], domain_id=dom,
-                         name="planner")
-    ctx = Context()
-    rclpy.init(context=ctx, domain_id=dom)
-    node = rclpy.create_node("bench_replan", context=ctx)
-    ex = SingleThreadedExecutor(context=ctx)
-    ex.add_node(node)
-    latched = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
-                         durability=DurabilityPolicy.TRANSIENT_LOCAL)
+    weather, planner = start_nodes(
+        dom, [f"watch_dir:={watch}", "watch_period_s:=0.1", "settle_s:=0.1"], RTA, budget_s,
+        [f"seed_pool_dir:={work / 'pool'}"])
+    peer = BenchPeer("bench_replan", dom)
+    node, latched = peer.node, peer.latched
     cycles: dict[str, float] = {}  # cycle id -> publication stamp [POSIX s]
     plans: dict[str, float] = {}
-    node.create_subscription(ForecastCycle, "/shiproute/forecast/cycle",
-                             lambda m: cycles.setdefault(m.cycle_id, _stamp_s(m)), latched)
-    node.create_subscription(RoutePlan, "/shiproute/plan/route",
-                             lambda m: plans.setdefault(m.cycle_id, time.time()), latched)
-    pub = node.create_publisher(ShipState, "/shiproute/ship_state", 10)
+
+    def on_cycle(msg: ForecastCycle) -> None:
+        cycles.setdefault(msg.cycle_id, _stamp_s(msg))
+
+    def on_plan(msg: RoutePlan) -> None:
+        plans.setdefault(msg.cycle_id, time.time())
+
+    node.create_subscription(ForecastCycle, topics.FORECAST_CYCLE, on_cycle, latched)
+    node.create_subscription(RoutePlan, topics.PLAN_ROUTE, on_plan, latched)
+    pub = node.create_publisher(ShipState, topics.SHIP_STATE, 10)
 
     def spin_until(pred, timeout_s: float, what: str) -> None:
         deadline = time.monotonic() + timeout_s
@@ -93,7 +85,7 @@ def run(budget_s: float, repeats: int, log: bool = False) -> dict:
                 msg.latitude_deg, msg.longitude_deg = 35.08, 129.112
                 pub.publish(msg)
                 next_state = time.monotonic() + 0.5
-            ex.spin_once(timeout_sec=0.02)
+            peer.spin_once(0.02)
 
     latencies = []
     try:
@@ -104,14 +96,12 @@ def run(budget_s: float, repeats: int, log: bool = False) -> dict:
             spin_until(lambda c=cid: c in plans and c in cycles, 60 + 5 * budget_s,
                        f"plan on {cid}")
             latencies.append(plans[cid] - cycles[cid])
-        rss = psutil.Process(planner.proc.pid).memory_info().rss / 2**20
-        peak = _peak_rss_mb(planner.proc.pid)
+        rss = rss_mb(planner.proc.pid)
+        peak = peak_rss_mb(planner.proc.pid)
     finally:
         if log:
             _print_logs(weather, planner, cycles, plans)
-        ex.shutdown()
-        node.destroy_node()
-        ctx.try_shutdown()
+        peer.close()
         planner.stop()
         weather.stop()
         shutil.rmtree(work, ignore_errors=True)  # the cycle copies: ~180 MB each
@@ -119,18 +109,6 @@ def run(budget_s: float, repeats: int, log: bool = False) -> dict:
             "replan_latencies_s": [round(x, 3) for x in latencies],
             "planner_budget_s": budget_s, "planner_rss_mb": round(rss, 1),
             "planner_peak_rss_mb": round(peak, 1)}
-
-
-def _peak_rss_mb(pid: int) -> float:
-    """Highest resident memory of a process so far (Linux VmHWM) [MiB]; NaN elsewhere."""
-    try:
-        with open(f"/proc/{pid}/status") as f:
-            for line in f:
-                if line.startswith("VmHWM:"):
-                    return int(line.split()[1]) / 1024
-    except OSError:
-        pass
-    return float("nan")
 
 
 def _stamp_s(msg) -> float:

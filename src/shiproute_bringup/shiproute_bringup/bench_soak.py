@@ -17,13 +17,13 @@ from __future__ import annotations
 import argparse
 import array
 import json
-import math
 import sys
 import time
+from typing import Any
 
-import psutil
-
-from shiproute_bringup.rosproc import RosProcess, console_script, random_domain_id
+from shiproute_bringup.bench_nodes import BenchPeer, peak_rss_mb, rss_mb, start_nodes
+from shiproute_bringup.rosproc import random_domain_id
+from shiproute_core import topics
 
 DEPART_S = 1772560800.0  # 2026-03-03T18:00:00Z, the storm scenario's departure
 RTA = "2026-03-16T18:00:00Z"
@@ -31,24 +31,6 @@ BUSAN = (35.08, 129.112)
 WARMUP_S = 30.0
 QUIET_S = 8.0  # no load for this long before start and end are measured
 BAD_EVERY_S = 30.0
-
-
-def _rss_mb(pid: int) -> float:
-    try:
-        return psutil.Process(pid).memory_info().rss / 2**20
-    except psutil.Error:
-        return math.nan
-
-
-def _peak_mb(pid: int) -> float:
-    try:
-        with open(f"/proc/{pid}/status") as f:
-            for line in f:
-                if line.startswith("VmHWM:"):
-                    return int(line.split()[1]) / 1024
-    except OSError:
-        pass
-    return math.nan
 
 
 def _bad_cycle(types: dict, k: int) -> tuple:
@@ -67,10 +49,7 @@ def _bad_cycle(types: dict, k: int) -> tuple:
 
 def run(minutes: float, period_s: float, budget_s: float) -> dict:
     """Start the nodes, soak them for `minutes`, return the figures."""
-    import rclpy
     from diagnostic_msgs.msg import DiagnosticArray
-    from rclpy.context import Context
-    from rclpy.executors import SingleThreadedExecutor
     from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
     from shiproute_weather.scenarios.catalogue import scenario_path
 
@@ -85,21 +64,12 @@ def run(minutes: float, period_s: float, budget_s: float) -> dict:
 
     files = [str(scenario_path("storm_march")), str(scenario_path("storm_march_cycle2"))]
     dom = random_domain_id()
-    weather = RosProcess([console_script("shiproute_weather_node"), "--ros-args",
-                          "-p", f"forecast_files:=['{files[0]}']"], domain_id=dom,
-                         name="weather")
-    planner = RosProcess([console_script("shiproute_planner_node"), "--ros-args",
-                          "-p", f"rta:={RTA}", "-p", f"budget_s:={budget_s}",
-                          "-p", "accept_older_forecasts:=true", "-p", "write_png:=false"],
-                         domain_id=dom, name="planner")
+    weather, planner = start_nodes(
+        dom, [f"forecast_files:=['{files[0]}']"], RTA, budget_s,
+        ["accept_older_forecasts:=true", "write_png:=false"])
     procs = {"weather": weather, "planner": planner}
-    ctx = Context()
-    rclpy.init(context=ctx, domain_id=dom)
-    node = rclpy.create_node("bench_soak", context=ctx)
-    ex = SingleThreadedExecutor(context=ctx)
-    ex.add_node(node)
-    latched = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE,
-                         durability=DurabilityPolicy.TRANSIENT_LOCAL)
+    peer = BenchPeer("bench_soak", dom)
+    node, latched = peer.node, peer.latched
     plans: list[str] = []
     diag: dict[str, str] = {}
 
@@ -108,15 +78,15 @@ def run(minutes: float, period_s: float, budget_s: float) -> dict:
             if st.name == "shiproute_planner":
                 diag.update({kv.key: kv.value for kv in st.values})
 
-    node.create_subscription(RoutePlan, "/shiproute/plan/route",
+    node.create_subscription(RoutePlan, topics.PLAN_ROUTE,
                              lambda m: plans.append(m.cycle_id), latched)
-    node.create_subscription(DiagnosticArray, "/diagnostics", on_diag, 10)
-    state_pub = node.create_publisher(ShipState, "/shiproute/ship_state", 10)
-    cycle_pub = node.create_publisher(ForecastCycle, "/shiproute/forecast/cycle", latched)
-    slice_pub = node.create_publisher(ForecastSlice, "/shiproute/forecast/slices", QoSProfile(
+    node.create_subscription(DiagnosticArray, topics.DIAGNOSTICS, on_diag, 10)
+    state_pub = node.create_publisher(ShipState, topics.SHIP_STATE, 10)
+    cycle_pub = node.create_publisher(ForecastCycle, topics.FORECAST_CYCLE, latched)
+    slice_pub = node.create_publisher(ForecastSlice, topics.FORECAST_SLICES, QoSProfile(
         depth=512, reliability=ReliabilityPolicy.RELIABLE,
         durability=DurabilityPolicy.TRANSIENT_LOCAL))
-    load = node.create_client(LoadForecast, "/shiproute/forecast/load")
+    load: Any = node.create_client(LoadForecast, topics.FORECAST_LOAD)
     types = {"ForecastCycle": ForecastCycle, "ForecastSlice": ForecastSlice,
              "Field": ForecastField}
 
@@ -133,7 +103,7 @@ def run(minutes: float, period_s: float, budget_s: float) -> dict:
             if time.monotonic() >= next_state:
                 state_pub.publish(_state(ShipState))
                 next_state = time.monotonic() + 0.1
-            ex.spin_once(timeout_sec=0.02)
+            peer.spin_once(0.02)
         t_start = time.monotonic()
         end = t_start + minutes * 60.0
         next_bad = t_start + BAD_EVERY_S
@@ -146,7 +116,7 @@ def run(minutes: float, period_s: float, budget_s: float) -> dict:
             if not start_rss and now - t_start >= WARMUP_S:  # no loads for QUIET_S, measure
                 quiet_since = quiet_since or (now if pending is None else 0.0)
                 if quiet_since and now - quiet_since >= QUIET_S:
-                    start_rss = {k: _rss_mb(p.proc.pid) for k, p in procs.items()}
+                    start_rss = {k: rss_mb(p.proc.pid) for k, p in procs.items()}
                     end += now - (t_start + WARMUP_S)  # the pause does not count
             elif (pending is None and now >= next_load and load.service_is_ready()
                   and now < end - QUIET_S):
@@ -166,27 +136,25 @@ def run(minutes: float, period_s: float, budget_s: float) -> dict:
                 slice_pub.publish(s)
                 bad_sent += 1
                 next_bad = now + BAD_EVERY_S
-            dead = [name for name, p in procs.items() if not p.running]
+            dead = [name for name, p in procs.items() if not p.running()]
             if dead:  # reported, with the node's last output on stderr
                 deaths = len(dead)
                 for name in dead:
                     print(f"[soak] {name} died:\n{procs[name].output[-3000:]}", file=sys.stderr)
                 break
-            ex.spin_once(timeout_sec=0.01)
+            peer.spin_once(0.01)
         while pending is not None and not pending.done():  # the last load's answer
-            ex.spin_once(timeout_sec=0.05)
+            peer.spin_once(0.05)
         t_quiet = time.monotonic() + 2.0  # the last load was sent >= QUIET_S before `end`
         while time.monotonic() < t_quiet:
             if time.monotonic() >= next_state:
                 state_pub.publish(_state(ShipState))
                 next_state = time.monotonic() + 0.1
-            ex.spin_once(timeout_sec=0.05)
-        end_rss = {k: _rss_mb(p.proc.pid) for k, p in procs.items()}
-        peak = {k: _peak_mb(p.proc.pid) for k, p in procs.items()}
+            peer.spin_once(0.05)
+        end_rss = {k: rss_mb(p.proc.pid) for k, p in procs.items()}
+        peak = {k: peak_rss_mb(p.proc.pid) for k, p in procs.items()}
     finally:
-        ex.shutdown()
-        node.destroy_node()
-        ctx.try_shutdown()
+        peer.close()
         planner.stop()
         weather.stop()
     return {

@@ -26,6 +26,7 @@ import sys
 import tempfile
 import threading
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import FrameType
@@ -51,6 +52,12 @@ class Supervisor:
     procs: dict[str, RosProcess] = field(default_factory=dict)
     _lock: threading.Lock = field(default_factory=threading.Lock)
 
+    def _line_sink(self, name: str) -> Callable[[str, str], None]:
+        """The on_line callback of node `name`: its lines, prefixed, on the shared output."""
+        def sink(_stream: str, line: str) -> None:
+            self._emit(name, line)
+        return sink
+
     def _emit(self, name: str, line: str) -> None:
         width = max(len(n.name) for n in self.nodes)
         with self._lock:
@@ -69,7 +76,7 @@ class Supervisor:
                                                   sort_keys=False))
             argv = spec.argv(params_file)
             proc = RosProcess(argv, env=spec.env, name=spec.name, die_with_parent=True,
-                              on_line=lambda _stream, line, n=spec.name: self._emit(n, line))
+                              on_line=self._line_sink(spec.name))
             self.procs[spec.name] = proc
             self.say(f"started {spec.name} (pid {proc.proc.pid}): {' '.join(argv)}")
 

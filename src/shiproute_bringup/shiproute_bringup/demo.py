@@ -21,6 +21,7 @@ import yaml
 
 from shiproute_bringup import demo_data
 from shiproute_bringup.rosproc import RosProcess, console_script
+from shiproute_core import topics
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -87,7 +88,7 @@ class _Watcher:
                              durability=DurabilityPolicy.TRANSIENT_LOCAL)
         self.plans: list = []
         self.clock_s = 0.0
-        self.node.create_subscription(RoutePlan, "/shiproute/plan/route",
+        self.node.create_subscription(RoutePlan, topics.PLAN_ROUTE,
                                       self.plans.append, latched)
         self.node.create_subscription(
             Clock, "/clock",
@@ -170,9 +171,11 @@ def main(argv: list[str] | None = None) -> int:
 
     bringup = RosProcess([console_script("shiproute"), "bringup", str(params)], name="bringup",
                          on_line=node_line)
+    def record_line(_stream: str, line: str) -> None:
+        log.write("[record] " + line + "\n")
+
     record = RosProcess([console_script("shiproute"), "bag", "record", str(out / "recording")],
-                        name="record",
-                        on_line=lambda _s, line: log.write("[record] " + line + "\n"))
+                        name="record", on_line=record_line)
     watcher = _Watcher()
     depart_s = datetime.fromisoformat(demo_data.DEPARTURE.replace("Z", "+00:00")).timestamp()
     second_dropped = False

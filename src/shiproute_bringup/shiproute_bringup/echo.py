@@ -10,6 +10,7 @@ import yaml
 
 from shiproute_bringup.errors import EchoError
 from shiproute_bringup.msgdict import message_class, to_plain
+from shiproute_core import topics
 
 
 def _yaml_dump(data: object) -> str:
@@ -19,7 +20,7 @@ def _yaml_dump(data: object) -> str:
 def main(argv: list[str]) -> int:
     """``shiproute echo <topic> [--type pkg/msg/Type] [--count N] [--timeout S]``."""
     parser = argparse.ArgumentParser(prog="shiproute echo", description=__doc__)
-    parser.add_argument("topic", help="topic name, e.g. /shiproute/route_plan")
+    parser.add_argument("topic", help=f"topic name, e.g. {topics.PLAN_ROUTE}")
     parser.add_argument("--type", dest="type_name", default=None,
                         help="message type pkg/msg/Type (default: from the publishers)")
     parser.add_argument("--count", type=int, default=0, help="exit after N messages (0 = run)")

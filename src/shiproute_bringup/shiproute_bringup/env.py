@@ -120,11 +120,15 @@ def _print_text(report: dict[str, object]) -> None:
     print(f"discovery range   {ros['automatic_discovery_range']}")
     print(f"data dir          {report['data_dir']}")
     print("message packages:")
-    for name, info in report["message_packages"].items():  # type: ignore[union-attr]
+    packages = report["message_packages"]
+    assert isinstance(packages, dict)
+    for name, info in packages.items():
         state = "ok" if info["importable"] else f"NOT IMPORTABLE ({info.get('error')})"
         print(f"  {name:<22} {info['version'] or '?':<10} {state}")
     print("libraries:")
-    for name, version in {**report["libraries"], **report["shiproute_packages"]}.items():  # type: ignore[dict-item]
+    libraries, shiproute = report["libraries"], report["shiproute_packages"]
+    assert isinstance(libraries, dict) and isinstance(shiproute, dict)
+    for name, version in {**libraries, **shiproute}.items():
         print(f"  {name:<22} {version or 'not installed'}")
 
 

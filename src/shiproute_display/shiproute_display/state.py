@@ -182,6 +182,8 @@ class DisplayState:
 
     # ------------------------------------------------------------------ helpers (locked)
     def _new_voyage(self, plan: Plan) -> bool:
+        if self.voyage_start is None:
+            return True
         a, b = self.voyage_start.waypoints[-1], plan.waypoints[-1]
         return abs(a.lat_deg - b.lat_deg) + abs(geometry.wrap_lon(a.lon_deg - b.lon_deg)) > 0.5
 

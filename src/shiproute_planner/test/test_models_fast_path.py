@@ -111,7 +111,7 @@ def test_kwon_in_the_storm_agrees_with_kwon_itself_within_1pct() -> None:
     plan states median and 90th-percentile gaps), yet over the planned voyage the fuel of the
     fast path and of Kwon's model on the same legs agree within 1 % (0.26 % measured)."""
     from shiproute_planner.planning import load_forecast
-    from shiproute_weather.sampling import ForecastSampler
+    from shiproute_weather.sampling.sampler import ForecastSampler
 
     fc = ForecastSampler(load_forecast("storm_march"))
     kwon = KwonModel(load_ship("container_4600teu"))

@@ -27,8 +27,9 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.special import erfc
+from shiproute_core.units import M_S_PER_KNOT
 
-from .records import M_S_PER_KN, Records
+from .records import Records
 
 G = 9.80665
 ANGLES = ("heading_deg", "cog_deg")
@@ -124,9 +125,9 @@ def clean(records: Records, met: dict[str, np.ndarray],
     # speed through water: the log, else SOG minus the forecast current
     from_log = np.isfinite(c["stw_kn"])
     cog = np.radians(c["cog_deg"])
-    e = c["sog_kn"] * M_S_PER_KN * np.sin(cog) - c["current_u_m_s"]
-    nn = c["sog_kn"] * M_S_PER_KN * np.cos(cog) - c["current_v_m_s"]
-    stw = np.where(from_log, c["stw_kn"], np.hypot(e, nn) / M_S_PER_KN)
+    e = c["sog_kn"] * M_S_PER_KNOT * np.sin(cog) - c["current_u_m_s"]
+    nn = c["sog_kn"] * M_S_PER_KNOT * np.cos(cog) - c["current_v_m_s"]
+    stw = np.where(from_log, c["stw_kn"], np.hypot(e, nn) / M_S_PER_KNOT)
     c = {**c, "stw_kn": stw}
     idx = np.flatnonzero(keep)
     r = {k: np.asarray(v)[idx] for k, v in c.items()}
@@ -146,7 +147,7 @@ def clean(records: Records, met: dict[str, np.ndarray],
     depth = r["water_depth_m"]
     if np.any(np.isfinite(depth)) and np.isfinite(cfg.breadth_m):
         t_mean = 0.5 * (r["draft_fore_m"] + r["draft_aft_m"])
-        v = r["stw_kn"] * M_S_PER_KN
+        v = r["stw_kn"] * M_S_PER_KNOT
         limit = np.maximum(3.0 * np.sqrt(cfg.breadth_m * t_mean), 2.75 * v**2 / G)
         shallow = np.bincount(seg, np.isfinite(depth) & (depth < limit), n) > 0
         seg_drop("shallow_water", shallow)

@@ -14,9 +14,9 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from shiproute_core.units import M_S_PER_KNOT
 
 DAY_S = 86400.0
-KN = 0.514444
 
 
 def drift_table(segments: dict[str, np.ndarray], model: Any,
@@ -30,12 +30,13 @@ def drift_table(segments: dict[str, np.ndarray], model: Any,
     if learned is not None:  # the learned model at each segment's own drafts
         v_exp = _learned_speed_kn(learned, model.ship, s, sea)
     else:
-        v_exp = model.evaluate(s["rpm"], s["heading_deg"], sea).stw_m_s / KN
+        v_exp = model.evaluate(s["rpm"], s["heading_deg"], sea).stw_m_s / M_S_PER_KNOT
     if learned is not None:
         fuel_exp = learned.predict(model.ship, s["stw_kn"], s["heading_deg"], s["draft_fore_m"],
                                    s["draft_aft_m"], sea).fuel_t_per_h
     else:
-        rpm = model.rpm_for_speed(np.maximum(s["stw_kn"], 0.5) * KN, s["heading_deg"], sea)
+        stw_m_s = np.maximum(s["stw_kn"], 0.5) * M_S_PER_KNOT
+        rpm = model.rpm_for_speed(stw_m_s, s["heading_deg"], sea)
         fuel_exp = model.evaluate(rpm, s["heading_deg"], sea).fuel_t_per_h
     return {"time_s": s["time_s"], "speed_loss_pct": 100.0 * (s["stw_kn"] - v_exp) / v_exp,
             "excess_fuel_pct": 100.0 * (s["fuel_t_per_h"] / fuel_exp - 1.0)}

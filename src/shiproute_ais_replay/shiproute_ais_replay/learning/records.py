@@ -15,7 +15,8 @@ quantity and unit; a column whose unit is not stated or not known is an error, n
 | drafts | ``draft_fore_m``, ``draft_aft_m`` |
 | optional | ``rudder_angle_deg``, ``water_depth_m``, ``voyage`` (integer id) |
 
-Bags: ShipState messages on /shiproute/ship_state (the fields above, rudder and depth unknown).
+Bags: ShipState messages on the ship-state topic (shiproute_core.topics.SHIP_STATE; the fields
+above, rudder and depth unknown).
 Voyages: the ``voyage`` column, else one per input file, split where the records pause > 6 h.
 """
 
@@ -29,10 +30,10 @@ from datetime import UTC, datetime
 from pathlib import Path
 
 import numpy as np
+from shiproute_core.units import M_S_PER_KNOT
 
 from ..errors import AisReplayError
 
-M_S_PER_KN = 0.514444
 VOYAGE_GAP_S = 6 * 3600.0
 COLUMNS = ("time_s", "latitude_deg", "longitude_deg", "sog_kn", "cog_deg", "heading_deg",
            "stw_kn", "shaft_rpm", "fuel_rate_t_per_h", "draft_fore_m", "draft_aft_m",
@@ -41,9 +42,9 @@ COLUMNS = ("time_s", "latitude_deg", "longitude_deg", "sog_kn", "cog_deg", "head
 _UNITS: dict[str, dict[str, float]] = {
     "time": {"time_utc": 1.0, "time_s": 1.0},
     "latitude": {"latitude_deg": 1.0}, "longitude": {"longitude_deg": 1.0},
-    "sog": {"sog_kn": 1.0, "sog_m_s": 1.0 / M_S_PER_KN},
+    "sog": {"sog_kn": 1.0, "sog_m_s": 1.0 / M_S_PER_KNOT},
     "cog": {"cog_deg": 1.0}, "heading": {"heading_deg": 1.0},
-    "stw": {"stw_kn": 1.0, "stw_m_s": 1.0 / M_S_PER_KN},
+    "stw": {"stw_kn": 1.0, "stw_m_s": 1.0 / M_S_PER_KNOT},
     "shaft": {"shaft_rpm": 1.0, "shaft_speed_rps": 60.0},
     "fuel": {"fuel_rate_t_per_h": 1.0, "fuel_rate_kg_per_h": 1e-3, "fuel_rate_t_per_day": 1 / 24},
     "draft_fore": {"draft_fore_m": 1.0}, "draft_aft": {"draft_aft_m": 1.0},
@@ -132,9 +133,10 @@ def _iso_s(text: str) -> float:
 
 def read_bag(path: str | Path) -> dict[str, np.ndarray]:
     """Columns of the ShipState messages of one bag (streamed)."""
-    from ..aisbag import OWN_STATE_TOPIC
-    from ..bagreader import BagReader
-    from ..shipstate import from_rosbags
+    from shiproute_core.topics import SHIP_STATE as OWN_STATE_TOPIC
+
+    from ..bag.bagreader import BagReader
+    from ..bag.shipstate import from_rosbags
 
     reader = BagReader(path)
     out: dict[str, list[float]] = {c: [] for c in COLUMNS}

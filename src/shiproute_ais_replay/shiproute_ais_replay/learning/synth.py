@@ -18,10 +18,9 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
+from shiproute_core.units import M_PER_NM
 
 from .records import COLUMNS, Records
-
-KN = 0.514444
 
 
 @dataclass(frozen=True)
@@ -89,8 +88,9 @@ def true_ship(ship, change: HullChange, mean_draft_offset_m: float = 0.0):
 
 
 def _plan(rng: np.random.Generator, eastbound: bool, legs: int, leg_nm: float):
-    from ..geo import destination
-    from ..voyage_input import VoyagePlan
+    from shiproute_core.geodesy import destination
+
+    from ..simulate.voyage_input import VoyagePlan
 
     lat = [float(rng.uniform(30.0, 44.0))]
     lon = [float(rng.uniform(150.0, 165.0) if eastbound else rng.uniform(205.0, 220.0))]
@@ -101,7 +101,7 @@ def _plan(rng: np.random.Generator, eastbound: bool, legs: int, leg_nm: float):
             hdg = base + (20.0 if eastbound else -20.0)
         if lat[-1] < 28.0:
             hdg = base - (20.0 if eastbound else -20.0)
-        la, lo = destination(lat[-1], lon[-1], hdg, leg_nm * 1852.0)
+        lo, la = destination(lon[-1], lat[-1], hdg, leg_nm * M_PER_NM)
         lat.append(float(la))
         lon.append(float(lo))
     rpm = rng.uniform(50.0, 92.0, legs)
@@ -132,7 +132,7 @@ def simulate_fleet_records(ship, forecast, n_voyages: int, start_s: float, seed:
 
 def _simulate(ship, sampler, n_voyages, start_s, rng, legs, leg_nm, change, corruption,
               rate_hz) -> Records:
-    from ..simulate import SimulationOptions, VoyageSimulator
+    from ..simulate.simulator import SimulationOptions, VoyageSimulator
 
     parts = []
     t = start_s
@@ -217,8 +217,8 @@ def write_csv(records: Records, path: str | Path) -> None:
 
 def write_bag(records: Records, path: str | Path) -> dict[str, int]:
     """MCAP bag of ShipState messages (rudder angle and voyage are not ShipState fields)."""
-    from ..aisbag import write_states
-    from ..shipstate import ShipStateRecord
+    from ..bag.shipstate import ShipStateRecord
+    from ..bag.statebag import write_states
 
     cols = records.columns
 

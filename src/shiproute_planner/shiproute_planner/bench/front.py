@@ -23,8 +23,8 @@ DEPART = "2026-03-03T18:00Z"
 def front_bench(points: int = 9, budget_s: float = 9.0, seed: int = 0) -> dict[str, Any]:
     """`front_points` (ETA/fuel per plan), `front_s` (wall time of the whole front) and
     details for the bundled storm voyage."""
-    from shiproute_weather.sampling import ForecastSampler
-    from shiproute_weather.scenarios import scenario_dataset
+    from shiproute_weather.sampling.sampler import ForecastSampler
+    from shiproute_weather.scenarios.catalogue import scenario_dataset
 
     land = default_land_mask()
     sampler = ForecastSampler(scenario_dataset("storm_march"), dtype=np.float16)

@@ -3,13 +3,13 @@
 from __future__ import annotations
 
 import json
-import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from ..errors import RouteFileError
+from .rtz_read import read_rtz
 
 
 @dataclass(frozen=True)
@@ -22,36 +22,10 @@ class RouteTrack:
     speed_kn: np.ndarray  # per leg, NaN where the file has none
 
 
-def _local(tag: str) -> str:
-    return tag.rsplit("}", 1)[-1]
-
-
 def _read_rtz(path: Path) -> RouteTrack:
-    try:
-        root = ET.parse(path).getroot()
-    except ET.ParseError as exc:
-        raise RouteFileError(f"route file {path}: not well-formed XML ({exc})") from None
-    if _local(root.tag) != "route":
-        raise RouteFileError(f"route file {path}: root element is <{_local(root.tag)}>, "
-                             "not an RTZ <route>")
-    lat, lon, speed, ids = [], [], [], []
-    for wp in root.iter():
-        if _local(wp.tag) != "waypoint" or not any(_local(c.tag) == "position" for c in wp):
-            continue
-        pos = next(c for c in wp if _local(c.tag) == "position")
-        try:
-            lat.append(float(pos.attrib["lat"]))
-            lon.append(float(pos.attrib["lon"]))
-        except (KeyError, ValueError):
-            raise RouteFileError(f"route file {path}: waypoint {wp.attrib.get('id', '?')} has "
-                                 "no numeric position lat/lon") from None
-        leg = next((c for c in wp if _local(c.tag) == "leg"), None)
-        speed.append(float(leg.attrib.get("speedMax", "nan")) if leg is not None else np.nan)
-        ids.append(wp.attrib.get("id", str(len(ids) + 1)))
-    name = next((e.attrib.get("routeName", "") for e in root.iter()
-                 if _local(e.tag) == "routeInfo"), "") or path.stem
-    # RTZ: a waypoint's <leg> describes the leg arriving at it
-    return _track(path, name, lon, lat, speed[1:] if speed else [])
+    rtz = read_rtz(path)
+    return _track(path, rtz.name, rtz.lon_deg.tolist(), rtz.lat_deg.tolist(),
+                  rtz.leg_speed_max_kn.tolist())
 
 
 def _read_geojson(path: Path) -> RouteTrack:

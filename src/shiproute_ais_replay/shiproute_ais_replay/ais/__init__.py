@@ -1,0 +1,1 @@
+"""AIS input: NMEA and CSV decoding, track cleaning, tracks written to bags."""

@@ -1,0 +1,1 @@
+"""Voyage replay: bag messages scheduled on the bag clock at a chosen rate."""

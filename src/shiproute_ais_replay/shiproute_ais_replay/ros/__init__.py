@@ -1,0 +1,1 @@
+"""ROS adapters: the replay node, the recorder and the message conversions (rclpy only here)."""
