@@ -18,7 +18,7 @@ from shiproute_weather.canonical import VARIABLES, Grid
 from shiproute_weather.sampling import channel_count
 from shiproute_weather.wire_packing import PackedField
 
-from ..cycle_packer import SliceFields
+from ..ros.cycle_packer import SliceFields
 from ..errors import ForecastCycleError, StaleForecastError
 
 #: most slices of one cycle: the planner's transient-local slice queue holds 512

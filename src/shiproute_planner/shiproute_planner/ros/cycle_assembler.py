@@ -20,7 +20,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any, Generic, Protocol, TypeVar
 
-from .errors import ForecastCycleError
+from ..errors import ForecastCycleError
 
 SliceT = TypeVar("SliceT")
 SliceT_contra = TypeVar("SliceT_contra", contravariant=True)

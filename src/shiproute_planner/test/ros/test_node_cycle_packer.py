@@ -9,8 +9,8 @@ import os
 
 import numpy as np
 import pytest
-from shiproute_planner.cycle_assembler import CycleAssembler
-from shiproute_planner.cycle_packer import KEEP_BEHIND_S, CyclePacker, SliceFields, hs_field_at
+from shiproute_planner.ros.cycle_assembler import CycleAssembler
+from shiproute_planner.ros.cycle_packer import KEEP_BEHIND_S, CyclePacker, SliceFields, hs_field_at
 from shiproute_planner.errors import ForecastCycleError
 
 
@@ -26,7 +26,7 @@ def _cycle(encoding: str = "packed16"):
 
 
 def _fields(encoding: str = "packed16"):
-    from shiproute_planner.convert import slice_fields
+    from shiproute_planner.ros.convert import slice_fields
 
     return [slice_fields(m) for m in _cycle(encoding)[1]]
 
@@ -81,7 +81,7 @@ def test_packed_in_any_order_equals_the_sampler_of_the_dataset(encoding):
 def test_a_field_with_both_encodings_fails_its_cycle():
     import copy
 
-    from shiproute_planner.convert import slice_fields
+    from shiproute_planner.ros.convert import slice_fields
 
     msg = copy.deepcopy(_cycle()[1][1])
     msg.fields[2].data = [1.0] * len(msg.fields[2].packed)
@@ -154,7 +154,7 @@ def test_hs_field_for_the_plot_is_the_forecast_at_that_time():
 
 
 def test_dds_profile_frees_slice_buffers_unless_fast_dds_is_configured(monkeypatch, tmp_path):
-    from shiproute_planner.dds_profile import forget_profile, use_dynamic_slice_buffers
+    from shiproute_planner.ros.dds_profile import forget_profile, use_dynamic_slice_buffers
 
     for name in ("FASTDDS_DEFAULT_PROFILES_FILE", "FASTRTPS_DEFAULT_PROFILES_FILE",
                  "RMW_FASTRTPS_USE_QOS_FROM_XML"):

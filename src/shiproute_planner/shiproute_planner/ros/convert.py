@@ -23,8 +23,8 @@ from shiproute_msgs.msg import ForecastSlice, RouteWaypoint, RpmProfile, RpmStag
 from shiproute_msgs.msg import RoutePlan as RoutePlanMsg
 
 from .cycle_packer import SliceFields
-from .path_frame import track_to_ecef
-from .plan_types import RoutePlan
+from ..path_frame import track_to_ecef
+from ..plan_types import RoutePlan
 
 EARTH_FRAME = "earth"
 

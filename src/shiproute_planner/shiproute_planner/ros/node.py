@@ -37,9 +37,9 @@ from shiproute_msgs.msg import ForecastCycle, ForecastSlice, RpmProfile, ShipSta
 from shiproute_msgs.msg import RoutePlan as RoutePlanMsg
 from shiproute_msgs.srv import SetVoyage
 
-from .checks.forecast_wire import check_not_older, check_slice_count, check_slice_fields
-from .checks.parameters import check_number
-from .checks.ship_state import check_ship_state
+from ..checks.forecast_wire import check_not_older, check_slice_count, check_slice_fields
+from ..checks.parameters import check_number
+from ..checks.ship_state import check_ship_state
 from .convert import (
     cycle_record,
     plan_to_msg,
@@ -53,12 +53,12 @@ from .cycle_assembler import CycleAssembler
 from .cycle_packer import CyclePacker, SliceFields, hs_field_at
 from .dds_profile import forget_profile, use_dynamic_slice_buffers
 from .drop_log import DropLog
-from .errors import PlannerError
+from ..errors import PlannerError
 from .intake_keys import RejectedKeys, assembly_key
-from .plan_types import RoutePlan
+from ..plan_types import RoutePlan
 from .replan_policy import ReplanThresholds, track_deviation
-from .voyage_params import check_parameter, parse_utc
-from .voyage_request import VoyageRequest, check_voyage_request
+from ..voyage_params import check_parameter, parse_utc
+from ..voyage_request import VoyageRequest, check_voyage_request
 
 LATCHED = QoSProfile(
     depth=1,
@@ -269,7 +269,7 @@ class PlannerNode(Node):
     def _load_bathymetry(self) -> None:
         """Read the depth grids now (they are cached per process), so the first plan's budget
         is spent planning; a bad grid is reported here and again by the plan that meets it."""
-        from .geo.depth import load_bathymetry
+        from ..geo.depth import load_bathymetry
 
         try:
             bathy = load_bathymetry(_paths(str(self._p("bathymetry_files"))),
@@ -286,7 +286,7 @@ class PlannerNode(Node):
         directory = str(self._p("seed_pool_dir"))
         if not directory:
             return
-        from .ga.pool import POOL_FILE, SeedPool
+        from ..ga.pool import POOL_FILE, SeedPool
 
         try:
             n = len(SeedPool(directory))
@@ -567,7 +567,7 @@ class PlannerNode(Node):
 
     def _plan_once(self, inputs: _Inputs) -> bool:
         """Plan and publish; False when the run was superseded by a newer cycle."""
-        from .planning import plan_voyage
+        from ..planning import plan_voyage
 
         origin = str(self._p("origin"))
         position = inputs.position
@@ -615,8 +615,8 @@ class PlannerNode(Node):
         """Whether the ship is still at the departure port (within departure_radius_nm)."""
         from shiproute_core.geodesy import inverse
 
-        from .geo.landmask import default_land_mask
-        from .geo.ports import resolve_port
+        from ..geo.landmask import default_land_mask
+        from ..geo.ports import resolve_port
 
         try:
             port = resolve_port(origin, default_land_mask())
@@ -654,7 +654,7 @@ class PlannerNode(Node):
         if not out:
             return
         try:
-            from .io.files import write_plan_files
+            from ..io.files import write_plan_files
 
             png = bool(self._p("write_png"))
             hs = hs_field_at(sampler, plan.departure_s) if png else None
@@ -758,8 +758,8 @@ class PlannerNode(Node):
 
 def _method_reason(name: str) -> str | None:
     """Why `name` is not a route-finding method (None when it is)."""
-    from .errors import UnknownMethodError
-    from .methods import get_method
+    from ..errors import UnknownMethodError
+    from ..methods import get_method
 
     try:
         get_method(name)

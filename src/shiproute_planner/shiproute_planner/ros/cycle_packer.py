@@ -21,7 +21,7 @@ import numpy as np
 from shiproute_weather.canonical import CANONICAL_ORDER, Grid
 from shiproute_weather.sampling import FieldValues, ForecastSampler, channel_count, pack_fields
 
-from .errors import ForecastCycleError
+from ..errors import ForecastCycleError
 
 #: stored history behind the ship: longer than the time step of any forecast we load (1-6 h),
 #: so the slice valid just before the ship's time is kept and sampling never clamps there
