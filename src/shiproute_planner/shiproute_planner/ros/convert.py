@@ -19,12 +19,14 @@ from shiproute_weather.canonical import Grid
 from shiproute_weather.errors import SliceError
 from shiproute_weather.wire_packing import field_values
 
+from shiproute_msgs.action import PlanRoute
 from shiproute_msgs.msg import ForecastSlice, RouteWaypoint, RpmProfile, RpmStage, ShipState
 from shiproute_msgs.msg import RoutePlan as RoutePlanMsg
 
-from .cycle_packer import SliceFields
 from ..path_frame import track_to_ecef
 from ..plan_types import RoutePlan
+from ..voyage_request import VoyageRequest
+from .cycle_packer import SliceFields
 
 EARTH_FRAME = "earth"
 
@@ -166,3 +168,39 @@ def cycle_record(msg: Any) -> dict:
               for k, n in enumerate(msg.fields)}
     return {"cycle_id": str(msg.cycle_id), "source_files": [str(f) for f in msg.source_files],
             "fields": fields, "notes": [str(n) for n in getattr(msg, "notes", []) or []]}
+
+
+#: the optional fields of a ShipState (NaN when not reported), checked for range when present
+SHIP_STATE_OPTIONALS = ("sog_kn", "cog_deg", "heading_deg", "stw_kn", "shaft_rpm",
+                        "draft_fore_m", "draft_aft_m", "fuel_rate_t_per_h")
+
+
+def ship_state_optionals(msg: ShipState) -> dict[str, float]:
+    """The optional fields of a ShipState by name (NaN when not reported)."""
+    return {name: float(getattr(msg, name)) for name in SHIP_STATE_OPTIONALS}
+
+
+def voyage_request(req: Any) -> VoyageRequest:
+    """The voyage of a SetVoyage request, not yet checked."""
+    return VoyageRequest(
+        destination=req.destination, destination_lat_deg=float(req.destination_lat_deg),
+        destination_lon_deg=float(req.destination_lon_deg), rta_s=posix_s(req.rta),
+        ship=req.ship, objective=req.objective)
+
+
+def plan_feedback(progress: dict[str, float], elapsed_s: float) -> Any:
+    """PlanRoute feedback from the planner's progress values."""
+    fb = PlanRoute.Feedback()
+    fb.generation = int(progress.get("generation", 0))
+    fb.evaluations = int(progress.get("evaluations", 0))
+    fb.best_fuel_t = float(progress.get("best_objective", math.nan))
+    fb.elapsed_s = elapsed_s
+    return fb
+
+
+def plan_messages(plan: RoutePlan, stamp: Time, trigger: str) -> tuple[Path, RpmProfile, Any]:
+    """The three messages of a published plan: Path, RpmProfile and RoutePlan, the last with
+    what triggered the plan (shown in the bridge display's re-plan history)."""
+    plan_msg = plan_to_msg(plan, stamp)
+    plan_msg.trigger = trigger
+    return plan_to_path(plan, stamp), plan_to_rpm_profile(plan, stamp), plan_msg

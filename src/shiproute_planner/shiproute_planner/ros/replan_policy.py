@@ -10,10 +10,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from pyproj import Geod
+from shiproute_core.geodesy import GEOD, inverse
+from shiproute_core.units import M_PER_NM
 
-_GEOD = Geod(ellps="WGS84")
-_M_PER_NM = 1852.0
+from ..plan_types import RoutePlan
 
 
 @dataclass(frozen=True)
@@ -53,11 +53,11 @@ def densify_track(
     """Points along the geodesic legs of a track with linearly interpolated planned times."""
     lats, lons, times = [float(lat_deg[0])], [float(lon_deg[0])], [float(time_s[0])]
     for i in range(len(lat_deg) - 1):
-        _, _, dist_m = _GEOD.inv(lon_deg[i], lat_deg[i], lon_deg[i + 1], lat_deg[i + 1])
-        n_inner = max(int(dist_m / (step_nm * _M_PER_NM)), 0)
+        _, _, dist_m = GEOD.inv(lon_deg[i], lat_deg[i], lon_deg[i + 1], lat_deg[i + 1])
+        n_inner = max(int(dist_m / (step_nm * M_PER_NM)), 0)
         if n_inner:
             pts = np.asarray(
-                _GEOD.npts(lon_deg[i], lat_deg[i], lon_deg[i + 1], lat_deg[i + 1], n_inner)
+                GEOD.npts(lon_deg[i], lat_deg[i], lon_deg[i + 1], lat_deg[i + 1], n_inner)
             )
             frac = np.arange(1, n_inner + 1) / (n_inner + 1)
             lons.extend(pts[:, 0])
@@ -84,12 +84,34 @@ def track_deviation(
         np.asarray(track_time_s, float), step_nm,
     )
     n = lats.size
-    _, _, dist_m = _GEOD.inv(
+    _, _, dist_m = GEOD.inv(
         np.full(n, ship_lon_deg), np.full(n, ship_lat_deg), lons, lats
     )
     k = int(np.argmin(dist_m))
     return TrackDeviation(
-        cross_track_nm=float(dist_m[k] / _M_PER_NM),
+        cross_track_nm=float(dist_m[k] / M_PER_NM),
         schedule_deviation_s=float(ship_time_s - times[k]),
         along_track_fraction=k / max(n - 1, 1),
     )
+
+
+def at_departure_port(origin: str, lat_deg: float, lon_deg: float, radius_nm: float) -> bool:
+    """Whether a ship at (lat, lon) is still at the departure port `origin` (within
+    `radius_nm` of it): its plan then starts at the port. An unknown origin means no."""
+    from ..geo.landmask import default_land_mask
+    from ..geo.ports import resolve_port
+
+    try:
+        port = resolve_port(origin, default_land_mask())
+    except Exception:  # an unknown origin just means "plan from the ship"
+        return False
+    _, dist_m = inverse(port.lon_deg, port.lat_deg, lon_deg, lat_deg)
+    return float(dist_m) / M_PER_NM <= radius_nm
+
+
+def off_plan_reasons(plan: RoutePlan, position: tuple[float, float, float],
+                     thresholds: ReplanThresholds) -> list[str]:
+    """Why a ship at `position` (lat, lon, time) has left `plan` (empty while on it)."""
+    lon, lat, t = plan.track()
+    dev = track_deviation(lat, lon, t, position[0], position[1], position[2])
+    return list(thresholds.exceeded(dev))
