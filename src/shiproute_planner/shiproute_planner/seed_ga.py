@@ -1,42 +1,30 @@
-"""Registry of planning methods: name -> function(MethodContext) -> MethodResult.
-
-Every method plans one leg (`RouteProblem`) with the shared evaluator and returns the chosen
-route as a single-row `RouteEvaluation`. Baseline methods (isochrone, A*, 3DDP, pymoo)
-register themselves with `register_method`.
-"""
+"""The seed GA, the planner's reference method: seed tracks (baseline, great circle, sea lanes,
+bent variants, timed versions, previous plan and pool) turned into genes, the generic ask/tell
+GA (islands, then one population) within the wall-time budget, and the exact final choice
+checked against the coastline polygons."""
 
 from __future__ import annotations
 
-import contextlib
 import dataclasses
 import time
-from collections.abc import Callable
-from dataclasses import dataclass, field
 
 import numpy as np
 from shiproute_core.flags import FLAG_LAND
 from shiproute_core.geodesy import inverse
 
-from .errors import UnknownMethodError
 from .ga.islands import IslandGA, cross_track_rad
 from .ga.loop import AskTellGA, GAConfig, SeedGA
 from .ga.ranking import deb_order, is_better
-from .ga.seeds import (
-    TrackSeed,
-    great_circle_track,
-    sea_lane_track,
-    track_to_genes,
-    via_track,
-)
 from .geo.landmask import LandMask
 from .geo.verify import land_crossings
+from .method_context import Baseline, MethodContext, MethodResult, Progress, compute_baseline
 from .route.encoding import clip_genes, gene_bounds
 from .route.environment import Environment
-from .route.evaluation import RouteEvaluation, clear_ports
+from .route.evaluation import RouteEvaluation
 from .route.fast_eval import fast_evaluator
 from .route.generate import evaluate_genes
 from .route.problem import RouteProblem
-from .route.rta import constant_rpm_for_rta
+from .route.seeding import TrackSeed, great_circle_track, sea_lane_track, track_to_genes, via_track
 
 EXACT_CHOICE_RESERVE_S = 0.25  # wall time kept for the exact final choice and dense land check
 EXACT_CHOICE_SHARE = 0.28  # ... at most this share of a small budget (re-plans of 0.5 s)
@@ -44,126 +32,6 @@ DENSE_CHECKS = 12  # feasible final candidates given the dense land check, best 
 EXACT_CHECK_EVERY = 15  # generations between exact confirmations of the GA's best
 # RPM ramps (relative change from the first to the last leg / 2) of timed seed variants
 TIMED_SLOPES = (-0.08, -0.04, 0.04, 0.08)
-
-
-@dataclass(frozen=True)
-class Progress:
-    """Progress of a running plan (for CLI output and ROS action feedback)."""
-
-    leg: int
-    generation: int
-    evaluations: int
-    best_objective: float  # NaN while nothing feasible is known
-    best_violation: float
-    elapsed_s: float
-
-
-@dataclass
-class MethodContext:
-    """Everything a method needs for one leg."""
-
-    problem: RouteProblem
-    env: Environment
-    land: LandMask
-    rng: np.random.Generator
-    budget_s: float
-    seeds: list[TrackSeed] = field(default_factory=list)
-    progress: Callable[[Progress], None] | None = None
-    cancelled: Callable[[], bool] = lambda: False
-    leg_index: int = 0
-    t_start: float = field(default_factory=time.perf_counter)
-    ga_config: GAConfig | None = None
-    max_generations: int = 100_000
-    n_offset_seeds: int = 4  # sea lanes via bent points per position (0 = none)
-    offset_span_deg: float = 12.0
-    stall_generations: int = 0  # 0 = no stall termination
-    baseline: Baseline | None = None  # computed on demand when None
-    gene_seeds: list[tuple[str, np.ndarray]] = field(default_factory=list)  # ready genes
-    max_evaluations: int = 0  # stop after this many route evaluations (0 = no limit)
-    n_islands: int = 3  # seed GA: seed groups searched apart (by side of the great circle)
-    island_share: float = 0.5  # share of the search (time, generations or evaluations)
-    # before the islands merge
-
-
-@dataclass(frozen=True)
-class MethodResult:
-    """Chosen route and search statistics."""
-
-    evaluation: RouteEvaluation  # one row
-    seed_source: str
-    generations: int = 0
-    evaluations: int = 0
-    genes: np.ndarray | None = None  # heading/RPM genes of the route, when the method has them
-
-
-@dataclass(frozen=True)
-class Baseline:
-    """Constant-RPM route meeting the RTA on the great circle or the sea lane."""
-
-    name: str
-    lon_deg: np.ndarray
-    lat_deg: np.ndarray
-    rpm: float
-    evaluation: RouteEvaluation
-
-
-def compute_baseline(problem: RouteProblem, env: Environment, land: LandMask) -> Baseline:
-    """Great circle if it stays off land, else the sea lane; slowest RPM meeting the RTA."""
-    name, lon, lat = baseline_track(problem, land)
-    rpm, ev = constant_rpm_for_rta(problem, env, land, lon, lat)
-    return Baseline(name, lon, lat, rpm, ev)
-
-
-MethodFn = Callable[[MethodContext], MethodResult]
-_METHODS: dict[str, MethodFn] = {}
-
-
-def register_method(name: str, fn: MethodFn) -> None:
-    """Add or replace a planning method."""
-    _METHODS[name] = fn
-
-
-def get_method(name: str) -> MethodFn:
-    """The method registered as `name`."""
-    _load_plugins()
-    try:
-        return _METHODS[name]
-    except KeyError:
-        raise UnknownMethodError(
-            f"planning method {name!r} is unknown; available: {', '.join(sorted(_METHODS))}"
-        ) from None
-
-
-def method_names() -> list[str]:
-    """Registered method names."""
-    _load_plugins()
-    return sorted(_METHODS)
-
-
-def _load_plugins() -> None:
-    """Import optional method modules that register themselves (baselines package)."""
-    with contextlib.suppress(ImportError):
-        from . import baselines  # noqa: F401
-
-
-def baseline_track(problem: RouteProblem, land: LandMask) -> tuple[str, np.ndarray, np.ndarray]:
-    """Great circle if it stays off land, else the `searoute` sea lane (else the great circle)."""
-    lon, lat = great_circle_track(problem)
-    _, dist = inverse(lon[:-1], lat[:-1], lon[1:], lat[1:])
-    ends = clear_ports(problem, lon[None, :], lat[None, :], dist[None, :])
-    hits = land.segment_land_samples(*ends, problem.land_spacing_deg)
-    if hits.sum() == 0:
-        return "great_circle", lon, lat
-    lane = sea_lane_track(problem)
-    if lane is None:
-        return "great_circle", lon, lat
-    return "sea_lane", lane[0], lane[1]
-
-
-def great_circle_method(ctx: MethodContext) -> MethodResult:
-    """Constant RPM meeting the RTA on the great circle (sea lane if the circle hits land)."""
-    b = ctx.baseline or compute_baseline(ctx.problem, ctx.env, ctx.land)
-    return MethodResult(b.evaluation, b.name, 0, 1)
 
 
 def seed_ga_method(ctx: MethodContext) -> MethodResult:
@@ -377,6 +245,3 @@ def _seed_tracks(ctx: MethodContext, base: Baseline) -> list[tuple]:
         out.append(("baseline_timed", base.lon_deg, base.lat_deg, rpm))
     return out
 
-
-register_method("seed_ga", seed_ga_method)
-register_method("great_circle", great_circle_method)

@@ -8,7 +8,8 @@ import sys
 from pathlib import Path
 
 from ..errors import InvalidVoyageError, PlannerError
-from ..methods import Progress, method_names
+from ..method_context import Progress
+from ..methods import method_names
 from ..plan_request import build_request, duration_s, run_request
 from ..planning import load_forecast
 

@@ -11,18 +11,16 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-from shiproute_core.geodesy import M_PER_NM
+from shiproute_core.units import M_PER_NM, M_S_PER_KNOT
 
+from ..baselines import runners
+from ..baselines.great_circle import run_great_circle
+from ..baselines.inputs import BaselineInputs
+from ..baselines.metaheuristics import run_pymoo_method, run_seed_ga
+from ..baselines.result import BaselineResult
+from ..baselines.runners import GraphOptions, leg_rpm_varies
 from ..ga.loop import GAConfig
-from . import runners
-from .great_circle import run_great_circle
-from .inputs import BaselineInputs
-from .metaheuristics import run_pymoo_method, run_seed_ga
 from .outcome import MethodOutcome, RepeatRow
-from .result import BaselineResult
-from .runners import GraphOptions, leg_rpm_varies
-
-KN_PER_M_S = 3600.0 / M_PER_NM
 
 LABELS: dict[str, str] = {
     "isochrone": "Isochrone (path only)",
@@ -104,7 +102,7 @@ def outcome_of(r: BaselineResult, rta_s: float) -> MethodOutcome:
         else float("nan"),
         compute_s=r.compute_s, route_evaluations=r.route_evaluations + r.leg_evaluations,
         track_lon_deg=lon[keep], track_lat_deg=lat[keep], leg_rpm=rpm,
-        leg_sog_kn=legs["sog_m_s"][0][active] * KN_PER_M_S, leg_start_s=ev.time_s[0][:-1][active],
+        leg_sog_kn=legs["sog_m_s"][0][active] / M_S_PER_KNOT, leg_start_s=ev.time_s[0][:-1][active],
         pareto_eta_s=r.pareto_eta_s, pareto_fuel_t=r.pareto_fuel_t,
     )
 

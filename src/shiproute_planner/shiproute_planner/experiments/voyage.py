@@ -12,10 +12,11 @@ from typing import Any
 
 import numpy as np
 
+from ..baselines.inputs import BaselineInputs
 from ..geo.landmask import LandMask, default_land_mask
 from ..geo.ports import Port, resolve_port
-from ..planning import TimeLike, leg_setup, make_environment, route_limits, to_posix_s
-from .inputs import BaselineInputs
+from ..planning import TimeLike, make_environment, route_limits, to_posix_s
+from ..route.voyage_legs import leg_setup
 
 DEFAULT_DEPARTURE_AFTER_REFERENCE_H = 6.0  # the reference case sails 6 h after the 12Z run
 
@@ -53,7 +54,7 @@ def build_inputs(
     limits: dict | None = None,
 ) -> BaselineInputs:
     """One-leg voyage as the planner sets it up: the problem between the approaches' sea
-    ends (`planning.leg_setup`; the approaches are common to every method), no seed pool:
+    ends (`route.voyage_legs.leg_setup`; the approaches are common to every method), no seed pool:
     every method starts cold."""
     land = land or default_land_mask()
     env, spec = make_environment(ship, forecast)

@@ -15,16 +15,17 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from shiproute_core.geodesy import direct, inverse, unwrap_near, wrap_lon
+from shiproute_core.geodesy import direct, inverse, unwrap_near
+from shiproute_core.units import M_PER_NM
 
-from .ga.seeds import _searoute_coords
-from .geo.landmask import LandMask
-from .geo.ports import Port
-from .geo.verify import densify_track
-from .route.environment import Environment
-from .route.evaluation import RouteEvaluation
-from .route.problem import RouteLimits, RouteProblem
-from .route.sail import sail_tracks
+from ..geo.landmask import LandMask
+from ..geo.ports import Port
+from ..geo.sea_lanes import sea_lane_between
+from ..geo.verify import densify_track
+from .environment import Environment
+from .evaluation import RouteEvaluation
+from .problem import RouteLimits, RouteProblem
+from .sail import sail_tracks
 
 
 @dataclass(frozen=True)
@@ -43,7 +44,7 @@ class CoastalPassage:
 
     land: LandMask
     share: float = 1.0 / 6.0
-    step_m: float = 5.0 * 1852.0
+    step_m: float = 5.0 * M_PER_NM
 
 
 def _points_at(lon: np.ndarray, lat: np.ndarray, cum: np.ndarray,
@@ -131,8 +132,7 @@ def lane_approaches(dep: Port, arr: Port, approach_m: float, with_dep: bool = Tr
     straits and past the capes next to each port). None for an approach of zero length."""
     if approach_m <= 0 or not (with_dep or with_arr):
         return None, None
-    coords = _searoute_coords(round(float(wrap_lon(dep.lon_deg)), 4), round(dep.lat_deg, 4),
-                              round(float(wrap_lon(arr.lon_deg)), 4), round(arr.lat_deg, 4))
+    coords = sea_lane_between(dep.lon_deg, dep.lat_deg, arr.lon_deg, arr.lat_deg)
     if coords is None or coords.shape[0] < 2:
         return None, None
     lon = np.unwrap(np.concatenate([[dep.lon_deg], coords[:, 0], [arr.lon_deg]]), period=360.0)

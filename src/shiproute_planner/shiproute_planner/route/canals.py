@@ -15,6 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from shiproute_core.geodesy import inverse
+from shiproute_core.units import M_S_PER_KNOT
 
 
 @dataclass(frozen=True)
@@ -97,10 +98,8 @@ def route_canals(ports: list, spec, via_rta: list) -> tuple[list, dict[int, tupl
     """Ports with canal entrances/exits (or ways round) inserted where the sea lane between
     two ports runs through a canal; returns (ports, {leg index: (canal, reversed)}, via RTAs
     aligned to the new ports, notes for the plan)."""
-    from shiproute_core.geodesy import wrap_lon
-
-    from .ga.seeds import _searoute_coords
-    from .geo.ports import Port
+    from ..geo.ports import Port
+    from ..geo.sea_lanes import sea_lane_between
 
     draft = beam = length = 0.0
     if spec is not None:
@@ -110,8 +109,7 @@ def route_canals(ports: list, spec, via_rta: list) -> tuple[list, dict[int, tupl
     out, out_rta, legs, notes = [ports[0]], [], {}, []
     for k in range(len(ports) - 1):
         a, b = ports[k], ports[k + 1]
-        coords = _searoute_coords(round(float(wrap_lon(a.lon_deg)), 4), round(a.lat_deg, 4),
-                                  round(float(wrap_lon(b.lon_deg)), 4), round(b.lat_deg, 4))
+        coords = sea_lane_between(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)
         found = canals_on_lane(coords[:, 0], coords[:, 1]) if coords is not None and len(
             coords) > 1 else []
         for _, canal, rev in found:
@@ -148,9 +146,9 @@ def sail_canal(env, canal: Canal, reverse: bool, depart_s: float, limits, stage_
     import contextlib
     import dataclasses
 
+    from ..ship import SeaState
     from .approach import Approach, sail_approach
-    from .route.problem import RouteProblem
-    from .ship import SeaState
+    from .problem import RouteProblem
 
     lon, lat = canal_line(canal, False)
     i0, i1 = canal.slow[0] % lon.size, canal.slow[1] % lon.size
@@ -159,7 +157,7 @@ def sail_canal(env, canal: Canal, reverse: bool, depart_s: float, limits, stage_
     if reverse:
         pieces = [(lo[::-1], la[::-1], slow) for lo, la, slow in pieces[::-1]]
     inside = dataclasses.replace(limits, under_keel=None, zones=None)
-    speed = canal.transit_kn * 1852.0 / 3600.0
+    speed = canal.transit_kn * M_S_PER_KNOT
     rpm = 0.5 * (inside.rpm_min + inside.rpm_max)
     if hasattr(env.model, "rpm_for_speed"):
         with contextlib.suppress(ValueError, ArithmeticError):  # else mid-range RPM

@@ -9,10 +9,11 @@ from pathlib import Path
 
 import numpy as np
 from shiproute_core.geodesy import inverse, unwrap_near
+from shiproute_core.units import M_PER_NM
 
+from ..geo.ports import Port
+from ..io.route_read import read_route
 from .approach import Approach
-from .geo.ports import Port
-from .io.route_read import read_route
 
 MATCH_NM = 10.0  # a given passage belongs to a port when one of its ends is this close
 
@@ -29,7 +30,7 @@ def load_approaches(paths: Sequence[str | Path]) -> list[Approach]:
 
 def _near(lon: float, lat: float, port: Port) -> bool:
     _, d = inverse(lon, lat, port.lon_deg, port.lat_deg)
-    return float(d) / 1852.0 <= MATCH_NM
+    return float(d) / M_PER_NM <= MATCH_NM
 
 
 def approaches_at(given: Sequence[Approach], dep: Port, arr: Port

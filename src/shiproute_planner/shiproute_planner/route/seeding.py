@@ -9,7 +9,6 @@ pool and a previous plan (shifted to the ship's current position and time).
 
 from __future__ import annotations
 
-import functools
 import itertools
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -19,10 +18,11 @@ import numpy as np
 from shiproute_core.geodesy import direct, great_circle_points, inverse, unwrap_near
 
 from ..geo.landmask import LandMask
-from ..route.encoding import clip_genes, join_genes
-from ..route.environment import Environment
-from ..route.legs import perf_arrays
-from ..route.problem import RouteProblem
+from ..geo.sea_lanes import sea_lane_between
+from .encoding import clip_genes, join_genes
+from .environment import Environment
+from .legs import perf_arrays
+from .problem import RouteProblem
 
 
 @dataclass(frozen=True)
@@ -173,18 +173,6 @@ def great_circle_track(problem: RouteProblem, n_points: int = 0) -> tuple[np.nda
                                problem.arr_lat_deg, n_points)
 
 
-@functools.lru_cache(maxsize=64)
-def _searoute_coords(lon0: float, lat0: float, lon1: float, lat1: float) -> np.ndarray | None:
-    """searoute's shortest sea-lane polyline (cached: its Dijkstra takes ~0.1 s)."""
-    import searoute
-
-    try:
-        feat = searoute.searoute([lon0, lat0], [lon1, lat1])
-    except Exception:
-        return None
-    return np.asarray(feat["geometry"]["coordinates"], dtype=float)
-
-
 def sea_lane_track(problem: RouteProblem, max_points: int = 0,
                    via: tuple[float, float] | None = None
                    ) -> tuple[np.ndarray, np.ndarray] | None:
@@ -192,15 +180,12 @@ def sea_lane_track(problem: RouteProblem, max_points: int = 0,
 
     Its end points are replaced by the problem's ports (searoute snaps to its network); long
     polylines are resampled to `max_points` (default two per stage)."""
-    from shiproute_core.geodesy import wrap_lon
-
-    stops = [[float(wrap_lon(problem.dep_lon_deg)), problem.dep_lat_deg],
-             [float(wrap_lon(problem.arr_lon_deg)), problem.arr_lat_deg]]
+    stops = [(problem.dep_lon_deg, problem.dep_lat_deg), (problem.arr_lon_deg, problem.arr_lat_deg)]
     if via is not None:
-        stops.insert(1, [float(wrap_lon(via[0])), float(via[1])])
+        stops.insert(1, (float(via[0]), float(via[1])))
     parts = []
     for a, b in itertools.pairwise(stops):
-        part = _searoute_coords(round(a[0], 4), round(a[1], 4), round(b[0], 4), round(b[1], 4))
+        part = sea_lane_between(a[0], a[1], b[0], b[1])
         if part is None:
             return None
         parts.append(part)

@@ -18,10 +18,11 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from shiproute_planner.baselines.compare import CompareSettings, repeat_runs
-from shiproute_planner.baselines.geodesy import inverse
+from shiproute_core.geodesy import inverse
+from shiproute_core.units import M_S_PER_KNOT
 from shiproute_planner.baselines.inputs import BaselineInputs
 from shiproute_planner.baselines.metaheuristics import seed_genes
+from shiproute_planner.experiments.compare import CompareSettings, repeat_runs
 from shiproute_planner.route.problem import RouteLimits, RouteProblem
 
 DEPART_S = 1_772_560_800.0 + 2 * 86400  # 2026-03-05T18:00Z
@@ -36,7 +37,7 @@ def test_seed_ga_beats_unseeded_metaheuristics_at_equal_budget(storm_sampler, la
     env, spec = make_environment("container_4600teu", storm_sampler)
     a, b = (145.0, 36.0), (185.0, 42.0)
     _, d = inverse(*a, *b)
-    rta = DEPART_S + float(d) / (16.5 * 1852 / 3600)
+    rta = DEPART_S + float(d) / (16.5 * M_S_PER_KNOT)
     lim = RouteLimits(rpm_min=spec.engine.rpm_min, rpm_max=spec.engine.rpm_max)
     p = RouteProblem(*a, *b, DEPART_S, rta, lim)
     inp = BaselineInputs(p, env, land_mask)

@@ -5,12 +5,13 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from shiproute_planner.baselines.compare import CompareSettings, method_runner
+from shiproute_core.geodesy import inverse
+from shiproute_core.units import M_PER_NM, M_S_PER_KNOT
 from shiproute_planner.baselines.ddp3 import Ddp3Config
-from shiproute_planner.baselines.geodesy import inverse
 from shiproute_planner.baselines.inputs import BaselineInputs
 from shiproute_planner.baselines.isochrone import IsochroneConfig
 from shiproute_planner.baselines.runners import GraphOptions, retime_path
+from shiproute_planner.experiments.compare import CompareSettings, method_runner
 from shiproute_planner.route.problem import RouteLimits, RouteProblem
 
 DEPART_S = 1_772_560_800.0  # 2026-03-03T18:00Z
@@ -29,9 +30,10 @@ def _settings(evaluations: int, step_deg: float, margin_deg: float, iso_step_s: 
         evaluations=evaluations, pop_size=30,
         graph=GraphOptions(
             grid_step_deg=step_deg, grid_margin_deg=margin_deg, tc_astar_grid_step_deg=step_deg,
-            isochrone=IsochroneConfig(step_s=iso_step_s, sector_m=lateral_nm * 1852 / 3),
-            ddp3=Ddp3Config(stage_m=stage_nm * 1852, lateral_m=lateral_nm * 1852, n_lateral=11,
-                            port_stage_m=stage_nm * 1852 / 2, time_bin_s=iso_step_s / 4),
+            isochrone=IsochroneConfig(step_s=iso_step_s, sector_m=lateral_nm * M_PER_NM / 3),
+            ddp3=Ddp3Config(stage_m=stage_nm * M_PER_NM, lateral_m=lateral_nm * M_PER_NM,
+                            n_lateral=11,
+                            port_stage_m=stage_nm * M_PER_NM / 2, time_bin_s=iso_step_s / 4),
             schedule_max_leg_nm=stage_nm, schedule_bin_s=iso_step_s / 4),
     )
 
@@ -53,7 +55,7 @@ def open_ocean(calm_env, land_mask):
     """Calm water, no land near: 150E 35N -> 157E 37N (~370 NM), RTA at ~15.5 kn."""
     env, _ = calm_env
     _, d = inverse(150.0, 35.0, 157.0, 37.0)
-    rta = DEPART_S + float(d) / (15.5 * 1852 / 3600)
+    rta = DEPART_S + float(d) / (15.5 * M_S_PER_KNOT)
     p = RouteProblem(150.0, 35.0, 157.0, 37.0, DEPART_S, rta, _limits(calm_env), stage_s=3 * 3600)
     inp = BaselineInputs(p, env, land_mask)
     s = _settings(800, 0.2, 1.0, 1800.0, 40.0, 8.0)
@@ -121,7 +123,7 @@ def storm_leg(storm_sampler, land_mask):
     env, spec = make_environment("container_4600teu", storm_sampler)
     depart = DEPART_S + 4 * 86400
     _, d = inverse(150.0, 40.0, 168.0, 44.0)
-    rta = depart + float(d) / (16.5 * 1852 / 3600)
+    rta = depart + float(d) / (16.5 * M_S_PER_KNOT)
     lim = RouteLimits(rpm_min=spec.engine.rpm_min, rpm_max=spec.engine.rpm_max)
     p = RouteProblem(150.0, 40.0, 168.0, 44.0, depart, rta, lim, stage_s=6 * 3600)
     inp = BaselineInputs(p, env, land_mask)

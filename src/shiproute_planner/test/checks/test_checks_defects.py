@@ -16,8 +16,6 @@ from shiproute_planner.checks.forecast_wire import (
 )
 from shiproute_planner.checks.ship_state import check_ship_state
 from shiproute_planner.checks.voyage import check_voyage
-from shiproute_planner.ros.cycle_assembler import CycleAssembler
-from shiproute_planner.ros.cycle_packer import CyclePacker, SliceFields
 from shiproute_planner.errors import (
     ForecastCycleError,
     InvalidVoyageError,
@@ -26,6 +24,8 @@ from shiproute_planner.errors import (
     ShipStateError,
     StaleForecastError,
 )
+from shiproute_planner.ros.cycle_assembler import CycleAssembler
+from shiproute_planner.ros.cycle_packer import CyclePacker, SliceFields
 from shiproute_planner.ros.intake_keys import RejectedKeys, assembly_key
 from shiproute_planner.ship.errors import UnknownShipError
 from shiproute_planner.voyage_params import check_parameter

@@ -19,8 +19,8 @@ from shiproute_planner.checks.forecast_wire import (
 )
 from shiproute_planner.checks.parameters import RANGES, check_number, require_number
 from shiproute_planner.checks.ship_state import OPTIONAL_RANGES, check_ship_state
-from shiproute_planner.ros.cycle_packer import CyclePacker, SliceFields
 from shiproute_planner.errors import ForecastCycleError, ParameterError, PlannerError
+from shiproute_planner.ros.cycle_packer import CyclePacker, SliceFields
 from shiproute_planner.ship.errors import ShipModelError
 from shiproute_weather.canonical import VARIABLES, Grid
 from shiproute_weather.wire_packing import PackedField

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
-from shiproute_planner.baselines.outcome import (
+from shiproute_planner.experiments.outcome import (
     MethodOutcome,
     RepeatRow,
     comparison_table,

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 import xarray as xr
 from shiproute_core.geodesy import densify_track
+from shiproute_core.units import M_S_PER_KNOT
 from shiproute_planner.errors import BathymetryError
 from shiproute_planner.geo.bathymetry import load_depth_grid
 from shiproute_planner.geo.depth import Bathymetry, load_bathymetry
@@ -17,8 +18,7 @@ from shiproute_planner.planning import plan_voyage
 from shiproute_planner.route.under_keel import UnderKeel, barrass_squat_m
 from shiproute_planner.ship import load_ship
 
-SKERKI = Path(__file__).parent / "data" / "skerki_etopo2022_30s.nc"
-KN = 1852.0 / 3600.0
+SKERKI = Path(__file__).parents[1] / "data" / "skerki_etopo2022_30s.nc"
 # a great circle along Skerki Bank's long axis (shoals of 11-14 m at ~37.8 N 10.9 E)
 A, B = "37.5,10.42", "38.3,11.65"
 
@@ -34,7 +34,7 @@ def _file_depth_along(lon: np.ndarray, lat: np.ndarray) -> np.ndarray:
 def test_barrass_squat_matches_published_numbers():
     # Barrass's open-water rule Cb V^2 / 100: Cb 0.9 -> 0.144, 0.576, 1.296, 2.304, 3.600 m
     # at 4, 8, 12, 16, 20 kn; confined channel twice that
-    v = np.array([4.0, 8.0, 12.0, 16.0, 20.0]) * KN
+    v = np.array([4.0, 8.0, 12.0, 16.0, 20.0]) * M_S_PER_KNOT
     assert barrass_squat_m(0.9, v) == pytest.approx([0.144, 0.576, 1.296, 2.304, 3.6], abs=1e-3)
     assert barrass_squat_m(0.9, v, confined=True) == pytest.approx(
         2 * np.array([0.144, 0.576, 1.296, 2.304, 3.6]), abs=1e-3)
@@ -43,7 +43,7 @@ def test_barrass_squat_matches_published_numbers():
 def test_required_depth_and_ukc_loss_grow_with_speed():
     bathy = load_bathymetry([SKERKI], with_default=False)
     uk = UnderKeel(bathy, draft_m=12.0, block_coefficient=0.8, margin_m=1.0)
-    speeds = np.array([6.0, 10.0, 14.0, 18.0]) * KN
+    speeds = np.array([6.0, 10.0, 14.0, 18.0]) * M_S_PER_KNOT
     n = speeds.size
     leg = [np.full(n, x) for x in (10.42, 37.5, 11.65, 38.3)]
     depth, ukc = uk.leg_clearance(*leg, speeds, np.zeros(n), exact=True)

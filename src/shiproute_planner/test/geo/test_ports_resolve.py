@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import pytest
 from shiproute_core.geodesy import inverse
+from shiproute_core.units import M_PER_NM
 from shiproute_planner.errors import PortNotFoundError
 from shiproute_planner.geo.ports import lookup_port, resolve_port
 
@@ -25,7 +26,7 @@ def test_aliases_and_locodes(typed, locode):
 def test_river_ports_start_at_sea_and_say_so(land_mask, name, sea_end, max_nm):
     port = resolve_port(name, land_mask)
     _, d = inverse(port.lon_deg, port.lat_deg, sea_end[1], sea_end[0])
-    assert float(d) / 1852.0 < max_nm
+    assert float(d) / M_PER_NM < max_nm
     assert not land_mask.is_land([port.lon_deg], [port.lat_deg])[0]
     assert "seaward end" in port.note and "pilotage" in port.note
 

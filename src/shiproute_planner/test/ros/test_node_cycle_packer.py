@@ -9,9 +9,9 @@ import os
 
 import numpy as np
 import pytest
+from shiproute_planner.errors import ForecastCycleError
 from shiproute_planner.ros.cycle_assembler import CycleAssembler
 from shiproute_planner.ros.cycle_packer import KEEP_BEHIND_S, CyclePacker, SliceFields, hs_field_at
-from shiproute_planner.errors import ForecastCycleError
 
 
 @functools.lru_cache(maxsize=2)

@@ -2,8 +2,8 @@
 
 import numpy as np
 import pytest
-from shiproute_planner.ros.cycle_assembler import CycleAssembler
 from shiproute_planner.path_frame import ecef_to_lat_lon, heading_from_quaternion, track_to_ecef
+from shiproute_planner.ros.cycle_assembler import CycleAssembler
 from shiproute_planner.ros.replan_policy import ReplanThresholds, track_deviation
 
 

@@ -6,17 +6,19 @@ from datetime import timedelta
 
 import numpy as np
 from shiproute_core.geodesy import inverse
-from shiproute_planner.approach import CoastalPassage, approach_length_m, lane_approaches
+from shiproute_core.units import M_PER_NM
 from shiproute_planner.geo.ports import resolve_port
 from shiproute_planner.geo.verify import land_crossings
-from shiproute_planner.planning import _previous_arrival, plan_voyage
+from shiproute_planner.planning import plan_voyage
+from shiproute_planner.route.approach import CoastalPassage, approach_length_m, lane_approaches
+from shiproute_planner.route.voyage_legs import previous_arrival
 
 JUNE = "2026-06-10T00:00Z"
 
 
 def test_coastal_passage_ends_where_the_ends_see_each_other_over_open_sea(land_mask):
     busan, long_beach = (resolve_port(n, land_mask) for n in ("Busan", "Long Beach"))
-    dep, arr = lane_approaches(busan, long_beach, 25 * 1852.0,
+    dep, arr = lane_approaches(busan, long_beach, 25 * M_PER_NM,
                                coastal=CoastalPassage(land_mask))
     a = (float(dep.lon_deg[-1]), float(dep.lat_deg[-1]))
     b = (float(arr.lon_deg[0]), float(arr.lat_deg[0]))
@@ -24,7 +26,7 @@ def test_coastal_passage_ends_where_the_ends_see_each_other_over_open_sea(land_m
     # the dense polygon check, and the one between the 25-NM approach ends is not (Japan)
     lon = np.array([a[0], b[0] + 360.0 * (b[0] < a[0])])
     assert land_crossings(lon, np.array([a[1], b[1]]), port_clearance_m=0.0) == []
-    short_dep, short_arr = lane_approaches(busan, long_beach, 25 * 1852.0)
+    short_dep, short_arr = lane_approaches(busan, long_beach, 25 * M_PER_NM)
     s_lon = np.array([short_dep.lon_deg[-1], short_arr.lon_deg[0] + 360.0])
     assert land_crossings(s_lon, np.array([short_dep.lat_deg[-1], short_arr.lat_deg[0]]),
                           port_clearance_m=0.0) != []
@@ -64,9 +66,9 @@ def test_replan_under_way_finishes_the_coastal_passage_ahead_of_the_ship(land_ma
     # ... but not once the ship is inside it, nor for another destination
     busan, long_beach = (resolve_port(n, land_mask) for n in ("Busan", "Long Beach"))
     inside = (lat[end + 1], lon[end + 1], t[end] + 1.0)
-    assert _previous_arrival(first, long_beach, pos) is not None
-    assert _previous_arrival(first, long_beach, inside) is None
-    assert _previous_arrival(first, busan, pos) is None
+    assert previous_arrival(first, long_beach, pos) is not None
+    assert previous_arrival(first, long_beach, inside) is None
+    assert previous_arrival(first, busan, pos) is None
 
 
 def test_resolve_box_resolves_every_coastal_cell_once(land_mask):

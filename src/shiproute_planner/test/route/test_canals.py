@@ -8,9 +8,10 @@ import dataclasses
 import numpy as np
 import pytest
 from shiproute_core.geodesy import inverse
-from shiproute_planner.canals import CANALS, route_canals, sail_canal
+from shiproute_core.units import M_PER_NM
 from shiproute_planner.geo.ports import lookup_port
 from shiproute_planner.planning import make_environment, route_limits
+from shiproute_planner.route.canals import CANALS, route_canals, sail_canal
 from shiproute_planner.ship import load_ship
 
 
@@ -58,5 +59,5 @@ def test_canal_transit_time_and_no_land_check():
     _, seg = inverse(lon[:-1], lat[:-1], lon[1:], lat[1:])
     hours = float(ev.eta_s[0] - ev.time_s[0, 0]) / 3600.0
     # 7.5 kn over the canal line (Suez Bay to off Port Said, ~105 NM): ~14 h
-    assert hours == pytest.approx(np.sum(seg) / 1852.0 / 7.5, rel=0.03)
+    assert hours == pytest.approx(np.sum(seg) / M_PER_NM / 7.5, rel=0.03)
     assert int(ev.flags[0]) == 0 and lead_in is not None and lead_out is None

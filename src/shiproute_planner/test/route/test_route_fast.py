@@ -5,13 +5,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from shiproute_core.geodesy import direct, inverse
-from shiproute_planner.ga.seeds import great_circle_track
 from shiproute_planner.planning import make_environment, route_limits, to_posix_s
 from shiproute_planner.route import _fast_kernels as fk
 from shiproute_planner.route.encoding import gene_bounds, join_genes
 from shiproute_planner.route.fast_eval import fast_evaluator
 from shiproute_planner.route.generate import evaluate_genes
 from shiproute_planner.route.problem import RouteProblem
+from shiproute_planner.route.seeding import great_circle_track
 
 
 def test_rk4_geodesic_direct_matches_pyproj_to_metres():

@@ -1,7 +1,9 @@
 """SeaState construction, STAWAVE-2 and wind terms, seakeeping and IMO checks."""
 
+
 import numpy as np
 import pytest
+from shiproute_core.units import M_S_PER_KNOT
 from shiproute_planner.ship import PhysicsModel, SeaState, load_ship
 from shiproute_planner.ship.seakeeping import (
     imo_flags,
@@ -89,7 +91,7 @@ def test_seakeeping_probabilities_grow_with_hs_and_imo_checks(model):
     one = np.array([1.0])
     hs = np.array([4.0])
     # surf-riding: V > 1.8 sqrt(L) / cos(180 - alpha) kn in following/quartering seas
-    fast = one * 1.9 * np.sqrt(ship.hull.lpp_m) * 0.514444
+    fast = one * 1.9 * np.sqrt(ship.hull.lpp_m) * M_S_PER_KNOT
     surf, *_ = imo_flags(ship, fast, hs, one * 10.0, one * 180.0, "jonswap")
     assert surf[0]
     surf, *_ = imo_flags(ship, fast, hs, one * 10.0, one * 140.0, "jonswap")

@@ -1,10 +1,11 @@
 """Holtrop & Mennen (1982) published worked example: every listed component within 1 %."""
 
+
 import numpy as np
 import pytest
+from shiproute_core.units import M_S_PER_KNOT
 from shiproute_planner.ship.holtrop_mennen import HMHull, coefficients, resistance
 
-KN = 0.514444
 # Holtrop & Mennen (1982), ISP 29(335), numerical example (single-screw ship at 25 kn)
 EXAMPLE = HMHull(
     lwl_m=205.0, breadth_m=32.0, draft_fore_m=10.0, draft_aft_m=10.0, volume_m3=37500.0,
@@ -18,7 +19,7 @@ RHO, NU = 1025.0, 1.1883e-6
 
 def _result():
     c = coefficients(EXAMPLE)
-    r = resistance(EXAMPLE, c, np.array([25.0 * KN]), RHO, NU)
+    r = resistance(EXAMPLE, c, np.array([25.0 * M_S_PER_KNOT]), RHO, NU)
     return c, r
 
 

@@ -1,10 +1,10 @@
 """Physics model sanity: monotonicity, weather effects, currents, calm limit, ranges."""
 
+
 import numpy as np
 import pytest
+from shiproute_core.units import M_S_PER_KNOT
 from shiproute_planner.ship import InputRangeError, PhysicsModel, SeaState, load_ship
-
-KN = 0.514444
 
 
 @pytest.fixture(scope="module")
@@ -115,5 +115,5 @@ def test_all_bundled_ships_make_plausible_service_speed():
     }.items():
         ship = load_ship(name)
         r = PhysicsModel(ship).evaluate(ship.engine.rpm_mcr, 0.0, SeaState.calm())
-        assert lo < float(r.stw_m_s) / KN < hi, name
+        assert lo < float(r.stw_m_s) / M_S_PER_KNOT < hi, name
         assert 0.8 < float(r.engine_load) < 1.0, name  # sea margin at rated speed

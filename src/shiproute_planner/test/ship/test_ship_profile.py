@@ -1,8 +1,10 @@
 """Performance profile NetCDF: export -> import reproduces the physics model on grid points."""
 
+
 import numpy as np
 import pytest
 import xarray as xr
+from shiproute_core.units import M_S_PER_KNOT
 from shiproute_planner.ship import PhysicsModel, ProfileError, SeaState, load_ship
 from shiproute_planner.ship.profile import (
     ProfileGrid,
@@ -59,7 +61,7 @@ def test_speed_axis_profile_and_errors(setup, tmp_path):
     ds = xr.load_dataset(path)
     speeds = np.array([8.0, 12.0, 16.0, 20.0])
     calm = SeaState.calm()
-    rpm_speed = physics.rpm_for_speed(speeds * 0.514444, 0.0, calm)
+    rpm_speed = physics.rpm_for_speed(speeds * M_S_PER_KNOT, 0.0, calm)
     by_speed = xr.Dataset(
         {
             "rpm": (("stw_kn",), rpm_speed),
@@ -73,7 +75,7 @@ def test_speed_axis_profile_and_errors(setup, tmp_path):
     by_speed.to_netcdf(p2)
     m2 = ProfileModel(ship, p2)
     r = m2.evaluate(rpm_speed[1], 0.0, calm)
-    assert float(r.stw_m_s) == pytest.approx(12.0 * 0.514444, rel=1e-6)
+    assert float(r.stw_m_s) == pytest.approx(12.0 * M_S_PER_KNOT, rel=1e-6)
     bad = tmp_path / "bad.nc"
     ds.drop_vars("fuel_t_per_h").to_netcdf(bad)
     with pytest.raises(ProfileError, match="fuel_t_per_h"):

@@ -13,7 +13,7 @@ import json
 import sys
 import time
 
-from ..cli.compare import ALL_METHODS, _parser, run_compare
+from ...cli.compare import ALL_METHODS, build_parser, run_compare
 
 SCENARIOS = ("storm_march", "calm_june")
 
@@ -51,7 +51,7 @@ def main(argv: list[str] | None = None) -> int:
     out: dict = {"benchmark": "compare", "route": "Busan -> Long Beach", "rta_days": 13,
                  "ship": "container_4600teu", "scenarios": {}}
     for name in a.scenarios.split(","):
-        args = _parser().parse_args(["--scenario", name, "--evals", str(a.evals), "--repeat",
+        args = build_parser().parse_args(["--scenario", name, "--evals", str(a.evals), "--repeat",
                                      str(a.repeat), "--methods", a.methods])
         doc = run_compare(args)
         doc.pop("_tables", None)

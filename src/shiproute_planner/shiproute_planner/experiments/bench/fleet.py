@@ -32,8 +32,8 @@ DEPART0 = datetime(2026, 3, 2, 0, tzinfo=UTC)
 
 def bench_voyages(n: int, budget: str) -> list:
     """`n` voyages: the passages at departures 18 h apart (different weather each)."""
-    from ..fleet.voyages import VoyageSpec
-    from ..plan_request import build_request
+    from ...fleet.voyages import VoyageSpec
+    from ...plan_request import build_request
 
     out = []
     for k in range(n):
@@ -47,7 +47,7 @@ def bench_voyages(n: int, budget: str) -> list:
 
 def run_batch(voyages: list, workers: int, forecast: str, out_dir: str) -> dict:
     """One batch on a fresh LocalCluster: records, wall time, set-up time, peak RSS."""
-    from ..fleet.runner import FleetOptions, run_fleet
+    from ...fleet.runner import FleetOptions, run_fleet
 
     opts = FleetOptions(out_dir=out_dir, forecasts=(forecast,), workers=workers)
     run = run_fleet(voyages, opts, force=True, show_progress=False)
@@ -57,11 +57,11 @@ def run_batch(voyages: list, workers: int, forecast: str, out_dir: str) -> dict:
 
 def alone(voyages: list, forecast: str) -> tuple[list[float], list[float], list[float]]:
     """Plan each voyage in this process (one thread, warmed): (wall s, CPU s, fuel t)."""
-    from ..fleet.forecasts import cached_forecast
-    from ..fleet.keys import forecast_key
-    from ..fleet.plugin import warm_planner
-    from ..plan_request import run_request
-    from ..threads import set_planner_threads
+    from ...fleet.forecasts import cached_forecast
+    from ...fleet.keys import forecast_key
+    from ...fleet.plugin import warm_planner
+    from ...plan_request import run_request
+    from ...threads import set_planner_threads
 
     set_planner_threads(1)
     fc = cached_forecast(forecast, forecast_key(forecast))

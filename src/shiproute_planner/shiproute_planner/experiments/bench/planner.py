@@ -19,14 +19,14 @@ from datetime import timedelta
 import numpy as np
 from shiproute_core.geodesy import direct, inverse
 
-from ..ga.seeds import great_circle_track
-from ..geo.landmask import default_land_mask
-from ..geo.verify import land_crossings
-from ..planning import make_environment, plan_voyage
-from ..route.encoding import clip_genes, gene_bounds, join_genes
-from ..route.fast_eval import fast_evaluator
-from ..route.generate import evaluate_genes
-from ..route.problem import RouteProblem
+from ...geo.landmask import default_land_mask
+from ...geo.verify import land_crossings
+from ...planning import make_environment, plan_voyage
+from ...route.encoding import clip_genes, gene_bounds, join_genes
+from ...route.fast_eval import fast_evaluator
+from ...route.generate import evaluate_genes
+from ...route.problem import RouteProblem
+from ...route.seeding import great_circle_track
 
 DEPART = "2026-03-03T18:00Z"
 
@@ -152,13 +152,13 @@ def run(budget_s: float, warm_budget_s: float, ref_factor: float, seed: int) -> 
 
 def _limits_of(plan, env, depth: bool = True):
     """The plan's route limits, with the UKC constraint the planner adds by default."""
-    from ..planning import route_limits
+    from ...planning import route_limits
 
     spec = getattr(env.model, "ship", None)
     limits = route_limits(spec)
     if not depth:
         return limits
-    from ..depth_setup import depth_limits
+    from ...depth_setup import depth_limits
 
     return depth_limits(limits, spec, None, True, 1.0)[0]
 

@@ -8,12 +8,12 @@ import os
 import time
 
 import numpy as np
+from shiproute_core.units import M_S_PER_KNOT
 
-from ..ship import PhysicsModel, SeaState, fast_model, load_ship
-from ..ship.holtrop_mennen import HMHull, coefficients, resistance
-from ..ship.propeller import kt_kq
+from ...ship import PhysicsModel, SeaState, fast_model, load_ship
+from ...ship.holtrop_mennen import HMHull, coefficients, resistance
+from ...ship.propeller import kt_kq
 
-KN_M_S = 0.514444
 # Holtrop & Mennen (1982) worked example: published values
 _HM_HULL = HMHull(
     lwl_m=205.0, breadth_m=32.0, draft_fore_m=10.0, draft_aft_m=10.0, volume_m3=37500.0,
@@ -29,7 +29,7 @@ _HM_PUBLISHED = {"fn": 0.2868, "form_factor": 1.156, "c1": 1.398, "m1": -2.1274,
 def hm_errors() -> dict[str, float]:
     """Relative error of each published Holtrop-Mennen example value."""
     c = coefficients(_HM_HULL)
-    r = resistance(_HM_HULL, c, np.array([25.0 * KN_M_S]), 1025.0, 1.1883e-6)
+    r = resistance(_HM_HULL, c, np.array([25.0 * M_S_PER_KNOT]), 1025.0, 1.1883e-6)
     ours = {"fn": float(r.froude[0]), "form_factor": c.form_factor, "c1": float(c.c1),
             "m1": c.m1, "lam": c.lam, "r_friction_kn": float(r.r_friction_n[0]) / 1e3,
             "r_wave_kn": float(r.r_wave_n[0]) / 1e3,
@@ -88,10 +88,10 @@ def run(ship_name: str, n_legs: int, n_check: int, seed: int) -> dict[str, objec
         "ship": ship_name,
         "hm_max_rel_err": max(hm.values()),
         "hm_rel_err": hm,
-        "speed_kn_at_77rpm_calm": float(calm.stw_m_s) / KN_M_S,
+        "speed_kn_at_77rpm_calm": float(calm.stw_m_s) / M_S_PER_KNOT,
         "fuel_t_per_day_at_77rpm_calm": float(calm.fuel_t_per_h) * 24.0,
         "brake_power_kw_at_77rpm_calm": float(calm.brake_power_kw),
-        "reference_voyage_hours_calm": 5248.0 / (float(calm.stw_m_s) / KN_M_S),
+        "reference_voyage_hours_calm": 5248.0 / (float(calm.stw_m_s) / M_S_PER_KNOT),
         "leg_evals_per_s": n_legs / min(times),
         "leg_evals_per_s_median": n_legs / float(np.median(times)),
         # CPU-time rate of one core: independent of other processes competing for the cores

@@ -22,14 +22,15 @@ from datetime import timedelta
 from importlib import resources
 
 import numpy as np
+from shiproute_core.units import M_PER_NM
 
-from ..errors import PlannerError
-from ..planning import plan_voyage
-from ..route_check import check_track
+from ...errors import PlannerError
+from ...planning import plan_voyage
+from ...route_check import check_track
 
 
 def _lanes() -> list[dict[str, str]]:
-    text = (resources.files("shiproute_planner.bench") / "world_lanes.csv").read_text()
+    text = (resources.files("shiproute_planner.experiments.bench") / "world_lanes.csv").read_text()
     return list(csv.DictReader(text.splitlines()))
 
 
@@ -46,7 +47,7 @@ def _peak_rss_mb() -> float:
 
 def run(budget_s: float, only: list[str]) -> dict:
     """Plan and check every lane; the JSON-able result."""
-    from ..cli.check import land_test
+    from ...cli.check import land_test
 
     land_full, land_note = land_test(None)
     rows, times = [], []
@@ -69,7 +70,7 @@ def run(budget_s: float, only: list[str]) -> dict:
         fixed = frozenset(k for a, b in plan.extra.get("fixed_passages", ())
                           for k in range(a, b))
         result = check_track(lon, lat, np.array([w.stw_kn for w in plan.waypoints[:-1]]),
-                             land_full.contains, port_clearance_m=3.0 * 1852.0,
+                             land_full.contains, port_clearance_m=3.0 * M_PER_NM,
                              skip_legs=fixed)
         land = [v for v in result.violations if v.kind == "land"]
         depths = np.array([w.min_depth_m for w in plan.waypoints[:-1]])
