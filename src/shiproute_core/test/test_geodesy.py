@@ -42,13 +42,17 @@ def test_knot_is_a_nautical_mile_per_hour() -> None:
     assert pytest.approx(1852.0) == M_S_PER_KNOT * 3600.0
 
 
-def test_cross_track_of_the_aviation_formulary_example() -> None:
-    # Williams, Aviation Formulary: on the great circle LAX (33deg57'N 118deg24'W) -> JFK
-    # (40deg38'N 73deg47'W), D (34deg30'N 116deg30'W) lies 7.2 NM right of course
+def test_cross_track_against_the_nearest_point_of_the_geodesic() -> None:
+    # the Aviation Formulary's example (Williams): course LAX (33deg57'N 118deg24'W) -> JFK
+    # (40deg38'N 73deg47'W), ship at D (34deg30'N 116deg30'W), right of course. Reference: the
+    # shortest WGS 84 distance from D to the geodesic, by brute force over 20,001 points on it
     lax = (-(118 + 24 / 60), 33 + 57 / 60)
     jfk = (-(73 + 47 / 60), 40 + 38 / 60)
+    lon, lat = geodesy.great_circle_points(*lax, *jfk, 20_001)
+    nearest = geodesy.distance_m(np.full(lon.size, -116.5), np.full(lon.size, 34.5), lon, lat)
     xtd = geodesy.cross_track_m(np.array([-116.5]), np.array([34.5]), *lax, *jfk)
-    assert xtd[0] / M_PER_NM == pytest.approx(7.2, abs=0.1)
+    assert xtd[0] > 0  # right of course
+    assert xtd[0] == pytest.approx(nearest.min(), abs=20.0)
     # mirrored across the equator the course turns the other way: the point is left of it
     xtd_south = geodesy.cross_track_m(np.array([-116.5]), np.array([-34.5]), lax[0], -lax[1],
                                       jfk[0], -jfk[1])

@@ -151,5 +151,6 @@ def _sail_fan(
                     (f[p] + legs.fuel_t + pen)[sea], p[sea]))
         todo = todo[land]
     if not out:
-        return (np.zeros(0),) * 4 + (np.zeros(0, np.int64),)  # type: ignore[return-value]
-    return tuple(np.concatenate(parts) for parts in zip(*out, strict=True))  # type: ignore[return-value]
+        return (np.zeros(0),) * 4 + (np.zeros(0, np.int64),)
+    columns = tuple(np.concatenate(parts) for parts in zip(*out, strict=True))
+    return columns  # type: ignore[return-value]  # zip(*out) loses the fixed 5-tuple shape

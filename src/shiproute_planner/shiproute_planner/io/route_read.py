@@ -34,7 +34,10 @@ def _read_rtz(path: Path) -> RouteTrack:
     if _local(root.tag) != "route":
         raise RouteFileError(f"route file {path}: root element is <{_local(root.tag)}>, "
                              "not an RTZ <route>")
-    lat, lon, speed, ids = [], [], [], []
+    lat: list[float] = []
+    lon: list[float] = []
+    speed: list[float] = []
+    ids: list[str] = []
     for wp in root.iter():
         if _local(wp.tag) != "waypoint" or not any(_local(c.tag) == "position" for c in wp):
             continue

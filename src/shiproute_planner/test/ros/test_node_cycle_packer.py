@@ -9,6 +9,7 @@ import os
 
 import numpy as np
 import pytest
+from shiproute_core.topics import FORECAST_SLICES
 from shiproute_planner.errors import ForecastCycleError
 from shiproute_planner.ros.cycle_assembler import CycleAssembler
 from shiproute_planner.ros.cycle_packer import KEEP_BEHIND_S, CyclePacker, SliceFields, hs_field_at
@@ -159,13 +160,13 @@ def test_dds_profile_frees_slice_buffers_unless_fast_dds_is_configured(monkeypat
     for name in ("FASTDDS_DEFAULT_PROFILES_FILE", "FASTRTPS_DEFAULT_PROFILES_FILE",
                  "RMW_FASTRTPS_USE_QOS_FROM_XML"):
         monkeypatch.delenv(name, raising=False)
-    path = use_dynamic_slice_buffers("/shiproute/forecast/slices")
+    path = use_dynamic_slice_buffers(FORECAST_SLICES)
     assert path is not None and os.environ["FASTDDS_DEFAULT_PROFILES_FILE"] == str(path)
     text = path.read_text()
     import xml.etree.ElementTree as ET
 
     ET.fromstring(text.encode())  # well-formed (Fast DDS rejects the whole file otherwise)
-    assert '<data_reader profile_name="/shiproute/forecast/slices">' in text
+    assert f'<data_reader profile_name="{FORECAST_SLICES}">' in text
     assert "<historyMemoryPolicy>DYNAMIC</historyMemoryPolicy>" in text
     forget_profile(path)
     assert not path.exists() and "FASTDDS_DEFAULT_PROFILES_FILE" not in os.environ

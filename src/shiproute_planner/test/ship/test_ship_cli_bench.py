@@ -7,9 +7,9 @@ import json
 
 import pytest
 import xarray as xr
-from shiproute_planner.bench.ship import hm_errors
-from shiproute_planner.bench.ship import main as bench_main
 from shiproute_planner.cli.ship import main as ship_main
+from shiproute_planner.experiments.bench.ship import hm_errors
+from shiproute_planner.experiments.bench.ship import main as bench_main
 
 pytestmark = pytest.mark.slow
 
