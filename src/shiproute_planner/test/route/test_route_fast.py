@@ -118,13 +118,13 @@ def test_fill_sea_matches_seastate_from_forecast(storm_sampler):
 def _brute_force_hits(land, lon0, lat0, lon1, lat1, spacing_deg):
     """Every chord point the exact scan can visit: land cells hit, coastal cells hit when the
     exact test puts the centre of the point's fine cell on land."""
-    from shiproute_planner.geo._kernels import _FINE, chord_sample, segment_ends
+    from shiproute_planner.geo._kernels import FINE, chord_sample, segment_ends
 
     out = np.zeros(lon0.size, dtype=bool)
     raster = np.asarray(land.raster)
     for s in range(lon0.size):
         ends = segment_ends(lat0[s], lon0[s], lat1[s], lon1[s])
-        steps = _FINE * max(1, int(np.ceil(ends[6] / spacing_deg)))
+        steps = FINE * max(1, int(np.ceil(ends[6] / spacing_deg)))
         pts = np.array([chord_sample(*ends[:6], k / steps) for k in range(steps + 1)])
         i = np.clip(((pts[:, 0] + 90.0) / land.cell_deg).astype(int), 0, raster.shape[0] - 1)
         j = np.clip((((pts[:, 1] + 180.0) % 360.0) / land.cell_deg).astype(int), 0,
