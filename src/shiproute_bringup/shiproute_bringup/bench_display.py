@@ -94,7 +94,7 @@ def run(n_plans: int, n_clients: int, screenshot: str | None) -> dict[str, Any]:
     from shiproute_display.geometry import position_at
     from shiproute_display.ros.convert import plan_from_msg
     from shiproute_display.samples import load_sample_plan
-    from shiproute_planner.convert import plan_to_msg, plan_to_rpm_profile, time_msg
+    from shiproute_planner.ros.convert import plan_to_msg, plan_to_rpm_profile, time_msg
 
     from shiproute_bringup.rosproc import RosProcess, random_domain_id, wait_until
     from shiproute_msgs.msg import RoutePlan, RpmProfile, ShipState

@@ -13,8 +13,10 @@ from pyproj import Geod
 from .units import M_PER_NM
 
 GEOD = Geod(ellps="WGS84")
-__all__ = ["GEOD", "M_PER_NM", "bearing_deg", "densify_track", "destination", "direct",
-           "distance_m", "great_circle_points", "inverse", "unwrap_near", "wrap_lon"]
+EARTH_MEAN_RADIUS_M = 6_371_008.8  # IUGG mean radius R1 = (2a + b) / 3 of WGS 84
+__all__ = ["EARTH_MEAN_RADIUS_M", "GEOD", "M_PER_NM", "bearing_deg", "cross_track_m",
+           "densify_track", "destination", "direct", "distance_m", "great_circle_points",
+           "inverse", "track_length_m", "unwrap_near", "wrap_lon"]
 
 
 def wrap_lon(lon_deg: ArrayLike) -> np.ndarray:
@@ -92,3 +94,23 @@ def destination(lon_deg: ArrayLike, lat_deg: ArrayLike, bearing: ArrayLike,
     """Point (lon in -180..180, lat) reached after `dist_m` along the geodesic of `bearing`."""
     lon, lat = direct(lon_deg, lat_deg, bearing, dist_m)
     return wrap_lon(lon), lat
+
+
+def cross_track_m(lon_deg: ArrayLike, lat_deg: ArrayLike, a_lon: float, a_lat: float,
+                  b_lon: float, b_lat: float) -> np.ndarray:
+    """Signed distance [m, + to the right] of points from the great circle A -> B: the
+    spherical cross-track formula on the mean radius, fed with WGS 84 azimuths and distances."""
+    az_ab, _ = inverse(a_lon, a_lat, b_lon, b_lat)
+    shape = np.shape(lon_deg)
+    az_ap, d_ap = inverse(np.full(shape, a_lon), np.full(shape, a_lat), lon_deg, lat_deg)
+    delta = d_ap / EARTH_MEAN_RADIUS_M
+    return np.asarray(EARTH_MEAN_RADIUS_M * np.arcsin(
+        np.sin(delta) * np.sin(np.radians(az_ap - az_ab))))
+
+
+def track_length_m(lon_deg: ArrayLike, lat_deg: ArrayLike) -> float:
+    """Total geodesic length [m] of a polyline track."""
+    lon = np.asarray(lon_deg, dtype=float)
+    lat = np.asarray(lat_deg, dtype=float)
+    _, d = inverse(lon[:-1], lat[:-1], lon[1:], lat[1:])
+    return float(np.sum(d))

@@ -40,3 +40,33 @@ def test_destination_inverts_distance_and_wraps_the_antimeridian() -> None:
 def test_knot_is_a_nautical_mile_per_hour() -> None:
     assert M_PER_NM == 1852.0
     assert pytest.approx(1852.0) == M_S_PER_KNOT * 3600.0
+
+
+def test_cross_track_against_the_nearest_point_of_the_geodesic() -> None:
+    # the Aviation Formulary's example (Williams): course LAX (33deg57'N 118deg24'W) -> JFK
+    # (40deg38'N 73deg47'W), ship at D (34deg30'N 116deg30'W), right of course. Reference: the
+    # shortest WGS 84 distance from D to the geodesic, by brute force over 20,001 points on it
+    lax = (-(118 + 24 / 60), 33 + 57 / 60)
+    jfk = (-(73 + 47 / 60), 40 + 38 / 60)
+    lon, lat = geodesy.great_circle_points(*lax, *jfk, 20_001)
+    nearest = geodesy.distance_m(np.full(lon.size, -116.5), np.full(lon.size, 34.5), lon, lat)
+    xtd = geodesy.cross_track_m(np.array([-116.5]), np.array([34.5]), *lax, *jfk)
+    assert xtd[0] > 0  # right of course
+    assert xtd[0] == pytest.approx(nearest.min(), abs=20.0)
+    # mirrored across the equator the course turns the other way: the point is left of it
+    xtd_south = geodesy.cross_track_m(np.array([-116.5]), np.array([-34.5]), lax[0], -lax[1],
+                                      jfk[0], -jfk[1])
+    assert xtd_south[0] == pytest.approx(-xtd[0], rel=1e-9)
+
+
+def test_points_on_the_great_circle_have_no_cross_track() -> None:
+    lon, lat = geodesy.great_circle_points(129.0, 35.0, 241.7, 33.7, 9)
+    xtd = geodesy.cross_track_m(lon[1:-1], lat[1:-1], 129.0, 35.0, 241.7, 33.7)
+    # WGS 84 geodesic vs the spherical great circle: well under a kilometre on 5,000 NM
+    assert np.all(np.abs(xtd) < 1000.0)
+
+
+def test_track_length_adds_up_to_the_quarter_meridian() -> None:
+    # WGS 84 quarter meridian 10,001,965.729 m, here as ten legs along the meridian
+    lat = np.linspace(0.0, 90.0, 11)
+    assert geodesy.track_length_m(np.zeros(11), lat) == pytest.approx(10_001_965.729, abs=0.01)

@@ -14,7 +14,7 @@ def load_plan(name: str) -> Any:
 
 def plan_messages(plan: Any, stamp_s: float, trigger: str = "") -> tuple[Any, Any]:
     """(RoutePlan msg, RpmProfile msg) exactly as the planner node makes them."""
-    from shiproute_planner.convert import plan_to_msg, plan_to_rpm_profile, time_msg
+    from shiproute_planner.ros.convert import plan_to_msg, plan_to_rpm_profile, time_msg
 
     msg = plan_to_msg(plan, time_msg(stamp_s))
     if trigger:

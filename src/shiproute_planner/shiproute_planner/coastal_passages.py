@@ -17,7 +17,8 @@ import os
 import numpy as np
 from shiproute_core.geodesy import M_PER_NM
 
-from .approach import Approach
+from shiproute_planner.route.approach import Approach
+
 from .errors import PlannerError
 from .geo.datadir import data_dir
 from .route.passages import (

@@ -16,10 +16,11 @@ from typing import Any
 
 import numpy as np
 from shiproute_core.geodesy import direct, inverse
+from shiproute_core.units import M_S_PER_KNOT
 
 from .errors import BathymetryError
 from .geo.depth import Bathymetry, load_bathymetry
-from .plan_types import KN_PER_M_S, RoutePlan
+from .plan_types import RoutePlan
 from .route.problem import RouteLimits
 from .route.under_keel import UnderKeel, under_keel_for_ship
 
@@ -83,7 +84,7 @@ def with_depth_report(plan: RoutePlan, uk: UnderKeel | None, notes: list[str]) -
         return dataclasses.replace(plan, warnings=tuple(warnings))
     lon, lat, _ = plan.track()
     wps = plan.waypoints
-    stw = np.array([w.stw_kn for w in wps[:-1]]) / KN_PER_M_S
+    stw = np.array([w.stw_kn for w in wps[:-1]]) * M_S_PER_KNOT
     hs = np.array([w.hs_m for w in wps[:-1]])
     depth, ukc = track_clearance(uk, lon, lat, stw, hs)
     new = []

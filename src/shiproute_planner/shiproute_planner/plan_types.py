@@ -11,10 +11,9 @@ from dataclasses import dataclass, field
 import numpy as np
 from shiproute_core.flags import describe_flags
 from shiproute_core.geodesy import wrap_lon
+from shiproute_core.units import M_PER_NM, M_S_PER_KNOT
 
 from .route.evaluation import RouteEvaluation
-
-KN_PER_M_S = 3600.0 / 1852.0
 
 
 @dataclass(frozen=True)
@@ -138,8 +137,8 @@ def waypoints_from_evaluation(ev: RouteEvaluation, weather: dict, port_names: di
         out.append(Waypoint(
             lat_deg=float(ev.lat_deg[0, k]), lon_deg=float(wrap_lon(ev.lon_deg[0, k])),
             time_s=float(ev.time_s[0, k]), heading_deg=g("heading_deg"), shaft_rpm=g("rpm"),
-            stw_kn=g("stw_m_s") * KN_PER_M_S, sog_kn=g("sog_m_s") * KN_PER_M_S,
-            leg_distance_nm=g("distance_m") / 1852.0, leg_duration_s=g("duration_s"),
+            stw_kn=g("stw_m_s") / M_S_PER_KNOT, sog_kn=g("sog_m_s") / M_S_PER_KNOT,
+            leg_distance_nm=g("distance_m") / M_PER_NM, leg_duration_s=g("duration_s"),
             leg_fuel_t=g("fuel_t"), brake_power_kw=g("brake_power_kw"), hs_m=g("hs_m"),
             wave_from_deg=float(wave_from[k]) if leg else nan,
             wind_speed_m_s=g("wind_speed_m_s"),

@@ -10,42 +10,45 @@ from __future__ import annotations
 
 import dataclasses
 import itertools
-import math
 import time
-import uuid
 from collections.abc import Callable, Sequence
 from datetime import UTC, datetime, timedelta
 from pathlib import Path
 from typing import Any
 
 import numpy as np
-from shiproute_core.geodesy import inverse, unwrap_near
+from shiproute_core.geodesy import inverse
+from shiproute_core.units import M_PER_NM
 
-from .approach import Approach, CoastalPassage, approach_length_m, lane_approaches, sail_approach
-from .canals import route_canals, sail_canal
+from shiproute_planner.method_context import Progress
+from shiproute_planner.methods import MethodContext, compute_baseline, get_method
+from shiproute_planner.route.approach import (
+    sail_approach,
+)
+from shiproute_planner.route.canals import route_canals, sail_canal
+from shiproute_planner.route.given_approach import load_approaches
+
 from .checks.parameters import require_number
-from .coastal_passages import computed_approach, passage_rules, passages_note
+from .coastal_passages import passage_rules, passages_note
 from .depth_setup import depth_limits, with_depth_report
 from .errors import InvalidVoyageError, PlanCancelledError
 from .forecast_statement import forecast_statement, prepare_forecast
 from .ga.loop import GAConfig
-from .ga.pool import Seed, SeedPool, pool_key
-from .ga.seeds import TrackSeed, shift_track
+from .ga.pool import SeedPool
 from .geo.depth import Bathymetry
 from .geo.landmask import LandMask, default_land_mask
 from .geo.ports import Port, resolve_port
 from .geo.zones import Zones
-from .given_approach import approaches_at, load_approaches
-from .methods import MethodContext, Progress, compute_baseline, get_method
-from .objective_window import search_window_s
-from .objectives import Economics, ObjectiveTerms, objective_block, objective_terms
+from .objectives import Economics, objective_block, objective_terms
+from .plan_assembly import assemble_plan
 from .plan_checks import checked_plan, zone_limits
-from .plan_types import RoutePlan, Waypoint, reasons_of, waypoints_from_evaluation
+from .plan_seeds import leg_seeds, offer_to_pool
+from .plan_types import RoutePlan
 from .route.environment import Environment
-from .route.evaluation import RouteEvaluation
-from .route.problem import RouteLimits, RouteProblem
-from .straits import is_gate, route_straits, sail_strait
-from .voyage.legs import sea_distance_m, turns_to_round, voyage_schedule
+from .route.problem import RouteLimits
+from .route.voyage_legs import leg_setup
+from .straits import route_straits, sail_strait
+from .voyage.legs import voyage_schedule
 from .voyage.plan_calls import with_port_calls
 from .voyage.port_calls import PortCall
 from .voyage.schedule import plan_schedule
@@ -53,7 +56,6 @@ from .voyage.stage_length import (
     OCEAN_STAGE_H,
     RTA_TOLERANCE_S,
     check_rta_tolerance_s,
-    leg_stage_hours,
     scaled_ga_config,
 )
 from .voyage_ship import loaded_ship, loading_block
@@ -141,10 +143,6 @@ def route_limits(spec: Any, overrides: dict | None = None) -> RouteLimits:
     if "rpm_min" not in kw or "rpm_max" not in kw:
         raise InvalidVoyageError("RPM range unknown: give a ship file or limits rpm_min/rpm_max")
     return RouteLimits(**kw)
-
-
-def _port_id(p: Port) -> str:
-    return p.locode or f"{p.lat_deg:.2f},{p.lon_deg:.2f}"
 
 
 def _calls_of(via: Sequence[str | Port], via_rta: Sequence[TimeLike | None],
@@ -367,7 +365,7 @@ def plan_voyage(
                         position=position if under_way else None, given=given)
         problem, pre, ap_arr, rpm_ap = leg.problem, leg.pre, leg.ap_arr, leg.rpm_ap
         warnings += [n for n in leg.notes if n not in warnings]
-        seeds, gene_seeds = _seeds(problem, pool, a, b, month,
+        seeds, gene_seeds = leg_seeds(problem, pool, a, b, month,
                                    previous_plan if k == 0 else None, position)
         used = time.perf_counter() - t0
         share = dists[k] / dists[k:].sum()
@@ -393,7 +391,7 @@ def plan_voyage(
         if with_baseline and base is not None:
             baselines.append((base.name, base.rpm, base.evaluation))
         if pool is not None:
-            _offer(pool, problem, a, b, month, res.evaluation, res.seed_source, res.genes)
+            offer_to_pool(pool, problem, a, b, month, res.evaluation, res.seed_source, res.genes)
         leg_depart = float(res.evaluation.eta_s[0])
         post = sail_approach(env, ap_arr, rpm_ap, leg_depart, lim) if ap_arr else None
         if post is not None:
@@ -404,7 +402,7 @@ def plan_voyage(
     land.fine_coast.save()  # coastal cells this plan resolved: later processes start with them
     deadlines = [_deadline(call_at.get(k + 1), rta_s if k == len(results) - 1 else None)
                  + rta_tolerance_s for k in range(len(results))]
-    plan = _assemble(ports, problems, results, baselines, sources, approaches, env, spec,
+    plan = assemble_plan(ports, problems, results, baselines, sources, approaches, env, spec,
                      method, objective, depart_s, rta_s, leg_rtas, gens, evals,
                      time.perf_counter() - t0, deadlines)
     if sched is not None:
@@ -446,7 +444,6 @@ def _chosen_model(ship: Any, ship_model: str) -> tuple[Any, tuple[str, ...]]:
         raise InvalidVoyageError(f"ship model: {exc}") from exc
 
 
-
 def _rta_warning(ports: list[Port], depart_s: float, rta_s: float,
                  spec: Any) -> tuple[str, float]:
     """Why the RTA cannot be met even on great circles at full calm-water speed ('' when it
@@ -456,7 +453,7 @@ def _rta_warning(ports: list[Port], depart_s: float, rta_s: float,
     from .checks.voyage import max_calm_speed_kn
 
     dist_nm = sum(float(inverse(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)[1])
-                  for a, b in itertools.pairwise(ports)) / 1852.0
+                  for a, b in itertools.pairwise(ports)) / M_PER_NM
     need_kn = dist_nm / ((rta_s - depart_s) / 3600.0)
     top_kn = max_calm_speed_kn(spec)
     earliest_s = depart_s + dist_nm / top_kn * 3600.0
@@ -467,145 +464,6 @@ def _rta_warning(ports: list[Port], depart_s: float, rta_s: float,
             f"{top_kn:.1f} kn in calm water; best-effort plan (earliest arrival)"), earliest_s
 
 
-@dataclasses.dataclass(frozen=True)
-class LegSetup:
-    """One leg as the methods see it: the problem between the approaches' sea ends, the
-    sailed departure approach, the arrival approach and the approach RPM."""
-
-    problem: RouteProblem
-    pre: RouteEvaluation | None
-    ap_arr: Approach | None
-    rpm_ap: float
-    notes: tuple[str, ...] = ()  # how the coastal passages were made (for the plan)
-
-
-def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMask,
-              depart_s: float, rta_s: float, *, approach_nm: float = 25.0,
-              approach_rpm: float | None = None, coastal_passage: bool = True,
-              stage_hours: float | None = 12.0, objective: str = "fuel",
-              terms: ObjectiveTerms | None = None, under_way: bool = False,
-              previous_plan: RoutePlan | None = None,
-              position: tuple[float, float, float] | None = None,
-              given: Sequence[Approach] = ()) -> LegSetup:
-    """Approaches of a leg a -> b and the problem between their sea ends (see `plan_voyage`;
-    shared with the method comparison so every method solves the same problem). Under way
-    the ship finishes the coastal passage it is in, if any, from where it is. `given`
-    approaches (the user's coastal routes, e.g. from the ECDIS) that start at `a` or end at
-    `b` replace the computed ones and are sailed as given."""
-    coastal = CoastalPassage(land) if coastal_passage else None
-    rest = _rest_of_approach(previous_plan, position) if under_way else None
-    kept = _previous_arrival(previous_plan, b, position) if under_way else None
-    if kept is not None:  # under way to the same port: the arrival approach stays as planned
-        ap_dep, ap_arr = None, kept
-    else:
-        ap_dep, ap_arr = lane_approaches(
-            a, b, approach_nm * 1852.0,
-            with_dep=(not under_way or (coastal is not None and previous_plan is None))
-            and not is_gate(a), with_arr=not is_gate(b),  # gates lie in open water
-            coastal=coastal, dep_min_m=0.0 if under_way else None)
-    notes: list[str] = []
-    if coastal is not None and kept is None:  # computed on the fine grid, not the lane's cut
-        rules = passage_rules(lim.under_keel)
-        if rest is None:
-            ap_dep, said = computed_approach(ap_dep, a.name, False, rules)
-            notes += said
-        ap_arr, said = computed_approach(ap_arr, b.name, True, rules)
-        notes += said
-    if rest is not None:
-        ap_dep = rest
-    mine_dep, mine_arr = approaches_at(given, a, b)
-    if mine_dep is not None and not under_way:
-        ap_dep = mine_dep
-    if mine_arr is not None:
-        ap_arr = mine_arr
-    rpm_ap = approach_rpm or _lane_rpm(env, a, b, ap_dep, ap_arr, depart_s, rta_s, lim)
-    pre = sail_approach(env, ap_dep, rpm_ap, depart_s, lim) if ap_dep else None
-    t_leg = float(pre.eta_s[0]) if pre is not None else depart_s
-    rta_leg = rta_s
-    if ap_arr is not None:
-        est = sail_approach(env, ap_arr, rpm_ap, rta_leg - 3600.0, lim)
-        rta_leg -= float(est.eta_s[0] - est.time_s[0, 0])
-    d_lon, d_lat = (ap_dep.lon_deg[-1], ap_dep.lat_deg[-1]) if ap_dep else (a.lon_deg, a.lat_deg)
-    a_lon, a_lat = (ap_arr.lon_deg[0], ap_arr.lat_deg[0]) if ap_arr else (b.lon_deg, b.lat_deg)
-    rta_leg = max(rta_leg, t_leg + 60.0)
-    stage_h = stage_hours or leg_stage_hours(
-        rta_leg - t_leg, turns_to_round(land, float(d_lon), float(d_lat), float(a_lon),
-                                        float(a_lat)))
-    span_s = search_window_s(terms, env.model,
-                             float(inverse(d_lon, d_lat, a_lon, a_lat)[1]), rta_leg - t_leg)
-    n_stages = (max(1, math.ceil(span_s / (stage_h * 3600.0)) - 1)
-                if span_s < rta_leg - t_leg else 0)  # 0: the whole window
-    problem = RouteProblem(float(d_lon), float(d_lat), float(a_lon), float(a_lat), t_leg,
-                           rta_leg, lim, stage_s=stage_h * 3600.0, n_stages=n_stages,
-                           objective=objective,
-                           objective_per_t_fuel=terms.per_t_fuel if terms else 1.0,
-                           objective_per_h=terms.per_h if terms else 0.0,
-                           dep_name=a.name, arr_name=b.name)
-    return LegSetup(problem, pre, ap_arr, float(rpm_ap), tuple(notes))
-
-
-def _rest_of_approach(previous: RoutePlan | None,
-                      position: tuple[float, float, float] | None) -> Approach | None:
-    """What is left of the previous plan's departure approach from the ship's position (lat,
-    lon, time), or None when the ship is past it (or there is no previous plan)."""
-    if previous is None or position is None or not previous.optimised_spans:
-        return None
-    lon, lat, t = previous.track()
-    start = previous.optimised_spans[0][0]
-    now = position[2]
-    if start == 0 or now >= t[start]:
-        return None
-    ahead = np.flatnonzero((t > now) & (np.arange(t.size) <= start))
-    p_lon = unwrap_near(position[1], float(lon[ahead[0]])) if ahead.size else position[1]
-    return Approach(np.concatenate([[p_lon], lon[ahead]]),
-                    np.concatenate([[position[0]], lat[ahead]]))
-
-
-def _previous_arrival(previous: RoutePlan | None, port: Port,
-                      position: tuple[float, float, float] | None) -> Approach | None:
-    """The previous plan's arrival approach when it ends at `port` and the ship (lat, lon,
-    time) has not reached it yet: re-plans under way keep it instead of searching the sea lane
-    and the coastal passage again from every new position (~0.2 s each)."""
-    if previous is None or position is None or not previous.optimised_spans:
-        return None
-    lon, lat, t = previous.track()
-    end = previous.optimised_spans[-1][1]
-    if end >= lon.size - 1 or position[2] >= t[end]:
-        return None
-    if abs(lat[-1] - port.lat_deg) > 1e-6 or abs(unwrap_near(port.lon_deg, lon[-1])
-                                                   - lon[-1]) > 1e-6:
-        return None
-    return Approach(lon[end:].copy(), lat[end:].copy())
-
-
-def _lane_rpm(env: Environment, a: Port, b: Port, ap_dep, ap_arr, depart_s: float,
-              rta_s: float, lim: RouteLimits) -> float:
-    """Approach RPM: calm water RPM of the mean speed that meets the RTA on the approaches
-    plus the sea lane between their sea ends, within the engine range."""
-    ends = [(a.lon_deg, a.lat_deg), (b.lon_deg, b.lat_deg)]
-    if ap_dep is not None:
-        ends[0] = (ap_dep.lon_deg[-1], ap_dep.lat_deg[-1])
-    if ap_arr is not None:
-        ends[1] = (ap_arr.lon_deg[0], ap_arr.lat_deg[0])
-    # the sea lane between the approaches' ends (round the land the great circle crosses)
-    length = (approach_length_m(ap_dep) + approach_length_m(ap_arr)
-              + sea_distance_m(*(round(float(v), 4) for v in (*ends[0], *ends[1]))))
-    speed = length / max(rta_s - depart_s, 3600.0)
-    model = env.model
-    if hasattr(model, "rpm_for_speed"):
-        from .ship import SeaState
-        from .ship.errors import ShipModelError
-
-        try:
-            rpm = float(model.rpm_for_speed(np.array([min(speed, 30.0)]), np.array([0.0]),
-                                            SeaState.calm(1))[0])
-            return float(np.clip(rpm, lim.rpm_min, lim.rpm_max))
-        except (ValueError, ArithmeticError, ShipModelError):
-            # outside the model's range: an RTA beyond reach is sailed at full RPM
-            return lim.rpm_max if speed > 10.0 else 0.5 * (lim.rpm_min + lim.rpm_max)
-    return 0.5 * (lim.rpm_min + lim.rpm_max)
-
-
 def _cancel_fn(cancel: Any) -> Callable[[], bool]:
     if cancel is None:
         return lambda: False
@@ -614,101 +472,3 @@ def _cancel_fn(cancel: Any) -> Callable[[], bool]:
     return cancel
 
 
-def _seeds(problem: RouteProblem, pool: SeedPool | None, a: Port, b: Port, month: int,
-           previous: RoutePlan | None, position) -> tuple[list[TrackSeed], list]:
-    out, genes = [], []
-    if previous is not None:
-        lon, lat, t = previous.track()
-        if position is not None:
-            s = shift_track(lon, lat, t, previous.leg_rpm(), problem.dep_lon_deg,
-                            problem.dep_lat_deg, problem.depart_s)
-        else:
-            s = TrackSeed("previous_plan", lon, lat, previous.leg_rpm())
-        if s is not None and s.lon_deg.size >= 2:
-            out.append(s)
-    if pool is not None:
-        stored = pool.get(pool_key(_port_id(a), _port_id(b), month))
-        if stored is not None:
-            out.append(TrackSeed("pool", np.array(stored.lon_deg), np.array(stored.lat_deg),
-                                 np.array(stored.rpm)))
-            if stored.genes:
-                genes.append(("pool", np.array(stored.genes)))
-    return out, genes
-
-
-def _offer(pool: SeedPool, problem: RouteProblem, a: Port, b: Port, month: int,
-           ev: RouteEvaluation, source: str, genes: np.ndarray | None) -> None:
-    pool.offer(Seed(pool_key(_port_id(a), _port_id(b), month),
-                    tuple(map(float, ev.lon_deg[0])), tuple(map(float, ev.lat_deg[0])),
-                    tuple(map(float, ev.legs["rpm"][0])), problem.objective,
-                    float(ev.objective[0]), float(ev.violation[0]), float(ev.fuel_t[0]),
-                    source, genes=() if genes is None else tuple(map(float, genes))))
-
-
-def _legs_of(ev: RouteEvaluation, pre: RouteEvaluation | None,
-             post: RouteEvaluation | None) -> list[RouteEvaluation]:
-    return [e for e in (pre, ev, post) if e is not None]
-
-
-def _assemble(ports, problems, results, baselines, sources, approaches, env, spec, method,
-              objective, depart_s, rta_s, leg_rtas, gens, evals, compute_s,
-              deadlines) -> RoutePlan:
-    wps: list[Waypoint] = []
-    flags = 0
-    plan_parts, base_parts, spans, fixed = [], [], [], []
-    for k, ev in enumerate(results):
-        pre, post = approaches[k]
-        parts = _legs_of(ev, pre, post)
-        plan_parts.extend(parts)
-        if baselines:
-            base_parts.extend(_legs_of(baselines[k][2], pre, post))
-        for j, part in enumerate(parts):
-            m = part.legs["rpm"].shape[1]
-            weather = env.weather(part.lon_deg[0, :m], part.lat_deg[0, :m], part.time_s[0, :m])
-            names = {}
-            if j == 0:
-                names[0] = ports[k].name
-            if j == len(parts) - 1:
-                names[m] = ports[k + 1].name
-            w = waypoints_from_evaluation(part, weather, names)
-            start = max(len(wps) - 1, 0)
-            if wps:  # the junction node carries the next part's leg values
-                wps[-1] = dataclasses.replace(w[0], port=wps[-1].port or w[0].port)
-                w = w[1:]
-            wps.extend(w)
-            if part is ev and sources[k] == "canal":
-                fixed.append((start, len(wps) - 1))
-            elif part is ev and sources[k] != "strait":
-                spans.append((start, len(wps) - 1))
-            if part is ev and sources[k] != "strait":  # approaches and strait passages are
-                # computed against land, clearance and depth: their flags inform, not decide
-                flags |= int(part.flags[0]) & ~2
-        if float(parts[-1].eta_s[0]) > deadlines[k] and sources[k] not in ("strait", "canal"):
-            flags |= 2  # inserted points carry no user RTA: a fixed passage's time is made
-            # up on the optimised leg after it
-    fuel = sum(float(ev.fuel_t[0]) for ev in plan_parts)
-    dist = sum(float(ev.distance_m[0]) for ev in plan_parts) / 1852.0
-    eta = float(plan_parts[-1].eta_s[0])
-    b_fuel = sum(float(e.fuel_t[0]) for e in base_parts) if baselines else float("nan")
-    b_dist = sum(float(e.distance_m[0]) for e in base_parts) / 1852.0 if baselines else 0.0
-    b_eta = float(base_parts[-1].eta_s[0]) if baselines else float("nan")
-    b_ok = all(bool(b[2].feasible[0]) for b in baselines) if baselines else False
-    b_track = tuple((float(la), float(lo)) for e in base_parts
-                    for lo, la in zip(e.lon_deg[0], e.lat_deg[0], strict=True))
-    return RoutePlan(
-        plan_id=uuid.uuid4().hex[:12], method=method, seed_source=sources[0],
-        objective=objective, ship_name=getattr(spec, "name", ""), cycle_id=env.cycle_id,
-        departure_s=depart_s, rta_s=rta_s, eta_s=eta, feasible=flags == 0,
-        infeasible_reasons=reasons_of(flags), total_fuel_t=fuel, total_distance_nm=dist,
-        total_time_s=eta - depart_s, baseline_fuel_t=b_fuel,
-        baseline_method="+".join(sorted({b[0] for b in baselines})) if baselines else "",
-        baseline_distance_nm=b_dist, baseline_eta_s=b_eta, baseline_feasible=b_ok,
-        baseline_rpm=float(baselines[0][1]) if baselines else float("nan"),
-        compute_time_s=compute_s, waypoints=tuple(wps),
-        ports=tuple(p.name for p in ports), stage_s=problems[0].stage_s, generations=gens,
-        evaluations=evals,
-        vessel_max_wave_m=float(problems[0].limits.max_hs_m or float("nan")),
-        vessel_max_wind_m_s=float(problems[0].limits.max_wind_m_s or float("nan")),
-        baseline_track=b_track, leg_rtas_s=tuple(leg_rtas), optimised_spans=tuple(spans),
-        extra={"fixed_passages": tuple(fixed)} if fixed else {},
-    )

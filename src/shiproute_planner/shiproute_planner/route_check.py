@@ -15,11 +15,10 @@ from dataclasses import dataclass
 import numpy as np
 import shapely
 from shiproute_core.geodesy import densify_track, inverse, wrap_lon
+from shiproute_core.units import M_PER_NM
 
 from .geo.zones import Zones
 from .route.under_keel import UnderKeel
-
-M_PER_NM = 1852.0
 
 
 @dataclass(frozen=True)

@@ -88,8 +88,8 @@ def route_straits(ports: list, canal_legs: dict, via_rta: list
     a strait; returns (ports, canal legs re-indexed, {leg index: (strait, lane part gate to
     gate (lon, lat))}, via RTAs aligned to the new ports). A strait with one of the leg's
     ports inside it is left to that port's approach passage."""
-    from .ga.seeds import _searoute_coords
     from .geo.ports import Port
+    from .geo.sea_lanes import searoute_coords
 
     rtas = list(via_rta) + [None] * (len(ports) - 2 - len(via_rta))
     out, out_rta, canals, straits = [ports[0]], [], {}, {}
@@ -99,7 +99,7 @@ def route_straits(ports: list, canal_legs: dict, via_rta: list
         if k in canal_legs:
             canals[len(out) - 1] = canal_legs[k]
         else:
-            coords = _searoute_coords(round(float(wrap_lon(a.lon_deg)), 4), round(a.lat_deg, 4),
+            coords = searoute_coords(round(float(wrap_lon(a.lon_deg)), 4), round(a.lat_deg, 4),
                                       round(float(wrap_lon(b.lon_deg)), 4), round(b.lat_deg, 4))
             if coords is not None and len(coords) > 1:
                 found = straits_on_lane(coords[:, 0], coords[:, 1])
@@ -131,7 +131,8 @@ def sail_strait(env, leg: tuple, depart_s: float, limits, stage_s: float,
     without one): (evaluation, RPM, problem, notes for the plan)."""
     import dataclasses
 
-    from .approach import Approach, sail_approach
+    from shiproute_planner.route.approach import Approach, sail_approach
+
     from .coastal_passages import cached_passage, passage_rules
     from .errors import PlannerError
     from .route.problem import RouteProblem

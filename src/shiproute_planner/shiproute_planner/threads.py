@@ -29,4 +29,5 @@ def set_planner_threads(n: int) -> None:
     _override = int(n)
     import numba
 
-    numba.set_num_threads(min(int(n), numba.config.NUMBA_NUM_THREADS))
+    most = int(numba.config.NUMBA_NUM_THREADS)  # type: ignore[attr-defined]  # set at import
+    numba.set_num_threads(min(int(n), most))

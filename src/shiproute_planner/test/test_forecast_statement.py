@@ -128,8 +128,8 @@ def test_node_path_states_the_cycle_announcement() -> None:
     pytest.importorskip("shiproute_msgs.msg")
     from types import SimpleNamespace
 
-    from shiproute_planner.convert import cycle_record
     from shiproute_planner.forecast_statement import forecast_statement
+    from shiproute_planner.ros.convert import cycle_record
     from shiproute_weather.contract.canonical import Grid
 
     from shiproute_msgs.msg import ForecastCycle

@@ -15,13 +15,13 @@ import itertools
 
 import numpy as np
 import pytest
-from shiproute_planner.bench.voyages import (
+from shiproute_planner.cli.check import land_test
+from shiproute_planner.experiments.bench.voyages import (
     MULTIPORT,
     optimised_stages,
     plan_multiport,
     plan_shortsea,
 )
-from shiproute_planner.cli.check import land_test
 from shiproute_planner.route_check import check_track
 from shiproute_planner.voyage.port_calls import parse_port_call
 

@@ -174,8 +174,8 @@ def test_dardanelles_passage_is_on_water_at_full_resolution():
 
 
 def test_singapore_rotterdam_meets_its_straits_in_order_and_ports_keep_their_own():
-    from shiproute_planner.canals import route_canals
     from shiproute_planner.geo.ports import lookup_port
+    from shiproute_planner.route.canals import route_canals
     from shiproute_planner.ship import load_ship
     from shiproute_planner.straits import route_straits
 

@@ -6,8 +6,8 @@ import dataclasses
 from datetime import timedelta
 
 import numpy as np
-from shiproute_planner.ga.seeds import sane_rpm
 from shiproute_planner.planning import plan_voyage
+from shiproute_planner.route.seeding import sane_rpm
 
 JUNE = "2026-06-01T00:00Z"
 

@@ -16,9 +16,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from shiproute_core.geodesy import direct, inverse, unwrap_near
+from shiproute_core.units import M_PER_NM
 
 from .errors import NoRouteFoundError
-from .geodesy import continuous_lon, direct, inverse
 from .grid_search import UNSAFE_LEG_PENALTY_T
 from .labels import prune_labels
 from .legs import LegSailor
@@ -31,10 +32,10 @@ MAX_STAGE_SPLITS = 6
 class Ddp3Config:
     """Grid and label resolution of the 3DDP search."""
 
-    stage_m: float = 200 * 1852.0
-    port_stage_m: float = 60 * 1852.0  # first/last inner stage this far from the ports
+    stage_m: float = 200 * M_PER_NM
+    port_stage_m: float = 60 * M_PER_NM  # first/last inner stage this far from the ports
     n_lateral: int = 21
-    lateral_m: float = 50 * 1852.0
+    lateral_m: float = 50 * M_PER_NM
     time_bin_s: float = 3600.0
     max_labels_per_node: int = 40
     late_window_s: float = 48 * 3600.0  # labels later than RTA + this are dropped
@@ -105,7 +106,7 @@ def ddp3_grid(
         offsets = (np.arange(m) - centre) * spacing
         az = np.where(offsets >= 0, course[s] + 90.0, course[s] - 90.0)
         p_lon, p_lat = direct(np.full(m, c_lon[s]), np.full(m, c_lat[s]), az, np.abs(offsets))
-        lon[s] = continuous_lon(p_lon, start_lon)
+        lon[s] = unwrap_near(p_lon, start_lon)
         lat[s] = p_lat
     sea = ~np.asarray(sailor.on_land(lon.ravel(), lat.ravel()), bool).reshape(lon.shape)
     sea[0], sea[-1] = False, False

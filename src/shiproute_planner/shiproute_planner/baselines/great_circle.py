@@ -1,6 +1,6 @@
 """Great circle (or the sea lane where it touches land) at the constant RPM meeting the RTA.
 
-The same baseline the planner shows beside every plan (`methods.baseline_track` and
+The same baseline the planner shows beside every plan (`method_context.baseline_track` and
 `route.rta.constant_rpm_for_rta`), wrapped as a comparison row.
 """
 
@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import time
 
-from ..methods import baseline_track
+from ..method_context import baseline_track
 from ..route.rta import constant_rpm_for_rta
 from .inputs import BaselineInputs
 from .result import BaselineResult

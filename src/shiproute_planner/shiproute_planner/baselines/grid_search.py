@@ -18,9 +18,9 @@ import heapq
 from dataclasses import dataclass
 
 import numpy as np
+from shiproute_core.geodesy import inverse
 
 from .errors import NoRouteFoundError
-from .geodesy import inverse
 from .latlon_grid import LatLonGrid
 from .legs import LegSailor
 

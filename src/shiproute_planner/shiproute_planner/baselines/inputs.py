@@ -5,14 +5,14 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+from shiproute_core.geodesy import inverse
 
-from ..ga.seeds import TrackSeed
 from ..geo.landmask import LandMask
 from ..route.environment import Environment
 from ..route.problem import RouteProblem
+from ..route.seeding import TrackSeed
 from .context import PlannerLegSailor
 from .errors import BaselineConfigError
-from .geodesy import inverse
 
 # useful band of calm-water speed, as a share of the speed that sails the great circle in the
 # allowed time: slower cannot make the RTA, faster only burns fuel (storm detours included)

@@ -14,9 +14,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from shiproute_core.geodesy import cross_track_m, inverse, unwrap_near
+from shiproute_core.units import M_PER_NM
 
 from .errors import NoRouteFoundError
-from .geodesy import continuous_lon, cross_track_m, inverse
 from .grid_search import UNSAFE_LEG_PENALTY_T
 from .legs import LegSailor
 
@@ -30,7 +31,7 @@ class IsochroneConfig:
     step_s: float = 6 * 3600.0
     fan_half_deg: float = 60.0
     fan_step_deg: float = 5.0
-    sector_m: float = 20 * 1852.0
+    sector_m: float = 20 * M_PER_NM
     max_steps: int = 200
 
 
@@ -58,7 +59,7 @@ def isochrone_route(
 ) -> IsochroneRoute:
     """Run the isochrone search at constant `rpm` and return the least-fuel finished route."""
     cfg = config or IsochroneConfig()
-    end_lon = float(continuous_lon(end_lon_deg, start_lon_deg))
+    end_lon = float(unwrap_near(end_lon_deg, start_lon_deg))
     offsets = np.arange(-cfg.fan_half_deg, cfg.fan_half_deg + 1e-9, cfg.fan_step_deg)
     lon, lat = np.array([start_lon_deg]), np.array([start_lat_deg])
     t, f = np.array([depart_s]), np.array([0.0])
@@ -99,7 +100,7 @@ def isochrone_route(
         order = np.lexsort((c_f, d_end, unsafe, sector))
         first = np.r_[True, sector[order][1:] != sector[order][:-1]]
         keep = order[first]
-        lon, lat = continuous_lon(c_lon[keep], start_lon_deg), c_lat[keep]
+        lon, lat = unwrap_near(c_lon[keep], start_lon_deg), c_lat[keep]
         t, f = c_t[keep], c_f[keep]
         history.append((lon, lat, t, c_par[keep]))
     if not finished:
@@ -150,5 +151,6 @@ def _sail_fan(
                     (f[p] + legs.fuel_t + pen)[sea], p[sea]))
         todo = todo[land]
     if not out:
-        return (np.zeros(0),) * 4 + (np.zeros(0, np.int64),)  # type: ignore[return-value]
-    return tuple(np.concatenate(parts) for parts in zip(*out, strict=True))  # type: ignore[return-value]
+        return (np.zeros(0),) * 4 + (np.zeros(0, np.int64),)
+    columns = tuple(np.concatenate(parts) for parts in zip(*out, strict=True))
+    return columns  # type: ignore[return-value]  # zip(*out) loses the fixed 5-tuple shape

@@ -12,10 +12,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from shiproute_core.geodesy import great_circle_points
+from shiproute_core.geodesy import great_circle_points, inverse, unwrap_near
+from shiproute_core.units import M_PER_NM
 
 from .errors import BaselineGridError
-from .geodesy import continuous_lon, inverse
 from .legs import LegSailor
 
 MOVES_8 = ((0, 1), (1, 1), (1, 0), (1, -1), (0, -1), (-1, -1), (-1, 0), (-1, 1))
@@ -54,7 +54,7 @@ def build_grid(
     """Grid covering the great circle's bounding box plus `margin_deg`, land removed."""
     if neighbours not in (8, 16):
         raise BaselineGridError(f"neighbours={neighbours}: only 8 or 16 are supported")
-    end_lon = float(continuous_lon(end_lon_deg, start_lon_deg))
+    end_lon = float(unwrap_near(end_lon_deg, start_lon_deg))
     gc_lon, gc_lat = great_circle_points(start_lon_deg, start_lat_deg, end_lon, end_lat_deg, 200)
     lat_lo = max(gc_lat.min() - margin_deg, -max_abs_lat_deg)
     lat_hi = min(gc_lat.max() + margin_deg, max_abs_lat_deg)
@@ -97,7 +97,7 @@ def build_grid(
     if start_links.size == 0 or end_links.size == 0:
         which = "departure" if start_links.size == 0 else "arrival"
         raise BaselineGridError(
-            f"no sea grid node within {radius_m / 1852:.0f} NM of the {which} port reachable "
+            f"no sea grid node within {radius_m / M_PER_NM:.0f} NM of the {which} port reachable "
             "without touching land; use a finer lat_step_deg or a larger port_link_cells"
         )
     width = max(k + 1, start_links.size)

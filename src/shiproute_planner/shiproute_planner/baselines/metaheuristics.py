@@ -12,10 +12,10 @@ import time
 import numpy as np
 
 from ..ga.loop import GAConfig
-from ..ga.seeds import TrackSeed, great_circle_track, sea_lane_track, track_to_genes
 from ..route.encoding import gene_bounds
 from ..route.generate import evaluate_genes
 from ..route.rta import constant_rpm_for_rta
+from ..route.seeding import TrackSeed, great_circle_track, sea_lane_track, track_to_genes
 from .inputs import BaselineInputs
 from .pymoo_methods import run_pymoo
 from .result import BaselineResult
@@ -54,9 +54,10 @@ def _gene_evaluator(inp: BaselineInputs):
 
 def run_seed_ga(inp: BaselineInputs, n_evaluations: int, rng: np.random.Generator,
                 config: GAConfig | None = None) -> BaselineResult:
-    """The planner's seed GA (`methods.seed_ga_method`: its seeds, islands and final exact
+    """The planner's seed GA (`seed_ga.seed_ga_method`: its seeds, islands and final exact
     choice) stopped after `n_evaluations` route evaluations."""
-    from ..methods import MethodContext, seed_ga_method
+    from ..method_context import MethodContext
+    from ..seed_ga import seed_ga_method
 
     t0 = time.perf_counter()
     ctx = MethodContext(inp.problem, inp.env, inp.land, rng, budget_s=1e9, ga_config=config,

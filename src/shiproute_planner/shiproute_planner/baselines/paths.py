@@ -10,8 +10,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 import numpy as np
-
-from .geodesy import inverse
+from shiproute_core.geodesy import inverse
 
 TURN_MARGIN_DEG = 5.0  # steered headings differ from courses by the current drift
 

@@ -1,4 +1,4 @@
-"""Register every baseline in the planner's method registry (`shiproute plan --method NAME`).
+"""Every baseline as a planning method (`shiproute plan --method NAME`), for the registry.
 
 Each adapter builds `BaselineInputs` from the planner's `MethodContext` (same problem,
 environment, land mask and seed tracks the seed GA gets), runs the method and hands back the
@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-from ..methods import MethodContext, MethodResult, register_method
+from ..method_context import MethodContext, MethodFn, MethodResult
 from . import runners
 from .inputs import BaselineInputs
 from .metaheuristics import run_pymoo_method
@@ -62,10 +62,11 @@ PYMOO_METHODS: dict[str, BaselineRun] = {
 }
 
 
-def register_all() -> None:
-    """Add every baseline to the planner's registry (idempotent)."""
+def baseline_methods() -> dict[str, MethodFn]:
+    """Every baseline by name, adapted to the planner's method interface."""
+    methods: dict[str, MethodFn] = {}
     for name, run in GRAPH_METHODS.items():
-        register_method(name, _adapter(run, "none"))
+        methods[name] = _adapter(run, "none")
     for name, run in PYMOO_METHODS.items():
-        register_method(name, _adapter(run, "seeds" if "seeded" in name or "2obj" in name
-                                       else "none"))
+        methods[name] = _adapter(run, "seeds" if "seeded" in name or "2obj" in name else "none")
+    return methods

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..methods import baseline_track
+from ..method_context import baseline_track
 from ..route.rta import constant_rpm_for_rta
 from ..route.sail import sail_tracks
 from .ddp3 import Ddp3Config, ddp3_route
@@ -141,7 +141,8 @@ def run_two_stage(
 def retime_path(inp: BaselineInputs, first: BaselineResult, method: str, o: GraphOptions,
                 t0: float) -> BaselineResult:
     """Stage two: least-fuel RPM per leg on `first`'s track (legs split to <= max_leg_nm)."""
-    from .geodesy import M_PER_NM, densify_track
+    from shiproute_core.geodesy import densify_track
+    from shiproute_core.units import M_PER_NM
 
     ev = first.evaluation
     lon, lat = densify_track(ev.lon_deg[0], ev.lat_deg[0], o.schedule_max_leg_nm * M_PER_NM)
@@ -195,7 +196,7 @@ def run_ddp3(inp: BaselineInputs, opts: GraphOptions | None = None) -> BaselineR
 
 def reference_line(inp: BaselineInputs, o: GraphOptions) -> tuple[np.ndarray, np.ndarray]:
     """Great circle if it stays at sea, else the shortest sea path on the search grid."""
-    from ..ga.seeds import great_circle_track
+    from ..route.seeding import great_circle_track
 
     lon, lat = great_circle_track(inp.problem)
     if not inp.sailor().crosses_land(lon[:-1], lat[:-1], lon[1:], lat[1:]).any():

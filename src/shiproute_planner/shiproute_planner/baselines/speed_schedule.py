@@ -13,8 +13,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from shiproute_core.geodesy import inverse
 
-from .geodesy import inverse
 from .grid_search import UNSAFE_LEG_PENALTY_T
 from .labels import prune_labels
 from .legs import LegSailor

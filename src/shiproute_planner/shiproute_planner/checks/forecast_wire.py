@@ -12,13 +12,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Protocol
 
 import numpy as np
 from shiproute_weather.contract.canonical import VARIABLES, Grid
 from shiproute_weather.sampling.sampler import channel_count
 from shiproute_weather.wire.packing import PackedField
 
-from ..cycle_packer import SliceFields
 from ..errors import ForecastCycleError, StaleForecastError
 
 #: most slices of one cycle: the planner's transient-local slice queue holds 512
@@ -189,7 +189,28 @@ def check_not_older(cycle_id: str, reference_s: float, in_force_id: str,
             "accept_older_forecasts to use it)")
 
 
-def check_slice_fields(s: SliceFields) -> None:
+class ReceivedSlice(Protocol):
+    """What the slice checks read of a received slice (the intake's `SliceFields`)."""
+
+    @property
+    def cycle_id(self) -> str: ...
+    @property
+    def index(self) -> int: ...
+    @property
+    def count(self) -> int: ...
+    @property
+    def valid_time_s(self) -> float: ...
+    @property
+    def reference_time_s(self) -> float: ...
+    @property
+    def grid(self) -> Grid: ...
+    @property
+    def fields(self) -> tuple[tuple[str, object], ...]: ...
+    @property
+    def problems(self) -> tuple[str, ...]: ...
+
+
+def check_slice_fields(s: ReceivedSlice) -> None:
     """Every check of one received slice (header, then fields), before it is assembled."""
     header = SliceHeader(s.cycle_id, s.index, s.count, s.valid_time_s, s.reference_time_s,
                          s.grid)

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from shiproute_core.units import M_PER_NM, M_S_PER_KNOT
 
 from ..errors import InvalidVoyageError
 from ..geo.ports import Port, resolve_port
@@ -70,7 +71,7 @@ def max_calm_speed_kn(spec: Any) -> float:
 
     perf = fast_model(spec).evaluate(np.array([spec.engine.rpm_max]), np.array([0.0]),
                                      SeaState.calm(1))
-    return float(perf.stw_m_s[0]) / KNOT_M_S
+    return float(perf.stw_m_s[0]) / M_S_PER_KNOT
 
 
 def check_voyage(origin: str | Port, destination: str | Port, depart_s: float | None,
@@ -103,7 +104,7 @@ def check_voyage(origin: str | Port, destination: str | Port, depart_s: float | 
     check_model_file(ship_model or spec.performance_model)
     a, b = ports
     _, dist_m = inverse(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)
-    dist_nm = float(dist_m) / 1852.0
+    dist_nm = float(dist_m) / M_PER_NM
     need_kn = 0.0 if depart_s is None else dist_nm / ((rta_s - depart_s) / 3600.0)
     return VoyageCheck(a, b, depart_s, float(rta_s), spec, dist_nm, need_kn,
                        max_calm_speed_kn(spec))

@@ -7,6 +7,7 @@ import functools
 import sys
 
 import numpy as np
+from shiproute_core.units import M_PER_NM
 
 from ..errors import PlannerError
 
@@ -30,7 +31,7 @@ def build_parser() -> argparse.ArgumentParser:
                     help="speed for legs the file gives none (squat) [kn]")
     ap.add_argument("--resolution", choices=("f", "h", "i"), default=None,
                     help="GSHHG resolution (default: the finest installed)")
-    ap.add_argument("--port-clearance-nm", type=float, default=3000.0 / 1852.0,
+    ap.add_argument("--port-clearance-nm", type=float, default=3000.0 / M_PER_NM,
                     help="route ends (berths) not tested within this distance [NM]")
     return ap
 
@@ -85,7 +86,7 @@ def main(argv: list[str]) -> int:
     result = check_track(track.lon_deg, track.lat_deg, speed, land.contains,
                          clearance_nm=args.clearance_nm, land_near=land.clipped,
                          under_keel=limits.under_keel,
-                         zones=zones, port_clearance_m=args.port_clearance_nm * 1852.0)
+                         zones=zones, port_clearance_m=args.port_clearance_nm * M_PER_NM)
     print(f"route      {track.name}: {track.lon_deg.size} waypoints, "
           f"{track.lon_deg.size - 1} legs")
     for note in (land_note, *notes, *result.notes):

@@ -17,7 +17,9 @@ import time
 from datetime import UTC, datetime, timedelta
 from pathlib import Path
 
-from ..baselines.compare import (
+from ..baselines.metaheuristics import seed_genes
+from ..errors import PlannerError
+from ..experiments.compare import (
     GRAPH_ORDER,
     META_ORDER,
     REPEAT_ORDER,
@@ -27,11 +29,9 @@ from ..baselines.compare import (
     run_methods,
     seed_ga_margin_pct,
 )
-from ..baselines.metaheuristics import seed_genes
-from ..baselines.outcome import comparison_table, repeat_table
-from ..baselines.plots import plot_comparison, plot_pareto
-from ..baselines.voyage import build_inputs, default_departure_s, load_forecast
-from ..errors import PlannerError
+from ..experiments.outcome import comparison_table, repeat_table
+from ..experiments.plots import plot_comparison, plot_pareto
+from ..experiments.voyage import build_inputs, default_departure_s, load_forecast
 
 ALL_METHODS = (*GRAPH_ORDER, *META_ORDER)
 
@@ -45,7 +45,7 @@ def parse_rta(text: str, depart_s: float) -> float:
     return datetime.fromisoformat(text.strip().replace("Z", "+00:00")).timestamp()
 
 
-def _parser() -> argparse.ArgumentParser:
+def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="shiproute compare", description=__doc__.splitlines()[0])
     p.add_argument("--scenario", default="storm_march",
                    help="bundled scenario name or forecast file (default storm_march)")
@@ -125,7 +125,7 @@ def run_compare(args: argparse.Namespace) -> dict:
 
 
 def main(argv: list[str] | None = None) -> int:
-    args = _parser().parse_args(argv)
+    args = build_parser().parse_args(argv)
     try:
         doc = run_compare(args)
     except (PlannerError, ValueError, OSError) as exc:

@@ -8,7 +8,8 @@ import sys
 from pathlib import Path
 
 from ..errors import InvalidVoyageError, PlannerError
-from ..methods import Progress, method_names
+from ..method_context import Progress
+from ..methods import method_names
 from ..objectives import (
     DEFAULT_CHARTER_USD_PER_DAY,
     DEFAULT_FUEL_PRICE_USD_PER_T,

@@ -72,7 +72,7 @@ def remove_stale(out_root: str | Path, voyage_id: str, key: str) -> list[Path]:
     root = Path(out_root) / VOYAGES_DIR
     name = safe_name(voyage_id)
     keep = voyage_dir(out_root, voyage_id, key).name
-    gone = []
+    gone: list[Path] = []
     if not root.is_dir():
         return gone
     for p in root.iterdir():

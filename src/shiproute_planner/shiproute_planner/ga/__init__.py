@@ -1,1 +1,2 @@
-"""Seed genetic algorithm over float gene arrays (ask/tell), its operators, seeds and seed pool."""
+"""Generic genetic algorithm over float gene arrays (ask/tell): operators, ranking, islands and
+the seed pool. Knows nothing of routes: problems come in as bounds, arrays and callables."""

@@ -33,7 +33,8 @@ def one_point_by_stage(a: np.ndarray, b: np.ndarray, n_stages: int,
                        rng: np.random.Generator) -> np.ndarray:
     """Child = parent a up to a random stage, parent b from there (headings and RPMs)."""
     pop = a.shape[0]
-    cut = rng.integers(1, n_stages, size=pop)[:, None] if n_stages > 1 else np.ones((pop, 1), int)
+    cut = (np.asarray(rng.integers(1, n_stages, size=pop))[:, None] if n_stages > 1
+           else np.ones((pop, 1), int))
     stage_of_gene = np.concatenate([np.arange(n_stages), np.arange(n_stages + 1)])[None, :]
     return np.where(stage_of_gene < cut, a, b)
 

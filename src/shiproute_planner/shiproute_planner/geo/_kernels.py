@@ -7,7 +7,7 @@ import math
 import numba
 import numpy as np
 
-_FINE = 3  # refinement of the sample step inside coastal cells
+FINE = 3  # refinement of the sample step inside coastal cells
 _D2R = math.pi / 180.0
 
 
@@ -64,7 +64,7 @@ def scan_segments(
         count = 0
         k = 0
         sub = 0  # > 0 while refining inside a coastal stretch
-        steps = _FINE * n
+        steps = FINE * n
         while k <= steps:
             lat, lon = chord_sample(ax, ay, az, bx, by, bz, k / steps)
             i = min(max(int((lat + 90.0) * inv), 0), n_lat - 1)
@@ -75,8 +75,8 @@ def scan_segments(
             elif v == 2:
                 if sub == 0 and k > 0:
                     # entering a coastal cell: go back and walk the last stretch finely
-                    sub = _FINE
-                    k = max(k - (_FINE - 1), 0)
+                    sub = FINE
+                    k = max(k - (FINE - 1), 0)
                     continue
                 if count == 0:
                     if n_coast >= cap:
@@ -89,7 +89,7 @@ def scan_segments(
                 k += 1
                 sub = max(sub - 1, 1) if v == 2 else sub - 1
             else:
-                k += _FINE
+                k += FINE
         land_count[s] = count
     return n_coast
 

@@ -11,6 +11,7 @@ import functools
 import os
 from collections.abc import Callable
 from pathlib import Path
+from typing import cast
 
 import numpy as np
 
@@ -102,7 +103,8 @@ class LandMask:
         ends = np.stack([np.asarray(a, dtype=float).ravel() for a in (lon0, lat0, lon1, lat1)],
                         axis=1)
         ends = np.ascontiguousarray(np.append(ends, np.full((ends.shape[0], 1), tag), 1))
-        keys = ends.view(np.dtype((np.void, ends.dtype.itemsize * 5))).ravel().tolist()
+        rows = ends.view(np.dtype((np.void, ends.dtype.itemsize * 5))).ravel()
+        keys = cast(list[bytes], rows.tolist())  # one opaque bytes key per segment row
         cache = self._seg_cache
         out = np.array([cache.get(k, -1) for k in keys], dtype=np.int64)
         todo = np.flatnonzero(out < 0)

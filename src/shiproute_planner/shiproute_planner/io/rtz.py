@@ -12,12 +12,13 @@ from datetime import UTC, datetime
 from importlib import resources
 from pathlib import Path
 
+from shiproute_core.units import M_S_PER_KNOT
+
 from ..errors import OutputError
 from ..plan_types import RoutePlan
 
 NS = "http://www.cirm.org/RTZ/1/2"
 SCHEMA_FILE = "RTZ_Schema_version_1_2.xsd"
-MS_TO_KN = 3600.0 / 1852.0
 
 
 def _time(t_s: float) -> str:
@@ -42,7 +43,7 @@ def rtz_tree(plan: RoutePlan, route_name: str) -> ET.ElementTree:
     if plan.vessel_max_wave_m == plan.vessel_max_wave_m:
         info["vesselMaxWave"] = _num(plan.vessel_max_wave_m, 1)
     if plan.vessel_max_wind_m_s == plan.vessel_max_wind_m_s:
-        info["vesselMaxWind"] = _num(plan.vessel_max_wind_m_s * MS_TO_KN, 1)
+        info["vesselMaxWind"] = _num(plan.vessel_max_wind_m_s / M_S_PER_KNOT, 1)
     ET.SubElement(root, q("routeInfo"), info)
     wps = ET.SubElement(root, q("waypoints"))
     for k, w in enumerate(plan.waypoints):
@@ -72,7 +73,7 @@ def rtz_tree(plan: RoutePlan, route_name: str) -> ET.ElementTree:
             attrs["rpm"] = str(max(round(w.shaft_rpm), 0))
             attrs["fuel"] = _num(w.leg_fuel_t, 3)
             if w.wind_speed_m_s == w.wind_speed_m_s:
-                attrs["windSpeed"] = _num(w.wind_speed_m_s * MS_TO_KN, 1)
+                attrs["windSpeed"] = _num(w.wind_speed_m_s / M_S_PER_KNOT, 1)
             if w.wind_from_deg == w.wind_from_deg:
                 attrs["windDirection"] = _num(w.wind_from_deg % 360.0, 1)
         ET.SubElement(calc, q("scheduleElement"), attrs)

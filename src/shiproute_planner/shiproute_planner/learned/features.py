@@ -14,6 +14,7 @@ import hashlib
 import json
 
 import numpy as np
+from shiproute_core.units import M_S_PER_KNOT
 
 from ..ship.condition import at_drafts
 from ..ship.fast import fast_model
@@ -21,7 +22,6 @@ from ..ship.physics import relative_wave_deg
 from ..ship.seastate import SeaState
 from ..ship.spec import ShipSpec
 
-KN_M_S = 0.514444
 FEATURES = ("stw_kn", "draft_mean_m", "trim_m", "wind_speed_m_s", "cos_rel_wind",
             "hs_m", "cos_rel_wave", "wave_period_s")
 SEA_COLUMNS = ("wind_u_m_s", "wind_v_m_s", "wind_wave_hs_m", "wind_wave_from_deg",
@@ -77,7 +77,7 @@ def physics_prior(ship: ShipSpec, stw_kn: np.ndarray, heading_deg: np.ndarray, s
     """(rpm, fuel t/h) the ship file's model needs for ``stw_kn`` in ``sea`` at the given
     drafts (rounded to DRAFT_STEP_M; None = the file's): the prior the network corrects
     (tabulated model, within 0.5 % of the direct physics solve)."""
-    v = np.maximum(np.asarray(stw_kn, dtype=float), 0.5) * KN_M_S
+    v = np.maximum(np.asarray(stw_kn, dtype=float), 0.5) * M_S_PER_KNOT
     n = v.size
     hdg = np.broadcast_to(np.asarray(heading_deg, dtype=float), (n,))
     sea = sea.broadcast((n,))

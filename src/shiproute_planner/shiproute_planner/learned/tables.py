@@ -22,12 +22,13 @@ from __future__ import annotations
 import copy
 
 import numpy as np
+from shiproute_core.units import M_S_PER_KNOT
 
 from ..ship import fast_kernel as fk
 from ..ship.fast import FastModel, fast_model
 from ..ship.seastate import SeaState
 from ..ship.spec import ShipSpec
-from .features import DRAFT_STEP_M, FEATURES, KN_M_S, at_drafts
+from .features import DRAFT_STEP_M, FEATURES, at_drafts
 from .model import LearnedModel
 
 N_WEATHER_SAMPLES = 600
@@ -59,7 +60,7 @@ def _weather_samples(model: LearnedModel, fore: float, aft: float,
         wind_wave_hs_m=u["hs_m"], wind_wave_from_deg=wave_from,
         wind_wave_period_s=np.maximum(u["wave_period_s"], 1.0))
     del fore, aft  # the samples are evaluated at the model's reference drafts by the caller
-    return u["stw_kn"] * KN_M_S, sea
+    return u["stw_kn"] * M_S_PER_KNOT, sea
 
 
 def learned_fast_model(ship: ShipSpec, model: LearnedModel, source: str = "",
@@ -75,12 +76,12 @@ def learned_fast_model(ship: ShipSpec, model: LearnedModel, source: str = "",
     v_grid = np.arange(r_calm.size) * par[fk.P_DV]
     rng = np.random.default_rng(seed)
     v, sea = _weather_samples(model, fore, aft, rng)
-    pred = model.predict(ship, v / KN_M_S, np.zeros(v.size), fore, aft, sea)
+    pred = model.predict(ship, v / M_S_PER_KNOT, np.zeros(v.size), fore, aft, sea)
     w_v = np.interp(v, v_grid, wake)
     thrust, pb = _thrust_power(base, v, pred.rpm / 60.0, w_v)
     r_wind, r_wave = base.physics.added_resistance_n(v, np.zeros(v.size), sea)
     rc = np.interp(v, v_grid, r_calm)
-    v_lo, v_hi = model.x_lo[0] * KN_M_S, model.x_hi[0] * KN_M_S
+    v_lo, v_hi = model.x_lo[0] * M_S_PER_KNOT, model.x_hi[0] * M_S_PER_KNOT
     mid, half = 0.5 * (v_lo + v_hi), max(0.5 * (v_hi - v_lo), 0.1)
     z = (v - mid) / half
     a = np.column_stack([rc, rc * z, rc * z**2, r_wave, r_wind])
@@ -88,7 +89,7 @@ def learned_fast_model(ship: ShipSpec, model: LearnedModel, source: str = "",
     k_wave, k_wind = np.clip(coef[3:], 0.2, 5.0)
     zg = (np.clip(v_grid, v_lo, v_hi) - mid) / half
     a_grid = coef[0] + coef[1] * zg + coef[2] * zg**2
-    beyond = np.maximum(v_lo - v_grid, v_grid - v_hi) / (model.x_std[0] * KN_M_S)
+    beyond = np.maximum(v_lo - v_grid, v_grid - v_hi) / (model.x_std[0] * M_S_PER_KNOT)
     fade = np.clip(1.0 - np.maximum(beyond, 0.0) / model.fallback_std, 0.0, 1.0)
     ratio = 1.0 + fade * (a_grid - 1.0)
     r_new = r_calm * ratio
@@ -124,7 +125,7 @@ def agreement(fm: FastModel, model: LearnedModel, ship: ShipSpec, stw_kn: np.nda
     """Mean relative difference [%] of the tabulated model from the learned one (RPM at the
     learned speed, and fuel at that RPM) at the given points."""
     pred = model.predict(ship, stw_kn, heading_deg, fore, aft, sea)
-    rpm_t = fm.rpm_for_speed(np.asarray(stw_kn) * KN_M_S, heading_deg, sea)
+    rpm_t = fm.rpm_for_speed(np.asarray(stw_kn) * M_S_PER_KNOT, heading_deg, sea)
     fuel_t = fm.evaluate(pred.rpm, heading_deg, sea).fuel_t_per_h
     return {"rpm_mean_diff_pct": float(np.mean(np.abs(rpm_t / pred.rpm - 1)) * 100),
             "fuel_mean_diff_pct": float(np.mean(np.abs(fuel_t / pred.fuel_t_per_h - 1)) * 100)}

@@ -17,7 +17,7 @@ import numpy as np
 from numba import njit
 from shiproute_weather.sampling.interp_kernel import trilinear as _trilinear_parallel
 
-from ..geo._kernels import _FINE, chord_sample, segment_ends
+from ..geo._kernels import FINE, chord_sample, segment_ends
 from . import _fast_kernels as fk
 from .legs import MIN_SOG_M_S  # the exact evaluator's floor of the final connection's speed
 
@@ -35,7 +35,7 @@ def _serial_copy(fn: Any, name: str) -> Any:
 # the sampler's kernel compiled serially: populations run in chunks on Python threads, and
 # numba's parallel launcher must not be entered from two threads at once
 trilinear = njit(cache=True, nogil=True)(_serial_copy(_trilinear_parallel, "trilinear_serial"))
-_GRADE_STEP = 8 * _FINE  # samples per step once a leg is known to touch land
+_GRADE_STEP = 8 * FINE  # samples per step once a leg is known to touch land
 
 
 @njit(cache=True, nogil=True)
@@ -199,7 +199,7 @@ def ga_land_hits(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, raster, 
     n_miss = 0
     for s in range(lon0.size):
         ax, ay, az, bx, by, bz, arc = segment_ends(lat0[s], lon0[s], lat1[s], lon1[s])
-        steps = _FINE * max(1, math.ceil(arc / spacing_deg))
+        steps = FINE * max(1, math.ceil(arc / spacing_deg))
         # chord fractions run at most ~0.1 % faster than arc fractions for legs < 20 deg
         per_step = max(0.9 * arc / steps, 1e-12)  # zero-length legs: one sample decides
         count = 0

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from shiproute_core.flags import FLAG_RTA
+from shiproute_core.units import M_PER_NM
 
 from ..geo.landmask import LandMask
 from .constraints import leg_flags_and_violation
@@ -60,7 +61,7 @@ class RouteEvaluation:
 def objective_of(problem: RouteProblem, fuel_t, distance_m, eta_s) -> np.ndarray:
     """Objective value: fuel [t], distance [NM], elapsed time [h], CO2 [t] or cost [USD]."""
     if problem.objective == "distance":
-        return distance_m / 1852.0
+        return distance_m / M_PER_NM
     if problem.objective == "eta":
         return (eta_s - problem.depart_s) / 3600.0
     if problem.objective in ("co2", "cost"):
@@ -70,7 +71,7 @@ def objective_of(problem: RouteProblem, fuel_t, distance_m, eta_s) -> np.ndarray
     return np.asarray(fuel_t, dtype=float)
 
 
-PILOTAGE_DEPTH_M = 10.0 * 1852.0  # depth next to ports/approach ends: dredged channels
+PILOTAGE_DEPTH_M = 10.0 * M_PER_NM  # depth next to ports/approach ends: dredged channels
 
 
 def clear_ports(problem: RouteProblem, lon: np.ndarray, lat: np.ndarray,
@@ -125,7 +126,7 @@ def finish(
     if zones is not None:
         ends = clear_ports(problem, lon, lat, legs["distance_m"])
         share = zones.leg_inside(*ends)  # (zone, pop, m)
-        leg_nm = np.where(active, legs["distance_m"], 0.0) / 1852.0
+        leg_nm = np.where(active, legs["distance_m"], 0.0) / M_PER_NM
         hard = np.array([z.hard for z in zones.zones])
         per_nm = np.array([z.penalty_per_nm for z in zones.zones])
         legs["zone_nm"] = share[hard].sum(axis=0) * leg_nm

@@ -28,7 +28,7 @@ def constant_rpm_for_rta(
     full_lon, full_lat = np.asarray(lon_deg, dtype=float), np.asarray(lat_deg, dtype=float)
     if full_lon.size > problem.n_stages + 2:
         # search on a track with about one point per stage (same length to < 0.1 %)
-        from ..ga.seeds import resample_track
+        from .seeding import resample_track
 
         lon_deg, lat_deg = resample_track(full_lon, full_lat, problem.n_stages + 2)
     lon = np.broadcast_to(np.asarray(lon_deg, dtype=float), (n_try, np.size(lon_deg)))

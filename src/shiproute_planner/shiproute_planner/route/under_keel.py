@@ -13,16 +13,15 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from shiproute_core.units import M_S_PER_KNOT
 
 from ..geo.depth import Bathymetry
-
-KN_PER_M_S = 3600.0 / 1852.0
 
 
 def barrass_squat_m(block_coefficient: float, stw_m_s: np.ndarray | float,
                     confined: bool = False) -> np.ndarray:
     """Maximum squat [m]: Cb V^2 / 100 (V in knots), doubled in a confined channel."""
-    v_kn = np.maximum(np.asarray(stw_m_s, dtype=float), 0.0) * KN_PER_M_S
+    v_kn = np.maximum(np.asarray(stw_m_s, dtype=float), 0.0) / M_S_PER_KNOT
     return block_coefficient * v_kn ** 2 / (50.0 if confined else 100.0)
 
 

@@ -48,10 +48,10 @@ def rpm_kernel(stw, hdg, wu, wv, ws_hs, ws_from, ws_t, sw_hs, sw_from, sw_t, par
         sh, ch = math.sin(h), math.cos(h)
         cos_ws = math.cos(math.radians(ws_from[k]) - h)
         cos_sw = math.cos(math.radians(sw_from[k]) - h)
-        a_ws = ws_hs[k] * ws_hs[k] * fk._dir_factor(cos_ws)
-        a_sw = sw_hs[k] * sw_hs[k] * fk._dir_factor(cos_sw)
-        it_ws, ft_ws = fk._idx(par[fk.P_T0], par[fk.P_DT], int(par[fk.P_NT]), ws_t[k])
-        it_sw, ft_sw = fk._idx(par[fk.P_T0], par[fk.P_DT], int(par[fk.P_NT]), sw_t[k])
+        a_ws = ws_hs[k] * ws_hs[k] * fk.head_sea_taper(cos_ws)
+        a_sw = sw_hs[k] * sw_hs[k] * fk.head_sea_taper(cos_sw)
+        it_ws, ft_ws = fk.grid_cell(par[fk.P_T0], par[fk.P_DT], int(par[fk.P_NT]), ws_t[k])
+        it_sw, ft_sw = fk.grid_cell(par[fk.P_T0], par[fk.P_DT], int(par[fk.P_NT]), sw_t[k])
         r, _, w, _ = fk.resistance(v, par, r_calm, wake, u_ws, u_sw, a_ws, a_sw, it_ws, ft_ws,
                                    it_sw, ft_sw, wu[k] * sh + wv[k] * ch, wu[k] * ch - wv[k] * sh,
                                    caa)

@@ -12,6 +12,7 @@ import math
 
 import numpy as np
 from numba import njit
+from shiproute_core.units import M_S_PER_KNOT
 
 # indices into the scalar parameter vector ``par``
 (P_RHO, P_D, P_T, P_ETA_R, P_ETA_S, P_JMAX, P_WMAX, P_KT0, P_KT1, P_KT2, P_KT3, P_KQ0, P_KQ1,
@@ -20,7 +21,6 @@ from numba import njit
  P_THR_SLAM, P_THR_WET, P_THR_PROP, P_CALM_K, P_VTOP, P_SURF_KN) = range(42)
 N_PAR = 42
 G = 9.80665
-KN = 0.514444
 RHO_AIR = 1.225
 PEAK_ITTC = 1.0 / 0.772
 PEAK_JONSWAP = 1.0 / 0.834
@@ -28,7 +28,7 @@ COS_45 = math.sqrt(0.5)
 
 
 @njit(cache=True)
-def _idx(x0, dx, n, x):
+def grid_cell(x0, dx, n, x):
     """Cell index and fraction on a uniform grid, clamped to its ends."""
     u = (x - x0) / dx
     if u <= 0.0:
@@ -42,19 +42,19 @@ def _idx(x0, dx, n, x):
 @njit(cache=True)
 def _lin_cos(tab, c):
     """Linear interpolation of ``tab`` given on a uniform grid of cosines -1..1."""
-    i, f = _idx(-1.0, 2.0 / (tab.size - 1), tab.size, c)
+    i, f = grid_cell(-1.0, 2.0 / (tab.size - 1), tab.size, c)
     return tab[i] * (1.0 - f) + tab[i + 1] * f
 
 
 @njit(cache=True)
 def _lin_uniform(tab, x0, dx, x):
     """Linear interpolation on a uniform grid starting at x0 with spacing dx (clamped)."""
-    i, f = _idx(x0, dx, tab.size, x)
+    i, f = grid_cell(x0, dx, tab.size, x)
     return tab[i] * (1.0 - f) + tab[i + 1] * f
 
 
 @njit(cache=True)
-def _dir_factor(cos_rel):
+def head_sea_taper(cos_rel):
     """STAWAVE-2 validity taper (1 inside +-45 deg of head seas, 0 from beam seas aft)."""
     if cos_rel >= COS_45:
         return 1.0
@@ -90,7 +90,7 @@ def resistance(v, par, r_calm, wake, u_ws, u_sw, a_ws, a_sw, it_ws, ft_ws, it_sw
                w_side, caa):
     """Total resistance (N), its slope d/dV, wake fraction and its slope at ship speed v."""
     dv = par[P_DV]
-    ic, fc = _idx(0.0, dv, int(par[P_NV]), v)
+    ic, fc = grid_cell(0.0, dv, int(par[P_NV]), v)
     r = r_calm[ic] * (1.0 - fc) + r_calm[ic + 1] * fc
     dr = (r_calm[ic + 1] - r_calm[ic]) / dv
     w = wake[ic] * (1.0 - fc) + wake[ic + 1] * fc
@@ -99,7 +99,7 @@ def resistance(v, par, r_calm, wake, u_ws, u_sw, a_ws, a_sw, it_ws, ft_ws, it_sw
         # wave tables are uniform in sqrt(V): resolves the V^0.769 / Fr^1.5 onset near V = 0
         sv = math.sqrt(v)
         wdv = par[P_WDV] * 2.0 * max(sv, 1e-3)  # d(sqrt V) -> dV for the slope
-        iv, fv = _idx(0.0, par[P_WDV], int(par[P_WNV]), sv)
+        iv, fv = grid_cell(0.0, par[P_WDV], int(par[P_WNV]), sv)
         if a_ws > 0.0:
             x, dx = _bilin(u_ws, iv, fv, it_ws, ft_ws, wdv)
             r += a_ws * x
@@ -117,7 +117,7 @@ def resistance(v, par, r_calm, wake, u_ws, u_sw, a_ws, a_sw, it_ws, ft_ws, it_sw
     if rel2 > 0.0:
         rel = math.sqrt(rel2)
         cos_rel = -ax / rel
-        ci, cf = _idx(-1.0, 2.0 / (caa.size - 1), caa.size, cos_rel)
+        ci, cf = grid_cell(-1.0, 2.0 / (caa.size - 1), caa.size, cos_rel)
         c = caa[ci] * (1.0 - cf) + caa[ci + 1] * cf
         dc_dcos = (caa[ci + 1] - caa[ci]) * (caa.size - 1) / 2.0
         dcos_dv = w_side * w_side / (rel2 * rel)
@@ -180,7 +180,7 @@ def _imo(par, v, hs, t_mean, cos_rel, peak, out):
         return
     lpp = par[P_LPP]
     tp = t_mean * peak
-    if cos_rel < -COS_45 and v / KN * (-cos_rel) > par[P_SURF_KN]:
+    if cos_rel < -COS_45 and v / M_S_PER_KNOT * (-cos_rel) > par[P_SURF_KN]:
         out[0] = True  # surf-riding / broaching-to
     if G * tp * tp / (2.0 * math.pi) > 0.8 * lpp and hs > 0.04 * lpp:
         out[3] = True  # successive high-wave attack
@@ -238,13 +238,13 @@ def evaluate_kernel(rpm, hdg, wu, wv, ws_hs, ws_from, ws_t, sw_hs, sw_from, sw_t
         hs_sw2 = sw_hs[k] * sw_hs[k]
         cos_ws = math.cos(math.radians(ws_from[k]) - h)
         cos_sw = math.cos(math.radians(sw_from[k]) - h)
-        a_ws = hs_ws2 * _dir_factor(cos_ws)
-        a_sw = hs_sw2 * _dir_factor(cos_sw)
-        it_ws, ft_ws = _idx(par[P_T0], par[P_DT], int(par[P_NT]), ws_t[k])
-        it_sw, ft_sw = _idx(par[P_T0], par[P_DT], int(par[P_NT]), sw_t[k])
+        a_ws = hs_ws2 * head_sea_taper(cos_ws)
+        a_sw = hs_sw2 * head_sea_taper(cos_sw)
+        it_ws, ft_ws = grid_cell(par[P_T0], par[P_DT], int(par[P_NT]), ws_t[k])
+        it_sw, ft_sw = grid_cell(par[P_T0], par[P_DT], int(par[P_NT]), sw_t[k])
         v = _solve(n, par, r_calm, wake, u_ws, u_sw, a_ws, a_sw, it_ws, ft_ws, it_sw, ft_sw,
                    w_fwd, w_side, caa)
-        ic, fc = _idx(0.0, par[P_DV], int(par[P_NV]), v)
+        ic, fc = grid_cell(0.0, par[P_DV], int(par[P_NV]), v)
         w = wake[ic] * (1.0 - fc) + wake[ic + 1] * fc
         j = v * (1.0 - w) / (n * d)
         kq = par[P_KQ0] + j * (par[P_KQ1] + j * (par[P_KQ2] + j * par[P_KQ3]))
@@ -256,12 +256,12 @@ def evaluate_kernel(rpm, hdg, wu, wv, ws_hs, ws_from, ws_t, sw_hs, sw_from, sw_t
         east = v * sh + cu[k]
         north = v * ch + cv[k]
         m0[:] = 0.0
-        iv, fv = _idx(0.0, par[P_SDV], int(par[P_SNV]), v)
+        iv, fv = grid_cell(0.0, par[P_SDV], int(par[P_SNV]), v)
         if hs_ws2 > 0.0:
-            ir, fr = _idx(-1.0, 2.0 / (nc - 1), nc, cos_ws)
+            ir, fr = grid_cell(-1.0, 2.0 / (nc - 1), nc, cos_ws)
             _add_m0(m0_ws, hs_ws2, iv, fv, it_ws, ft_ws, ir, fr, m0)
         if hs_sw2 > 0.0:
-            ir, fr = _idx(-1.0, 2.0 / (nc - 1), nc, cos_sw)
+            ir, fr = grid_cell(-1.0, 2.0 / (nc - 1), nc, cos_sw)
             _add_m0(m0_sw, hs_sw2, iv, fv, it_sw, ft_sw, ir, fr, m0)
         for s in range(3):
             thr = par[P_THR_SLAM + s]

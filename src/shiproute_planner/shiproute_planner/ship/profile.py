@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 from scipy.interpolate import RegularGridInterpolator
+from shiproute_core.units import M_S_PER_KNOT
 
 from .errors import ProfileError
 from .performance import LegPerformance, PerformanceModel
@@ -29,7 +30,6 @@ from .validate import check_inputs, check_range, check_sea
 if TYPE_CHECKING:  # imported where a profile is read or written: ~50 MB resident with pandas
     import xarray as xr
 
-KN_M_S = 0.514444
 WEATHER_DIMS = ("hs_m", "rel_wave_deg", "wind_speed_m_s", "rel_wind_deg")
 
 
@@ -80,7 +80,7 @@ def export_profile(model: PerformanceModel, path: str | Path, grid: ProfileGrid)
         {
             "brake_power_kw": (dims, res.brake_power_kw, {"units": "kW"}),
             "fuel_t_per_h": (dims, res.fuel_t_per_h, {"units": "t h-1"}),
-            "stw_kn": (dims, res.stw_m_s / KN_M_S, {"units": "knot"}),
+            "stw_kn": (dims, res.stw_m_s / M_S_PER_KNOT, {"units": "knot"}),
         },
         coords={
             "rpm": ("rpm", np.asarray(grid.rpm), {"units": "min-1"}),
@@ -164,10 +164,10 @@ class ProfileModel:
         weather = self._weather(hdg, s)
         if self.axis == "rpm":
             pts = np.column_stack([rpm1, weather])
-            v = self._interp("stw_kn", pts) * KN_M_S
+            v = self._interp("stw_kn", pts) * M_S_PER_KNOT
         else:
             v = self._speed_from_rpm(rpm1, weather)
-            pts = np.column_stack([v / KN_M_S, weather])
+            pts = np.column_stack([v / M_S_PER_KNOT, weather])
         pb = self._interp("brake_power_kw", pts)
         out = self.physics.finish_legs(rpm1, hdg, s, v, pb)
         out["fuel_t_per_h"] = self._interp("fuel_t_per_h", pts)
@@ -184,7 +184,7 @@ class ProfileModel:
         r0 = table_rpm[np.arange(n), k - 1]
         r1 = table_rpm[np.arange(n), k]
         f = np.clip((rpm - r0) / np.maximum(r1 - r0, 1e-9), 0.0, 1.0)
-        return (speeds[k - 1] + f * (speeds[k] - speeds[k - 1])) * KN_M_S
+        return (speeds[k - 1] + f * (speeds[k] - speeds[k - 1])) * M_S_PER_KNOT
 
     def rpm_for_speed(
         self, stw_m_s: np.ndarray, heading_deg: np.ndarray, sea: SeaState
@@ -200,12 +200,12 @@ class ProfileModel:
         hdg = np.broadcast_to(heading_deg, shape).reshape(n)
         weather = self._weather(hdg, flatten_sea(sea, shape, n))
         if self.axis == "stw_kn":
-            return self._interp("rpm", np.column_stack([v / KN_M_S, weather])).reshape(shape)
+            return self._interp("rpm", np.column_stack([v / M_S_PER_KNOT, weather])).reshape(shape)
         rpms = self._points[0]
         m = rpms.size
         pts = np.column_stack([np.repeat(rpms[None, :], n, 0).reshape(-1),
                                np.repeat(weather, m, axis=0)])
-        table_v = self._interp("stw_kn", pts).reshape(n, m) * KN_M_S
+        table_v = self._interp("stw_kn", pts).reshape(n, m) * M_S_PER_KNOT
         k = np.clip((table_v < v[:, None]).sum(axis=1), 1, m - 1)
         v0, v1 = table_v[np.arange(n), k - 1], table_v[np.arange(n), k]
         f = (v - v0) / np.maximum(v1 - v0, 1e-9)

@@ -14,12 +14,12 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from shiproute_core.units import M_S_PER_KNOT
 
 from .spec import ShipSpec
 from .spectra import D_OMEGA, OMEGA_RAD_S
 
 G_M_S2 = 9.80665
-KN_M_S = 0.514444
 _PEAK_OVER_MEAN = {"ittc": 1.0 / 0.772, "jonswap": 1.0 / 0.834}
 
 
@@ -135,7 +135,7 @@ def imo_flags(
     rel = np.abs(((rel_wave_deg + 180.0) % 360.0) - 180.0)
     following = rel > 135.0
     cos_from_stern = np.cos(np.radians(180.0 - rel))
-    v_kn = stw_m_s / KN_M_S
+    v_kn = stw_m_s / M_S_PER_KNOT
     surf = present & following & (v_kn * np.maximum(cos_from_stern, 1e-6) > 1.8 * np.sqrt(L))
     high = present & (wave_len > 0.8 * L) & (hs_m > 0.04 * L)
     wp = 2 * np.pi / tp

@@ -95,7 +95,7 @@ def leg_specs(ports: Sequence[Port], calls: dict[int, PortCall],
               canal_legs: dict[int, Any]) -> list[LegSpec]:
     """One LegSpec per leg ports[k] -> ports[k+1]; `calls` maps an end-port index of `ports`
     to its call, `canal_legs` a leg index to (canal, reversed)."""
-    from ..canals import canal_line
+    from shiproute_planner.route.canals import canal_line
 
     out = []
     for k, (a, b) in enumerate(itertools.pairwise(ports)):

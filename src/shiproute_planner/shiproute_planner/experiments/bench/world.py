@@ -1,0 +1,124 @@
+"""World benchmark: plan every lane of `world_lanes.csv` (calm water, 5 s budget each) and
+check each plan with the route check at GSHHG full resolution.
+
+`world_lanes.csv` is a copy of the public lane set `benchmarks/world_lanes.csv` of the
+shiproute project's shared data (20 trade lanes through Suez, Panama, Kiel, Dover,
+Gibraltar, Malacca, the Bosphorus, Torres Strait, the Great Barrier Reef, the Elbe, the St
+Lawrence). A lane is land-clean when no sample of its track (every 0.25 NM) lies on GSHHG
+full-resolution land outside 3 NM round each port and outside canals (fixed passages under
+their authorities' rules), and depth-checked when the plan was made
+with bathymetry and every planned leg's depth was known (port approaches inside coarse-grid
+coastal cells may be unknown: the coastline decides there; they are counted per lane).
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import statistics
+import time
+from datetime import timedelta
+from importlib import resources
+
+import numpy as np
+from shiproute_core.units import M_PER_NM
+
+from ...errors import PlannerError
+from ...planning import plan_voyage
+from ...route_check import check_track
+
+
+def _lanes() -> list[dict[str, str]]:
+    text = (resources.files("shiproute_planner.experiments.bench") / "world_lanes.csv").read_text()
+    return list(csv.DictReader(text.splitlines()))
+
+
+def _peak_rss_mb() -> float:
+    try:
+        with open("/proc/self/status") as f:
+            for line in f:
+                if line.startswith("VmHWM:"):
+                    return int(line.split()[1]) / 1024.0
+    except (OSError, ValueError):
+        pass
+    return float("nan")
+
+
+def run(budget_s: float, only: list[str]) -> dict:
+    """Plan and check every lane; the JSON-able result."""
+    from ...cli.check import land_test
+
+    land_full, land_note = land_test(None)
+    rows, times = [], []
+    for lane in _lanes():
+        if only and lane["name"] not in only:
+            continue
+        row: dict = {"lane": lane["name"], "passes": lane["passes"]}
+        t = time.perf_counter()
+        try:
+            plan = plan_voyage(lane["from"], lane["to"], lane["depart"],
+                               timedelta(days=float(lane["rta_days"])), lane["ship"], None,
+                               budget_s=budget_s, default_bathymetry=True)
+        except PlannerError as exc:
+            row.update(error=str(exc), plan_s=round(time.perf_counter() - t, 2))
+            rows.append(row)
+            continue
+        dt = time.perf_counter() - t
+        times.append(dt)
+        lon, lat, _ = plan.track()
+        fixed = frozenset(k for a, b in plan.extra.get("fixed_passages", ())
+                          for k in range(a, b))
+        result = check_track(lon, lat, np.array([w.stw_kn for w in plan.waypoints[:-1]]),
+                             land_full.contains, port_clearance_m=3.0 * M_PER_NM,
+                             skip_legs=fixed)
+        land = [v for v in result.violations if v.kind == "land"]
+        depths = np.array([w.min_depth_m for w in plan.waypoints[:-1]])
+        planned = np.zeros(depths.size, dtype=bool)
+        for a, b in plan.optimised_spans:
+            planned[a:b] = True
+        row.update(
+            plan_s=round(dt, 2), feasible=plan.feasible,
+            infeasible_reasons=list(plan.infeasible_reasons),
+            land_legs_full_res=[(v.leg, round(v.lat_deg, 3), round(v.lon_deg, 3),
+                                 round(v.value, 2)) for v in land],
+            depth_checked=not any(w.startswith("depth not checked:") for w in plan.warnings)
+            and bool(np.all(np.isfinite(depths[planned]))),
+            depth_unknown_legs=int(np.count_nonzero(~np.isfinite(depths))),
+            min_ukc_m=round(float(np.nanmin([w.ukc_m for w in plan.waypoints[:-1]])), 1)
+            if np.isfinite(depths).any() else None,
+            distance_nm=round(plan.total_distance_nm, 1), fuel_t=round(plan.total_fuel_t, 1),
+            warnings=list(plan.warnings))
+        rows.append(row)
+    ok = [r for r in rows if "error" not in r]
+    return {
+        "lanes": len(rows),
+        "feasible_lanes": sum(r["feasible"] for r in ok),
+        "land_clean_lanes": sum(not r["land_legs_full_res"] for r in ok),
+        "depth_checked_lanes": sum(r["depth_checked"] for r in ok),
+        "failed_lanes": [r["lane"] for r in rows if "error" in r],
+        "median_plan_s": round(statistics.median(times), 2) if times else None,
+        "max_plan_s": round(max(times), 2) if times else None,
+        "planner_rss_mb": round(_peak_rss_mb(), 1),
+        "land_check": land_note,
+        "per_lane": rows,
+    }
+
+
+def main(argv: list[str]) -> int:
+    """`shiproute bench world [--json] [--budget S] [--lane NAME ...]`."""
+    ap = argparse.ArgumentParser(prog="shiproute bench world", description=__doc__)
+    ap.add_argument("--json", action="store_true", help="print one JSON object")
+    ap.add_argument("--budget", type=float, default=5.0, help="planning budget per lane [s]")
+    ap.add_argument("--lane", action="append", default=[], help="only these lanes")
+    args = ap.parse_args(argv)
+    result = run(args.budget, args.lane)
+    if args.json:
+        print(json.dumps(result))
+    else:
+        for k, v in result.items():
+            if k != "per_lane":
+                print(f"{k:22s} {v}")
+        for r in result["per_lane"]:
+            print(json.dumps(r))
+    return 0

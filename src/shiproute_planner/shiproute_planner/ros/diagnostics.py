@@ -1,0 +1,58 @@
+"""The planner node's /diagnostics status: intake, planning and the plan in force."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
+
+from ..plan_types import RoutePlan
+
+
+def planner_status(values: dict[str, str], plan: RoutePlan | None, plan_age_s: float,
+                   stamp: Any) -> DiagnosticArray:
+    """One DiagnosticArray of the node's counters (`values`) and the plan in force: WARN while
+    there is no plan or the plan is infeasible (the reasons are the message), OK otherwise."""
+    status = DiagnosticStatus(name="shiproute_planner", hardware_id="shiproute")
+    values = dict(values)
+    if plan is None:
+        status.level = DiagnosticStatus.WARN
+        status.message = "no plan yet"
+    else:
+        status.level = DiagnosticStatus.OK if plan.feasible else DiagnosticStatus.WARN
+        status.message = "plan feasible" if plan.feasible else "; ".join(
+            plan.infeasible_reasons)
+        values.update({
+            "plan_id": plan.plan_id,
+            "plan_cycle": plan.cycle_id,
+            "plan_age_s": f"{plan_age_s:.1f}",
+            "compute_time_s": f"{plan.compute_time_s:.3f}",
+            "feasible": str(plan.feasible),
+            "constraints": ", ".join(plan.infeasible_reasons) or "all met",
+            "warnings": "; ".join(plan.warnings) or "none",
+            "fuel_t": f"{plan.total_fuel_t:.2f}",
+            "eta_minus_rta_h": f"{(plan.eta_s - plan.rta_s) / 3600:.2f}",
+        })
+    status.values = [KeyValue(key=k, value=v) for k, v in values.items()]
+    msg = DiagnosticArray(status=[status])
+    msg.header.stamp = stamp
+    return msg
+
+
+def plan_log_line(plan: RoutePlan, reason: str) -> str:
+    """The one log line of a published plan: fuel, ETA against RTA, saving and run time."""
+    return (
+        f"plan {plan.plan_id} cycle {plan.cycle_id}: fuel {plan.total_fuel_t:.1f} t, "
+        f"ETA-RTA {(plan.eta_s - plan.rta_s) / 3600:+.1f} h, saved {plan.fuel_saving_t:.1f} t "
+        f"vs constant RPM, {plan.compute_time_s:.2f} s, feasible={plan.feasible} ({reason})"
+    )
+
+
+def progress_values(progress: Any) -> dict[str, float]:
+    """Generation, evaluations and best objective of a planner progress report."""
+    return {
+        "generation": float(getattr(progress, "generation", 0)),
+        "evaluations": float(getattr(progress, "evaluations", 0)),
+        "best_objective": float(getattr(progress, "best_objective", math.nan)),
+    }

@@ -1,0 +1,247 @@
+"""The seed GA, the planner's reference method: seed tracks (baseline, great circle, sea lanes,
+bent variants, timed versions, previous plan and pool) turned into genes, the generic ask/tell
+GA (islands, then one population) within the wall-time budget, and the exact final choice
+checked against the coastline polygons."""
+
+from __future__ import annotations
+
+import dataclasses
+import time
+
+import numpy as np
+from shiproute_core.flags import FLAG_LAND
+from shiproute_core.geodesy import inverse
+
+from .ga.islands import IslandGA, cross_track_rad
+from .ga.loop import AskTellGA, GAConfig, SeedGA
+from .ga.ranking import deb_order, is_better
+from .geo.landmask import LandMask
+from .geo.verify import land_crossings
+from .method_context import Baseline, MethodContext, MethodResult, Progress, compute_baseline
+from .route.encoding import clip_genes, gene_bounds
+from .route.environment import Environment
+from .route.evaluation import RouteEvaluation
+from .route.fast_eval import fast_evaluator
+from .route.generate import evaluate_genes
+from .route.problem import RouteProblem
+from .route.seeding import TrackSeed, great_circle_track, sea_lane_track, track_to_genes, via_track
+
+EXACT_CHOICE_RESERVE_S = 0.25  # wall time kept for the exact final choice and dense land check
+EXACT_CHOICE_SHARE = 0.28  # ... at most this share of a small budget (re-plans of 0.5 s)
+DENSE_CHECKS = 12  # feasible final candidates given the dense land check, best first
+EXACT_CHECK_EVERY = 15  # generations between exact confirmations of the GA's best
+# RPM ramps (relative change from the first to the last leg / 2) of timed seed variants
+TIMED_SLOPES = (-0.08, -0.04, 0.04, 0.08)
+
+
+def seed_ga_method(ctx: MethodContext) -> MethodResult:
+    """Seed GA: seeds (pool, previous plan, sea lane, great circle) + GA within the budget."""
+    p, env = ctx.problem, ctx.env
+    seeds = list(ctx.seeds)
+    base = ctx.baseline
+    if base is None and not seeds:
+        base = compute_baseline(p, env, ctx.land)
+    tracks = _seed_tracks(ctx, base) if base is not None else []
+    for s in ctx.seeds[:2]:  # given seeds (previous plan, pool): also earlier/later versions
+        for slope in TIMED_SLOPES:
+            ramp = np.linspace(-1.0, 1.0, max(s.rpm.size, 1))
+            tracks.append((f"{s.source}_timed", s.lon_deg, s.lat_deg, s.rpm * (1 + slope * ramp)))
+    for name, lon, lat, rpm in tracks:
+        seeds.append(TrackSeed(name, lon, lat, np.broadcast_to(rpm, lon.size - 1).copy()))
+
+    fast = fast_evaluator(p, env, ctx.land)
+
+    def evaluate(x: np.ndarray) -> RouteEvaluation:
+        """GA-loop evaluator: the compiled one when the environment allows it."""
+        return fast.evaluate(x) if fast is not None else evaluate_genes(p, env, ctx.land, x)
+
+    x_seed = (track_to_genes(p, env, seeds, ctx.land, fast=fast) if seeds
+              else np.empty((0, p.n_var)))
+    sources = [s.source for s in seeds]
+    for name, genes in ctx.gene_seeds:
+        if genes.size == p.n_var and np.all(np.isfinite(genes)):
+            x_seed = np.concatenate([x_seed, clip_genes(p, genes[None, :])])
+            sources.append(name)
+    lo, hi = gene_bounds(p)
+    cfg = ctx.ga_config or GAConfig()
+    offsets = np.zeros(len(x_seed))
+    if len(x_seed) > 1:  # best seeds first: the initial population jitters them most
+        sev = evaluate(x_seed)
+        order = deb_order(sev.violation, sev.objective)
+        x_seed, sources = x_seed[order], [sources[i] for i in order]
+        offsets = cross_track_rad(sev.lon_deg[order], sev.lat_deg[order],
+                                  (p.dep_lon_deg, p.dep_lat_deg), (p.arr_lon_deg, p.arr_lat_deg))
+    ga: AskTellGA
+    if len(x_seed) >= 2 * ctx.n_islands and ctx.n_islands > 1:
+        ga = IslandGA(lo, hi, p.n_stages, cfg, ctx.rng, x_seed, offsets, ctx.n_islands)
+    else:
+        ga = SeedGA(lo, hi, p.n_stages, cfg, ctx.rng, x_seed)
+    # keep time for the exact re-evaluation and dense land check of the final candidates
+    confirmed: list[np.ndarray] = []
+    deadline_s = ctx.budget_s - min(EXACT_CHOICE_SHARE * ctx.budget_s, EXACT_CHOICE_RESERVE_S)
+    best_src = "none"
+    n = p.n_stages
+    merge_s = ctx.island_share * deadline_s
+    while True:
+        if isinstance(ga, IslandGA) and not ga.merged and (
+                time.perf_counter() - ctx.t_start >= merge_s
+                or ga.generation >= ctx.island_share * ctx.max_generations
+                or 0 < ctx.max_evaluations * ctx.island_share <= ga.evaluations):
+            ga.merge()
+        x = ga.ask()
+        if ga.pop is not None:
+            parts = ga.parts() if isinstance(ga, IslandGA) else [(slice(0, len(x)), ga)]
+            for sl, isl in parts:
+                _rpm_scaled_best(x[sl], isl.best[0], n, lo, hi, ctx.rng)
+        if ctx.max_evaluations and ga.pop is not None:
+            # an evaluation budget is exact once every island has its first population (a
+            # budget smaller than that still evaluates the whole first population)
+            x = x[: max(ctx.max_evaluations - ga.evaluations, 1)]
+        ev = evaluate(x)
+        ga.tell(x, ev.violation, ev.objective)
+        # archive of bests the exact evaluator confirms: the fallback when the final
+        # population sits where a boolean criterion flips between the two evaluators
+        if (fast is not None and ga.generation % EXACT_CHECK_EVERY == 0 and ga.best[1] <= 0
+                and evaluate_genes(p, env, ctx.land, ga.best[0][None, :]).feasible[0]):
+            confirmed.append(ga.best[0].copy())
+        if ga.generation == 0:
+            order = np.lexsort((ev.objective[: len(sources)], ev.violation[: len(sources)] > 0,
+                                ev.violation[: len(sources)]))
+            best_src = sources[int(order[0])] if sources else "none"
+        _, v, f = ga.best
+        elapsed = time.perf_counter() - ctx.t_start
+        if ctx.progress is not None:
+            ctx.progress(Progress(ctx.leg_index, ga.generation, ga.evaluations,
+                                  f if v <= 0 else float("nan"), v, elapsed))
+        if (elapsed >= deadline_s or ga.generation >= ctx.max_generations or ctx.cancelled()
+                or 0 < ctx.max_evaluations <= ga.evaluations
+                or (ctx.stall_generations and ga.stalled(ctx.stall_generations))):
+            break
+    pool_x = ga.pop if not confirmed else np.concatenate([ga.pop[:24], confirmed[::-1],
+                                                          ga.pop[24:]])
+    best_x, final = exact_choice(p, env, ctx.land, pool_x, top=min(24, len(ga.pop)))
+    b = ctx.baseline
+    if b is not None and is_better(
+        float(b.evaluation.violation[0]), float(b.evaluation.objective[0]),
+        float(final.violation[0]), float(final.objective[0]),
+    ):
+        # never hand out a plan worse than the constant-RPM baseline the GA was seeded with
+        return MethodResult(b.evaluation, "baseline", ga.generation, ga.evaluations, None)
+    return MethodResult(final, best_src, ga.generation, ga.evaluations, best_x.copy())
+
+
+def _rpm_scaled_best(x: np.ndarray, best: np.ndarray, n: int, lo: np.ndarray, hi: np.ndarray,
+                     rng: np.random.Generator) -> None:
+    """Local moves in place on the last eighth of offspring `x`, copies of the population's
+    best: all RPMs scaled by ~0.4 % (trades ETA slack for fuel and back), and in every other
+    copy the stage RPMs also pulled part of the way to their mean (fuel is convex in speed,
+    so an even schedule is cheaper unless the weather says otherwise)."""
+    if len(x) <= 8:
+        return
+    k = max(4, len(x) // 8)
+    x[-k:] = best
+    rpm = x[-k:, n:]
+    even = rpm[::2]
+    even -= rng.uniform(0.0, 1.0, size=(even.shape[0], 1)) * (
+        even - even.mean(axis=1, keepdims=True))
+    rpm *= 1.0 + rng.normal(0.0, 0.004, size=(k, 1))
+    x[-k:] = np.clip(x[-k:], lo, hi)
+
+
+def exact_choice(p: RouteProblem, env: Environment, land: LandMask, pop: np.ndarray,
+                 top: int = 24) -> tuple[np.ndarray, RouteEvaluation]:
+    """Best of the final population re-evaluated with the exact evaluator (pyproj geodesics).
+
+    The GA's compiled evaluator agrees to metres per leg, but a route tuned to arrive just on
+    time may miss the RTA by minutes in the exact one, and one that arrives early wastes
+    fuel: the `top` best and copies of the best with all RPMs scaled by -3..+1 % are
+    evaluated exactly and the best of them returned."""
+    n = p.n_stages
+    lo, hi = gene_bounds(p)
+    cand = [pop[:top]]
+    # slower copies spend ETA slack (fuel ~ speed^2 per distance), faster ones repair a
+    # minutes-late arrival of the compiled evaluator's optimum
+    scales = np.array([0.97, 0.98, 0.985, 0.99, 0.995, 1.001, 1.002, 1.004, 1.007, 1.01])
+    bumped = np.repeat(pop[:1], scales.size, axis=0)
+    bumped[:, n:] *= scales[:, None]
+    cand.append(np.clip(bumped, lo, hi))
+    x = np.concatenate(cand)
+    ev = evaluate_genes(p, env, land, x)
+    if not ev.feasible.any() and len(pop) > top:
+        # boolean criteria (IMO resonances, land) can flip between the two evaluators at
+        # the edge of feasibility: look at the rest of the population before giving up
+        x = np.concatenate([x, pop[top:]])
+        ev = evaluate_genes(p, env, land, x)
+    order = deb_order(ev.violation, ev.objective)
+    if land is None:
+        k = int(order[0])
+        return x[k].copy(), ev.take(k)
+    # the independent dense check (geodesic points every 500 m, all on the polygons) must
+    # agree: the first feasible candidate that passes it wins
+    first_bad: tuple[int, list[int]] | None = None
+    for k in order[:DENSE_CHECKS]:
+        if ev.violation[k] > 0:
+            break
+        bad = land_crossings(ev.lon_deg[k], ev.lat_deg[k], port_clearance_m=0.0,
+                             contains=land.is_land)
+        if not bad:
+            return x[k].copy(), ev.take(int(k))
+        first_bad = first_bad or (int(k), bad)
+    if first_bad is None:
+        k = int(order[0])
+        return x[k].copy(), ev.take(k)
+    k, bad = first_bad  # nothing passed: the best, flagged with the legs the check rejects
+    return x[k].copy(), with_land_legs(ev.take(k), bad)
+
+
+def with_land_legs(ev: RouteEvaluation, legs: list[int]) -> RouteEvaluation:
+    """One-row evaluation with `legs` flagged as crossing land (violation 2 per leg)."""
+    leg_flags = ev.leg_flags.copy()
+    leg_flags[0, legs] |= np.uint32(FLAG_LAND)
+    return dataclasses.replace(ev, leg_flags=leg_flags, flags=ev.flags | np.uint32(FLAG_LAND),
+                               violation=ev.violation + 2.0 * len(legs))
+
+
+def _seed_tracks(ctx: MethodContext, base: Baseline) -> list[tuple]:
+    """Baseline, great circle, sea lane and sea lanes via bent midpoints, each with the
+    baseline RPM scaled by track length (speed ~ RPM) so it arrives about on time."""
+    p = ctx.problem
+    length_b = float(base.evaluation.distance_m[0])
+
+    def scaled(lon: np.ndarray, lat: np.ndarray) -> float:
+        """Baseline RPM scaled by track length (speed ~ RPM) so the seed is about on time."""
+        length = float(np.sum(inverse(lon[:-1], lat[:-1], lon[1:], lat[1:])[1]))
+        return float(np.clip(base.rpm * length / max(length_b, 1.0), p.limits.rpm_min,
+                             p.limits.rpm_max))
+
+    tracks = [(base.name, base.lon_deg, base.lat_deg)]
+    if not ctx.seeds:
+        if base.name != "great_circle":
+            tracks.append(("great_circle", *great_circle_track(p)))
+        if base.name != "sea_lane":
+            lane = sea_lane_track(p)
+            if lane is not None:
+                tracks.append(("searoute", *lane))
+        if ctx.n_offset_seeds:
+            # the baseline's port approaches + open-ocean great circles via points moved
+            # north/south of the great circle at 1/3, 1/2 and 2/3 of the way
+            g_lon, g_lat = great_circle_track(p, 7)
+            spread = np.linspace(-ctx.offset_span_deg, ctx.offset_span_deg,
+                                 ctx.n_offset_seeds + 1)
+            spread = np.concatenate([spread[spread != 0.0], [-3.0, 3.0]])
+            for j in (2, 3, 4):
+                for d in spread:
+                    mlat = float(np.clip(g_lat[j] + d, -p.limits.lat_bound_deg,
+                                         p.limits.lat_bound_deg))
+                    v = via_track(base.lon_deg, base.lat_deg, float(g_lon[j]), mlat)
+                    tracks.append(("via_point", *v))
+    out = [(name, lon, lat, scaled(lon, lat)) for name, lon, lat in tracks]
+    # the baseline track with RPM ramps: passing a storm earlier or later than the
+    # constant-RPM schedule does is often cheaper than steering around it
+    n_leg = base.lon_deg.size - 1
+    ramp = np.linspace(-1.0, 1.0, max(n_leg, 1))
+    for slope in TIMED_SLOPES:
+        rpm = np.clip(base.rpm * (1.0 + slope * ramp), p.limits.rpm_min, p.limits.rpm_max)
+        out.append(("baseline_timed", base.lon_deg, base.lat_deg, rpm))
+    return out
+
