@@ -12,10 +12,10 @@ from typing import Any
 
 import numpy as np
 
-from ..front import plan_front
-from ..geo.landmask import default_land_mask
-from ..plan_request import build_request
-from ..planning import plan_voyage
+from ...front import plan_front
+from ...geo.landmask import default_land_mask
+from ...plan_request import build_request
+from ...planning import plan_voyage
 
 DEPART = "2026-03-03T18:00Z"
 

@@ -20,7 +20,7 @@ SHORTSEA = ("Rostock", "Trelleborg", "2026-06-01T08:00Z", "6h")
 
 def plan_multiport(budget: str = "8s", seed: int = 0, via: tuple[str, ...] | None = None):
     """The application-1 plan (calm water); `via` replaces the port calls (windows)."""
-    from ..plan_request import build_request, run_request
+    from ...plan_request import build_request, run_request
 
     a, vias, b, depart, rta = MULTIPORT
     req = build_request(origin=a, destination=b, depart=depart, rta=rta,
@@ -30,7 +30,7 @@ def plan_multiport(budget: str = "8s", seed: int = 0, via: tuple[str, ...] | Non
 
 def plan_shortsea(budget: str = "3s", seed: int = 0, stage_hours: float | None = None):
     """The 6-hour short-sea passage (calm water), stage length derived unless given."""
-    from ..plan_request import build_request, run_request
+    from ...plan_request import build_request, run_request
 
     a, b, depart, rta = SHORTSEA
     req = build_request(origin=a, destination=b, depart=depart, rta=rta, budget=budget,
