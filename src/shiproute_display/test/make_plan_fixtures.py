@@ -29,7 +29,8 @@ def plan_dict(plan) -> dict:
 def main() -> None:
     from shiproute_display.geometry import position_at
     from shiproute_display.model import Plan, Waypoint
-    from shiproute_planner.planning import load_forecast, plan_voyage
+    from shiproute_planner.plan_setup import load_forecast
+    from shiproute_planner.planning import plan_voyage
 
     DATA.mkdir(exist_ok=True)
     first = plan_voyage("Busan", "Long Beach", DEPART, RTA, "container_4600teu",

@@ -18,6 +18,8 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
+from shiproute_core.units import M_S_PER_KNOT
+
 from .errors import InvalidVoyageError
 from .plan_request import Budget, PlanRequest, run_request
 from .plan_types import RoutePlan
@@ -78,7 +80,7 @@ def top_speed_s(origin: str, destination: str, ship: Any, loading: str = "") -> 
     a, b = resolve_port(origin, land), resolve_port(destination, land)
     dist_m = float(inverse(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)[1])
     spec = loaded_ship(ship, loading) if loading else load_ship(ship)
-    return dist_m / (max_calm_speed_kn(spec) * 1852.0 / 3600.0)
+    return dist_m / (max_calm_speed_kn(spec) * M_S_PER_KNOT)
 
 
 def build_front(plan_one: PlanOne, depart_s: float, rta_s: float, n_points: int,

@@ -18,7 +18,6 @@ from typing import Any
 
 import numpy as np
 from shiproute_core.geodesy import inverse
-from shiproute_core.units import M_PER_NM
 
 from shiproute_planner.method_context import Progress
 from shiproute_planner.methods import MethodContext, compute_baseline, get_method
@@ -43,9 +42,16 @@ from .objectives import Economics, objective_block, objective_terms
 from .plan_assembly import assemble_plan
 from .plan_checks import checked_plan, zone_limits
 from .plan_seeds import leg_seeds, offer_to_pool
+from .plan_setup import (
+    TimeLike,
+    cancel_fn,
+    chosen_model,
+    make_environment,
+    route_limits,
+    rta_warning_of,
+    to_posix_s,
+)
 from .plan_types import RoutePlan
-from .route.environment import Environment
-from .route.problem import RouteLimits
 from .route.voyage_legs import leg_setup
 from .straits import route_straits, sail_strait
 from .voyage.legs import voyage_schedule
@@ -59,90 +65,6 @@ from .voyage.stage_length import (
     scaled_ga_config,
 )
 from .voyage_ship import loaded_ship, loading_block
-
-TimeLike = datetime | float | int | str
-
-
-def to_posix_s(value: TimeLike) -> float:
-    """UTC datetime, ISO 8601 string ('Z' allowed) or POSIX seconds -> POSIX seconds."""
-    if isinstance(value, int | float):
-        return float(value)
-    if isinstance(value, str):
-        value = datetime.fromisoformat(value.strip().replace("Z", "+00:00"))
-    if value.tzinfo is None:
-        value = value.replace(tzinfo=UTC)
-    return value.timestamp()
-
-
-def load_forecast(name_or_path: str | Sequence[str], waves_from_wind: bool = True) -> Any:
-    """Canonical forecast dataset from file paths (one cycle: wind, waves and currents may
-    come from different files) or a bundled scenario name. A file that cannot be used is
-    refused with InvalidVoyageError naming it and the reason."""
-    from shiproute_weather.errors import WeatherError
-    from shiproute_weather.scenarios.catalogue import scenario_dataset, scenario_names
-
-    names = [name_or_path] if isinstance(name_or_path, str | Path) else list(name_or_path)
-    if len(names) == 1 and not Path(names[0]).exists() and names[0] in scenario_names():
-        return scenario_dataset(str(names[0]))
-    for n in names:
-        if not Path(n).exists():
-            raise InvalidVoyageError(
-                f"forecast {str(n)!r} is neither a file nor a bundled scenario "
-                f"({', '.join(scenario_names())})")
-    from shiproute_weather.ingest.loaders import open_forecast
-
-    try:
-        return open_forecast([str(n) for n in names], waves_from_wind=waves_from_wind)
-    except WeatherError as exc:
-        raise InvalidVoyageError(f"forecast refused: {exc}") from exc
-
-
-def make_environment(ship: Any, forecast: Any = None) -> tuple[Environment, Any]:
-    """Environment from a ship (name, path, ShipSpec or model) and forecast (Dataset, sampler
-    or None for calm water). Returns (environment, ShipSpec or None)."""
-    from .ship import ShipSpec, load_ship
-
-    spec = None
-    if isinstance(ship, str | Path):
-        spec = load_ship(ship)
-    elif isinstance(ship, ShipSpec):
-        spec = ship
-    model = ship if spec is None else _fast_model(spec)
-    if spec is None:
-        spec = getattr(model, "ship", None) or getattr(model, "spec", None)
-    sampler, cycle = None, ""
-    if forecast is not None:
-        if hasattr(forecast, "sample"):
-            sampler = forecast
-            cycle = str(getattr(forecast, "cycle_id", "") or "")
-        else:
-            from shiproute_weather.sampling.sampler import ForecastSampler
-
-            sampler = ForecastSampler(forecast)
-            cycle = str(forecast.attrs.get("cycle_id", ""))
-    return Environment(model, sampler, cycle), spec
-
-
-def _fast_model(spec: Any) -> Any:
-    """The tabulated ship model (cached per ship and loading condition)."""
-    from .ship.fast import fast_model
-
-    return fast_model(spec)
-
-
-def route_limits(spec: Any, overrides: dict | None = None) -> RouteLimits:
-    """Route limits of a ship (engine RPM range, seakeeping criteria) with `overrides`."""
-    kw: dict[str, Any] = {}
-    if spec is not None:
-        kw.update(rpm_min=spec.engine.rpm_min, rpm_max=spec.engine.rpm_max,
-                  max_hs_m=spec.seakeeping.max_hs_m, max_wind_m_s=spec.seakeeping.max_wind_m_s,
-                  p_slamming_max=spec.seakeeping.slamming_probability,
-                  p_deck_wetness_max=spec.seakeeping.deck_wetness_probability,
-                  p_propeller_emergence_max=spec.seakeeping.propeller_emergence_probability)
-    kw.update(overrides or {})
-    if "rpm_min" not in kw or "rpm_max" not in kw:
-        raise InvalidVoyageError("RPM range unknown: give a ship file or limits rpm_min/rpm_max")
-    return RouteLimits(**kw)
 
 
 def _calls_of(via: Sequence[str | Port], via_rta: Sequence[TimeLike | None],
@@ -264,7 +186,7 @@ def plan_voyage(
     if port_calls:
         via = [c.port for c in port_calls]
     land = land or default_land_mask()
-    ship, model_notes = _chosen_model(loaded_ship(ship, loading), ship_model)
+    ship, model_notes = chosen_model(loaded_ship(ship, loading), ship_model)
     env, spec = make_environment(ship, forecast)
     terms = objective_terms(objective, dict(getattr(spec, "economics", ()) or ()), economics)
     if cycle_id:
@@ -305,12 +227,12 @@ def plan_voyage(
         call_at, leg_rtas = {}, [rta_s]
     env = dataclasses.replace(env, sampler=prepare_forecast(env.sampler, depart_s, rta_s,
                                                             persistence_h, climatology))
-    rta_warning, earliest_s = _rta_warning(ports, depart_s, rta_s, spec)
+    rta_warning, earliest_s = rta_warning_of(ports, depart_s, rta_s, spec)
     # an RTA beyond reach is searched best effort: over the time the great circle takes at
     # full speed (a lower bound), lateness being a violation the search minimises; a
     # schedule (ports, canals, straits) never asks a leg for more than the ship can do
     search_rtas = [*leg_rtas[:-1], earliest_s] if rta_warning else list(leg_rtas)
-    is_cancelled = _cancel_fn(cancel)
+    is_cancelled = cancel_fn(cancel)
     rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
     pool = SeedPool(seed_pool_dir) if seed_pool_dir is not None else None
     month = datetime.fromtimestamp(depart_s, UTC).month
@@ -422,53 +344,5 @@ def plan_voyage(
     return dataclasses.replace(plan, warnings=(*plan.warnings, *said, *terms.notes),
                                extra={**plan.extra, "forecast": block, "objective": goal,
                                       **loading_block(spec)})
-
-
-def _chosen_model(ship: Any, ship_model: str) -> tuple[Any, tuple[str, ...]]:
-    """(ship or performance model, notes for the plan's warnings) for a `ship_model` choice."""
-    from .ship import ShipSpec, load_ship
-
-    if not isinstance(ship, str | Path | ShipSpec):
-        if ship_model:
-            raise InvalidVoyageError("give ship_model with a ship name/file, not with a model")
-        return ship, ()
-    spec = ship if isinstance(ship, ShipSpec) else load_ship(ship)
-    if (ship_model or spec.performance_model or "physics") == "physics":
-        return spec, ()
-    from .learned.select import resolve_model
-    from .ship import ShipModelError
-
-    try:
-        return resolve_model(spec, ship_model)
-    except ShipModelError as exc:  # wrong ship, unreadable model file, unknown choice
-        raise InvalidVoyageError(f"ship model: {exc}") from exc
-
-
-def _rta_warning(ports: list[Port], depart_s: float, rta_s: float,
-                 spec: Any) -> tuple[str, float]:
-    """Why the RTA cannot be met even on great circles at full calm-water speed ('' when it
-    can, or without a ship file), and the arrival time at that speed [POSIX s]."""
-    if spec is None:
-        return "", rta_s
-    from .checks.voyage import max_calm_speed_kn
-
-    dist_nm = sum(float(inverse(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)[1])
-                  for a, b in itertools.pairwise(ports)) / M_PER_NM
-    need_kn = dist_nm / ((rta_s - depart_s) / 3600.0)
-    top_kn = max_calm_speed_kn(spec)
-    earliest_s = depart_s + dist_nm / top_kn * 3600.0
-    if need_kn <= top_kn:
-        return "", rta_s
-    return (f"RTA unreachable: {dist_nm:.0f} NM (great circle, the shortest possible) in "
-            f"{(rta_s - depart_s) / 3600:.1f} h needs {need_kn:.1f} kn, the ship makes at most "
-            f"{top_kn:.1f} kn in calm water; best-effort plan (earliest arrival)"), earliest_s
-
-
-def _cancel_fn(cancel: Any) -> Callable[[], bool]:
-    if cancel is None:
-        return lambda: False
-    if hasattr(cancel, "is_set"):
-        return cancel.is_set
-    return cancel
 
 

@@ -11,7 +11,8 @@ import numpy as np
 import pytest
 import xarray as xr
 from shiproute_planner.errors import InvalidVoyageError
-from shiproute_planner.planning import load_forecast, plan_voyage
+from shiproute_planner.plan_setup import load_forecast
+from shiproute_planner.planning import plan_voyage
 from shiproute_weather.contract import canonical as cv
 from shiproute_weather.sampling.sampler import ForecastSampler
 

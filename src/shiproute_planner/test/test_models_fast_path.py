@@ -10,7 +10,7 @@ import pytest
 from shiproute_planner.errors import InvalidVoyageError
 from shiproute_planner.learned.select import resolve_model
 from shiproute_planner.plan_request import build_request, run_request
-from shiproute_planner.planning import _chosen_model
+from shiproute_planner.plan_setup import chosen_model as _chosen_model
 from shiproute_planner.route.environment import Environment
 from shiproute_planner.ship import (
     FastModel,
@@ -110,7 +110,7 @@ def test_kwon_in_the_storm_agrees_with_kwon_itself_within_1pct() -> None:
     """The bundled storm voyage: the tables fit Kwon's weather loss only approximately (the
     plan states median and 90th-percentile gaps), yet over the planned voyage the fuel of the
     fast path and of Kwon's model on the same legs agree within 1 % (0.26 % measured)."""
-    from shiproute_planner.planning import load_forecast
+    from shiproute_planner.plan_setup import load_forecast
     from shiproute_weather.sampling.sampler import ForecastSampler
 
     fc = ForecastSampler(load_forecast("storm_march"))

@@ -91,7 +91,7 @@ def test_co2_is_fuel_times_the_factor_and_picks_the_least_fuel_route(fuel_plan) 
 def test_distance_objective_sails_a_shorter_route_in_a_storm() -> None:
     storm = dict(origin="Busan", destination="Long Beach", depart="2026-03-03T18:00Z",
                  rta="13d", budget="3000ev")
-    from shiproute_planner.planning import load_forecast
+    from shiproute_planner.plan_setup import load_forecast
 
     fc = load_forecast("storm_march")
     fuel = run_request(build_request(**storm), fc)

@@ -13,7 +13,7 @@ from ..errors import AisReplayError
 
 
 def _forecasts(specs: Sequence[str]) -> list[Any]:
-    from shiproute_planner.planning import load_forecast
+    from shiproute_planner.plan_setup import load_forecast
 
     return [load_forecast(s) for s in specs]
 

@@ -23,7 +23,7 @@ from ..geo.ports import Port, resolve_port
 from ..objectives import OBJECTIVES
 from .forecast_wire import EARLIEST_TIME_S, LATEST_TIME_S
 
-KNOT_M_S = 1852.0 / 3600.0
+KNOT_M_S = M_S_PER_KNOT
 
 
 @dataclass(frozen=True)

@@ -7,6 +7,8 @@ import re
 import sys
 from pathlib import Path
 
+from shiproute_planner.plan_setup import load_forecast
+
 from ..errors import InvalidVoyageError, PlannerError
 from ..method_context import Progress
 from ..methods import method_names
@@ -16,7 +18,6 @@ from ..objectives import (
     PLAN_OBJECTIVES,
 )
 from ..plan_request import build_request, duration_s, run_request
-from ..planning import load_forecast
 from ..ship.fuel import CO2_FACTOR_T_PER_T
 from .option_ranges import PLAN_OPTIONS, check_options
 

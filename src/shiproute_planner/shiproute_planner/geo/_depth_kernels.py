@@ -7,7 +7,7 @@ import math
 import numba
 import numpy as np
 
-from ._kernels import chord_sample, segment_ends
+from .land_kernels import chord_sample, segment_ends
 
 # columns of the grid table (one row per grid, finest first)
 LAT0, DLAT, LON0, DLON, N_LAT, N_LON, PERIODIC, OFFSET = range(8)

@@ -15,10 +15,10 @@ from typing import cast
 
 import numpy as np
 
-from ._kernels import raster_lookup, scan_segments
 from .datadir import data_dir
 from .fine_coast import FineCoast
 from .gshhg import load_land_polygons
+from .land_kernels import raster_lookup, scan_segments
 from .landexact import ExactLand
 from .raster import COAST, LAND, build_land_raster
 

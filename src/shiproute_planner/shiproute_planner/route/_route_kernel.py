@@ -17,7 +17,7 @@ import numpy as np
 from numba import njit
 from shiproute_weather.sampling.interp_kernel import trilinear as _trilinear_parallel
 
-from ..geo._kernels import FINE, chord_sample, segment_ends
+from ..geo.land_kernels import FINE, chord_sample, segment_ends
 from . import _fast_kernels as fk
 from .legs import MIN_SOG_M_S  # the exact evaluator's floor of the final connection's speed
 
@@ -185,7 +185,7 @@ def ga_land_hits(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, raster, 
     `geo.fine_coast.FineCoast.add` has resolved the cells written to `missing` (returns how
     many; when `missing` is full, later cells are left for the next scan).
 
-    Candidate samples are every point the exact scan (`geo._kernels.scan_segments`) can
+    Candidate samples are every point the exact scan (`geo.land_kernels.scan_segments`) can
     visit: fractions k / steps of the chord with its refined step throughout. A sample counts
     in a land cell, and in a coastal cell when its fine cell is land (`fine` row of the cell
     in sorted `fine_keys`; see `geo.fine_coast`). Samples in coarse cells with no land or

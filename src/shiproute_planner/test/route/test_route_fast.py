@@ -118,7 +118,7 @@ def test_fill_sea_matches_seastate_from_forecast(storm_sampler):
 def _brute_force_hits(land, lon0, lat0, lon1, lat1, spacing_deg):
     """Every chord point the exact scan can visit: land cells hit, coastal cells hit when the
     exact test puts the centre of the point's fine cell on land."""
-    from shiproute_planner.geo._kernels import FINE, chord_sample, segment_ends
+    from shiproute_planner.geo.land_kernels import FINE, chord_sample, segment_ends
 
     out = np.zeros(lon0.size, dtype=bool)
     raster = np.asarray(land.raster)

@@ -10,7 +10,7 @@ from shiproute_planner.errors import InvalidVoyageError
 from shiproute_planner.learned.features import FEATURES, ship_identity
 from shiproute_planner.learned.model import LearnedModel, Network
 from shiproute_planner.learned.select import resolve_model
-from shiproute_planner.planning import _chosen_model
+from shiproute_planner.plan_setup import chosen_model as _chosen_model
 from shiproute_planner.ship import ShipFileError, load_ship
 from shiproute_planner.ship.loading import ship_file_path
 from shiproute_planner.voyage_params import check_parameter
