@@ -45,11 +45,14 @@ def optimised_stages(plan) -> int:
 
 def figures(seed: int = 0) -> dict:
     """The benchmark's figures as one dict (JSON-ready)."""
+    from .front import front_bench
+
     plan_shortsea("0.5s", seed)  # warm: ports, land mask, kernels, sea-lane graph
     t0 = time.perf_counter()
     multi = plan_multiport(seed=seed)
     multi_s = time.perf_counter() - t0
     short = plan_shortsea(seed=seed)
+    front = front_bench(points=9, seed=seed)  # 9-point time-fuel front, Busan -> Long Beach
     return {
         "multiport_plan_s": round(multi_s, 2),
         "multiport_fuel_t": round(multi.total_fuel_t, 1),
@@ -61,6 +64,10 @@ def figures(seed: int = 0) -> dict:
         "shortsea_baseline_t": round(short.baseline_fuel_t, 3),
         "shortsea_feasible": bool(short.feasible),
         "shortsea_stage_h": round(short.stage_s / 3600.0, 3),
+        "front_points": front["front_points"],
+        "front_s": front["front_s"],
+        "front_monotone": front.get("front_monotone"),
+        "front_ends_feasible": front.get("front_ends_feasible"),
     }
 
 
