@@ -154,8 +154,8 @@ def lane_rpm(env: Environment, a: Port, b: Port, ap_dep, ap_arr, depart_s: float
     speed = length / max(rta_s - depart_s, 3600.0)
     model = env.model
     if hasattr(model, "rpm_for_speed"):
-        from .ship import SeaState
-        from .ship.errors import ShipModelError
+        from ..ship import SeaState
+        from ..ship.errors import ShipModelError
 
         try:
             rpm = float(model.rpm_for_speed(np.array([min(speed, 30.0)]), np.array([0.0]),
