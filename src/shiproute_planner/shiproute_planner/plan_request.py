@@ -17,7 +17,7 @@ from .objectives import Economics
 from .plan_types import RoutePlan
 from .planning import plan_voyage, to_posix_s
 from .voyage.port_calls import PortCall, parse_port_calls
-from .voyage.stage_length import RTA_TOLERANCE_S, check_rta_tolerance_s, check_stage_hours
+from .voyage.stage_length import RTA_TOLERANCE_S, check_rta_tolerance_s
 from .voyage_ship import loaded_ship
 
 # "" = the ship file's performance_model entry, else physics; "physics" (alias "fast") is the
@@ -136,7 +136,6 @@ class PlanRequest:
             raise InvalidVoyageError("the RTA must be after the departure time")
         if not 2 <= self.front_points <= 25:
             raise InvalidVoyageError(f"front points must be 2..25, got {self.front_points}")
-        check_stage_hours(self.stage_hours)
         check_rta_tolerance_s(self.rta_tolerance_s)
         for name, value in self.numbers().items():
             require_number(name, value)  # the node's parameter ranges: one table

@@ -160,8 +160,8 @@ def test_set_voyage_port_calls_round_trip_and_refusals():
     (["--via", "Ningbo@2d..1d"], "Ningbo"),
     (["--via", "Ningbo@2026-05-01T00:00Z"], "not after the departure"),
     (["--via", "Ningbo+lots"], "berth time"),
-    (["--stage-hours", "0"], "stage hours"),
-    (["--stage-hours", "1000"], "stage hours"),
+    (["--stage-hours", "0"], "stage-hours"),
+    (["--stage-hours", "1000"], "stage-hours"),
     (["--rta-tolerance", "soon"], "duration"),
 ])
 def test_cli_refuses_malformed_voyages_with_exit_2(extra, words, capsys, tmp_path):

@@ -21,7 +21,7 @@ OCEAN_STAGE_H = 12.0  # the reference formulation's stage for an ocean crossing
 TARGET_STAGES = 12  # stages a short passage's optimised part is given at least
 STAGES_PER_TURN = 5  # stages per cape or strait of a leg's sea lane
 MIN_STAGE_H = 0.1  # 6 minutes: below this a stage is shorter than the ship's turning
-MAX_STAGE_H = 48.0
+MAX_STAGE_H = 24.0  # the parameter table's bound (checks.parameters): longer stages miss storms
 REFERENCE_STAGES = 24  # the GA's default move sizes were tuned on ~24-stage crossings
 RTA_TOLERANCE_S = 300.0  # default: arriving within 5 minutes of the RTA is on time
 

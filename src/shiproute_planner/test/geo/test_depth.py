@@ -120,8 +120,8 @@ def test_node_parameters_for_depth_and_zones_are_validated(tmp_path):
     from shiproute_planner.voyage_params import check_parameter
 
     assert check_parameter("ukc_margin_m", 1.5) is None
-    assert "non-negative" in check_parameter("ukc_margin_m", -1.0)
-    assert "non-negative" in check_parameter("clearance_nm", float("nan"))
+    assert "ukc_margin_m = -1.0 is outside 0..10 m" in check_parameter("ukc_margin_m", -1.0)
+    assert "clearance_nm" in check_parameter("clearance_nm", float("nan"))
     assert check_parameter("bathymetry_files", f"{SKERKI}, ") is None
     assert "no such file" in check_parameter("zones_files", str(tmp_path / "none.geojson"))
 
