@@ -71,7 +71,7 @@ def segment_min_depth(lon0: np.ndarray, lat0: np.ndarray, lon1: np.ndarray,
                       out: np.ndarray) -> None:
     """Shallowest depth [m] along each great-circle segment, capped at `cap_m`.
 
-    Samples lie on the segment at half the finest overlapping grid's spacing. `coarse` is a
+    Samples lie on the segment at an eighth of the finest overlapping grid's spacing. `coarse` is a
     global raster (row 0 at 90 S, column 0 at 180 W) of the minimum known depth within one
     block of each block (+inf where unknown); where it is at least the cap the walk jumps
     most of a block ahead, so deep-ocean legs cost a few lookups. NaN: no grid covers the
@@ -84,9 +84,10 @@ def segment_min_depth(lon0: np.ndarray, lat0: np.ndarray, lon1: np.ndarray,
             out[s] = math.nan
             continue
         ax, ay, az, bx, by, bz, arc = segment_ends(lat0[s], lon0[s], lat1[s], lon1[s])
-        n = max(1, int(math.ceil(arc / (0.5 * cell))))  # noqa: RUF046 - numba
+        # an eighth of a cell: a leg that cuts a cell's corner crosses it for less than half
+        # a cell, and at half-cell steps a shoal's corner could fall between two samples
+        n = max(1, int(math.ceil(arc / (0.125 * cell))))  # noqa: RUF046 - numba
         step = arc / n
-        skip = max(1, int(0.95 * block_deg / max(step, 1e-12)))
         cap = cap_m[s]
         best = math.inf
         seen = False
@@ -98,6 +99,11 @@ def segment_min_depth(lon0: np.ndarray, lat0: np.ndarray, lon1: np.ndarray,
             if coarse[bi, bj] >= cap:
                 if coarse[bi, bj] < math.inf:
                     seen = True  # known to be at least the cap here
+                # the block value covers the block and its neighbours: jump 0.95 block in
+                # latitude, in longitude shrunk by the cosine of the most poleward latitude
+                # one block on (a jump in arc would leave the neighbourhood towards the poles)
+                c = math.cos(math.radians(min(abs(lat) + block_deg, 89.0)))
+                skip = max(1, int(0.95 * block_deg * c / max(step, 1e-12)))
                 k += skip if k + skip <= n or k == n else n - k
                 continue
             v = depth_at(lat, lon, data, grids)
