@@ -108,11 +108,12 @@ def run(budget_s: float, warm_budget_s: float, ref_factor: float, seed: int) -> 
                       budget_s=budget_s * ref_factor, **{**common, "seed": seed + 1})
     feasible = [p.total_fuel_t for p in (cold, ref) if p.feasible]
     reference = min(feasible) if feasible else ref.total_fuel_t
-    # evaluation speed on the problem the GA solved: between the approaches' sea ends
-    a, b = cold.optimised_spans[0]
+    # evaluation speed on the ocean crossing the GA solved: the last optimised span (after any
+    # strait passage), between its sea end and the arrival approach, aiming at the RTA
+    a, b = cold.optimised_spans[-1]
     w0, w1 = cold.waypoints[a], cold.waypoints[b]
     problem = RouteProblem(w0.lon_deg, w0.lat_deg, w1.lon_deg, w1.lat_deg, w0.time_s,
-                           cold.leg_rtas_s[0] - (cold.eta_s - w1.time_s), _limits_of(cold, env))
+                           cold.rta_s - (cold.eta_s - w1.time_s), _limits_of(cold, env))
     # coastal cells of the voyage's region resolved as a running planner has them (once
     # per machine: they are saved in the data directory); the region is wide because the
     # random RPMs of `ga_like_population` overshoot the arrival by up to ~60 deg
