@@ -87,19 +87,6 @@ def parse_time_s(text: str, what: str) -> float:
             f"{what} {text!r} is not an ISO 8601 time such as 2026-03-03T18:00Z") from None
 
 
-def parse_vias(items: Sequence[str]) -> tuple[tuple[str, ...], tuple[float | None, ...]]:
-    """'PORT' or 'PORT@TIME' items -> (port names, RTA per via or None)."""
-    names, rtas = [], []
-    for item in items:
-        name, _, when = str(item).partition("@")
-        if not name.strip():
-            raise InvalidVoyageError(f"via {item!r} names no port")
-        names.append(name.strip())
-        rtas.append(parse_time_s(when.strip(), f"via {name.strip()} RTA") if when.strip()
-                    else None)
-    return tuple(names), tuple(rtas)
-
-
 @dataclass(frozen=True)
 class PlanRequest:
     """Everything that decides a plan except the forecast (times POSIX s UTC)."""
