@@ -43,9 +43,19 @@ def _die_with_parent() -> None:
         _LIBC.prctl(_PR_SET_PDEATHSIG, signal.SIGTERM)
 
 
+MAX_DOMAIN_ID = 101  # the highest id safe with the default Fast DDS port mapping
+
+
 def random_domain_id(rng: random.Random | None = None) -> int:
-    """A ROS_DOMAIN_ID in 0..101 (the range safe with the default Fast DDS port mapping)."""
-    return (rng or random.SystemRandom()).randint(0, 101)
+    """A ROS_DOMAIN_ID in 0..101; under pytest-xdist, from this worker's own residue class
+    (worker i of n draws ids = i mod n), so parallel test workers never share a domain."""
+    worker = os.environ.get("PYTEST_XDIST_WORKER", "")
+    workers = int(os.environ.get("PYTEST_XDIST_WORKER_COUNT", "1") or 1)
+    index = int(worker[2:]) if worker.startswith("gw") and worker[2:].isdigit() else 0
+    if workers <= 1 or index >= workers:
+        return (rng or random.SystemRandom()).randint(0, MAX_DOMAIN_ID)
+    choices = range(index, MAX_DOMAIN_ID + 1, workers)
+    return (rng or random.SystemRandom()).choice(choices)
 
 
 def ros_env(domain_id: int, extra: Mapping[str, str] | None = None) -> dict[str, str]:
