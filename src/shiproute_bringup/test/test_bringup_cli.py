@@ -67,6 +67,24 @@ def test_testrun_adds_timeout_unless_given() -> None:
     assert testrun.pytest_command(["--timeout=5"]).count("--timeout=5") == 1
 
 
+def test_testrun_parallel_only_for_the_whole_suite() -> None:
+    """The whole suite runs on xdist workers; a run naming files or setting -n stays as asked."""
+    whole = testrun.pytest_command(["-q", "-k", "plan"])
+    assert "-n" in whole and "loadfile" in whole
+    assert "-n" not in testrun.pytest_command(["-q", "tests/test_tree_rules.py"])
+    assert testrun.pytest_command(["-n", "3"]).count("-n") == 1
+    assert "-n" not in testrun.pytest_command(["-p", "no:xdist"])
+
+
+def test_domain_ids_of_parallel_workers_never_meet(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Worker i of n draws ROS domain ids = i (mod n) within 0..101, so no two workers share one."""
+    monkeypatch.setenv("PYTEST_XDIST_WORKER_COUNT", "3")
+    for index in range(3):
+        monkeypatch.setenv("PYTEST_XDIST_WORKER", f"gw{index}")
+        ids = {random_domain_id() for _ in range(300)}
+        assert all(i % 3 == index and 0 <= i <= 101 for i in ids) and len(ids) > 20
+
+
 def test_msgdict_nan_aware_equality() -> None:
     """plain_equal: NaN equals NaN but no number; to_plain truncates arrays on request."""
     assert plain_equal({"a": [float("nan"), 1.0]}, {"a": [float("nan"), 1.0]})
