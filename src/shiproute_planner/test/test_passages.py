@@ -88,6 +88,17 @@ def test_gap_too_narrow_for_the_clearance_is_passed_with_less_and_said():
     assert d >= p.clearance_nm - HALF_DIAGONAL_NM
 
 
+def test_narrows_keep_the_largest_clearance_that_fits():
+    # a 1 NM gap: mid-gap is 0.5 NM from land, so 0.25 NM is the largest clearance of the
+    # rules (0.5, 0.25, 0.1, 0) that fits once a grid loses part of a cell to each shore
+    exact, land = _wall_with_gap(1.0)
+    p = compute_passage(LANE_LON, LANE_LAT, PassageRules(berth_nm=1.0), polygons=exact)
+    assert p is not None
+    assert p.clearance_nm == 0.25
+    half_diagonal_nm = 0.5 * np.hypot(p.cell_nm, p.cell_nm)
+    assert 0.25 - half_diagonal_nm <= _min_distance_nm(p.lon_deg, p.lat_deg, land) <= 0.5
+
+
 def _flat_grid(depth_m: float, cell_deg: float, shoal=None) -> DepthGrid:
     """A regular grid of constant depth round the test area, with an optional shoal
     (lon0, lat0, lon1, lat1, depth) where it reads shallower."""
