@@ -223,7 +223,10 @@ def plan_voyage(
     warnings += canal_notes
     strait_legs: dict = {}
     if coastal_passage:
-        ports, canal_legs, strait_legs, calls_x, _ = route_straits(ports, canal_legs, calls_x)
+        ports, canal_legs, strait_legs, calls_x, strait_notes = route_straits(
+            ports, canal_legs, calls_x, max(spec.condition.draft_fore_m,
+                                            spec.condition.draft_aft_m) if spec else 0.0)
+        warnings += strait_notes
         warnings.append(passages_note(passage_rules(lim.under_keel)))
     sched = None
     if len(ports) > 2:

