@@ -46,6 +46,7 @@ STRAITS: tuple[Strait, ...] = (
     Strait("Bosphorus", ((40.95, 28.98), (41.30, 29.15)), (0.1, 0.0)),
     Strait("Tsugaru Strait", ((41.45, 139.95), (41.55, 141.65))),
     Strait("Torres Strait", ((-10.40, 141.55), (-10.50, 142.85))),
+    Strait("Sape Strait", ((-9.05, 119.60), (-8.05, 119.40))),
     # the Sound's Drogden channel is dredged to 8 m (Danish Maritime Authority: max draft
     # 7.7 m); deeper ships take the Great Belt's Route T (max draft 15 m)
     Strait("The Sound (Drogden)", ((56.40, 12.37), (55.28, 12.85)), max_draft_m=7.7,

@@ -223,6 +223,7 @@ def _on_full_land(d_lon: np.ndarray, d_lat: np.ndarray) -> bool:
     # lanes outside the world lane set, each through a strait of the table
     (("Pusan", 35.08, 129.05), ("Vancouver", 49.28, -123.2), "Tsugaru Strait"),
     (("Dammam", 26.5, 50.2), ("Karachi", 24.8, 66.95), "Strait of Hormuz"),
+    (("Darwin", -12.2, 130.8), ("Jakarta", -6.0, 106.88), "Sape Strait"),
 ])
 def test_strait_passages_of_other_lanes_are_on_water_at_full_resolution(a, b, strait):
     from shiproute_planner.geo.ports import Port
