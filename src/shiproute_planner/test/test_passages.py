@@ -237,7 +237,7 @@ def test_strait_passages_of_other_lanes_are_on_water_at_full_resolution(a, b, st
     p = compute_passage(lane_lon, lane_lat, PassageRules(clearances_nm=s.clearances_nm,
                                                          berth_nm=0.0, pilotage_nm=0.0))
     assert p is not None
-    assert p.clearance_nm == 0.5  # both are miles wide: the full clearance fits
+    assert p.clearance_nm == 0.5  # each is miles wide: the full clearance fits
     d_lon, d_lat = (np.asarray(v) for v in densify_track(p.lon_deg, p.lat_deg, 0.05 * 1852.0))
     assert not _on_full_land(d_lon, d_lat)
 
