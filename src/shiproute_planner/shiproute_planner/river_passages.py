@@ -45,7 +45,7 @@ class RiverPassage:
 def river_passage(port: Port) -> RiverPassage | None:
     """The river passage of a port planned from its channel's seaward end (None for a port
     at sea)."""
-    if not port.is_river_port:
+    if port.berth_lat_deg is None or port.berth_lon_deg is None:
         return None
     from .voyage.legs import sea_distance_m
 

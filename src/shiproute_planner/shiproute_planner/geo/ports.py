@@ -11,7 +11,6 @@ import dataclasses
 import difflib
 import functools
 import json
-import math
 import re
 from dataclasses import dataclass
 from importlib import resources
@@ -36,13 +35,13 @@ class Port:
     snapped_km: float = 0.0  # how far the given position was moved to reach water
     note: str = ""  # what the plan should say about this port (river port, snapped)
     # a port up a river: the gazetteer's berth, while (lat, lon) is the channel's seaward end
-    berth_lat_deg: float = float("nan")
-    berth_lon_deg: float = float("nan")
+    berth_lat_deg: float | None = None
+    berth_lon_deg: float | None = None
 
     @property
     def is_river_port(self) -> bool:
         """True when the port is planned from its river or channel's seaward end."""
-        return not math.isnan(self.berth_lat_deg)
+        return self.berth_lat_deg is not None and self.berth_lon_deg is not None
 
 
 @functools.lru_cache(maxsize=1)
