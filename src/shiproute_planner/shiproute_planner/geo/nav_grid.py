@@ -153,7 +153,7 @@ def on_land(parts: list, lon_deg: np.ndarray, lat_deg: np.ndarray) -> np.ndarray
     return out
 
 
-def _coarse_only(bathymetry, lon: np.ndarray, lat: np.ndarray) -> np.ndarray:
+def coarse_only(bathymetry, lon: np.ndarray, lat: np.ndarray) -> np.ndarray:
     """True where no fine (<= 1 arc-minute) grid of `bathymetry` covers a point."""
     out = np.ones(lon.shape, dtype=bool)
     for g in bathymetry.grids:
@@ -193,7 +193,7 @@ def build_nav_grid(land_parts: list, box: tuple[float, float, float, float, int,
         coarse = [g.cell_deg for g in bathymetry.grids if g.is_coarse]
         if coarse:
             trust_m = COARSE_TRUST_CELLS * max(coarse) * M_PER_DEG_LAT
-            near = _coarse_only(bathymetry, lon, lat) & (clearance < trust_m)
+            near = coarse_only(bathymetry, lon, lat) & (clearance < trust_m)
             depth[near] = np.nan
         depth[land] = np.nan
     return NavGrid(lon0, lat0, dlon, dlat, land, clearance.astype(np.float32), depth)

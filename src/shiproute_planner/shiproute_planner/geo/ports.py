@@ -7,6 +7,7 @@ fall on the GSHHG coastline are moved to the nearest water within `max_snap_km`.
 
 from __future__ import annotations
 
+import dataclasses
 import difflib
 import functools
 import json
@@ -33,6 +34,14 @@ class Port:
     lon_deg: float
     snapped_km: float = 0.0  # how far the given position was moved to reach water
     note: str = ""  # what the plan should say about this port (river port, snapped)
+    # a port up a river: the gazetteer's berth, while (lat, lon) is the channel's seaward end
+    berth_lat_deg: float | None = None
+    berth_lon_deg: float | None = None
+
+    @property
+    def is_river_port(self) -> bool:
+        """True when the port is planned from its river or channel's seaward end."""
+        return self.berth_lat_deg is not None and self.berth_lon_deg is not None
 
 
 @functools.lru_cache(maxsize=1)
@@ -93,7 +102,8 @@ def lookup_port(text: str) -> Port:
         channel, lat, lon = RIVER_PORTS[code]
         return Port(p["name"], code, lat, lon, note=(
             f"{p['name']} lies up the {channel}: the plan starts/ends at its seaward end "
-            f"({lat:.2f}, {lon:.2f}); the river passage is pilotage and not planned"))
+            f"({lat:.2f}, {lon:.2f}); the river passage is pilotage and not planned"),
+            berth_lat_deg=float(p["lat"]), berth_lon_deg=float(p["lon"]))
     return Port(p["name"], code, float(p["lat"]), float(p["lon"]))
 
 
@@ -119,7 +129,8 @@ def snap_to_sea(port: Port, land: LandMask, max_snap_km: float = 25.0) -> Port:
     moved = float(rr.ravel()[k])
     note = port.note or (f"{port.name}: the gazetteer position is on land; moved {moved:g} km "
                          "to the nearest navigable water" if moved > 2.0 else "")
-    return Port(port.name, port.locode, float(lat[k]), float(lon[k]), moved, note)
+    return dataclasses.replace(port, lat_deg=float(lat[k]), lon_deg=float(lon[k]),
+                               snapped_km=moved, note=note)
 
 
 def resolve_port(text: str, land: LandMask, max_snap_km: float = 25.0) -> Port:

@@ -9,7 +9,9 @@ corner). Water nearer land than `prefer_off_nm` costs a little more, so a passag
 mid-channel where there is room. The path is straightened (a vertex is dropped while the
 straight line between its neighbours stays in navigable cells) and checked against the land
 polygons every 0.4 cells. Where nothing fits at `cell_nm` (a river, sound or fjord narrower
-than a few cells) the grid is refined to `fine_cell_nm` before the corridor is widened.
+than a few cells), or only with less than the full clearance (a strait's narrows lose a cell
+of width to each rasterised shore), the grid is refined to `fine_cell_nm` before the corridor
+is widened, and the finer passage is kept when it leaves more clearance.
 
 Clearance: the passage keeps `clearances_nm[0]` (0.5 NM) from land where it can; a strait or
 channel too narrow for it (Bosphorus, Dardanelles, an estuary) gets the largest clearance of
@@ -265,7 +267,10 @@ def compute_passage(lane_lon: np.ndarray, lane_lat: np.ndarray, rules: PassageRu
     lon_f = lane_lon - shift
     tries = [(rules.corridors_nm[0], rules.cell_nm), (rules.corridors_nm[0], rules.fine_cell_nm),
              *((w, rules.cell_nm) for w in rules.corridors_nm[1:])]
+    found: Passage | None = None
     for corridor_nm, cell_nm in tries:
+        if found is not None and (cell_nm >= found.cell_nm or corridor_nm > found.corridor_nm):
+            return found
         box = grid_box(lon_f, lane_lat, corridor_nm + 2.0, cell_nm)
         lon0, lat0, dlon, dlat, rows, cols = box
         if lon0 < -180.0 or lon0 + cols * dlon > 180.0:
@@ -282,6 +287,21 @@ def compute_passage(lane_lon: np.ndarray, lane_lat: np.ndarray, rules: PassageRu
         out = np.asarray(from_port) > rules.berth_nm * M_PER_NM
         if np.any(on_land(land, d_lon[out], d_lat[out])):
             continue
-        return Passage(p.lon_deg + shift, p.lat_deg, p.clearance_nm, p.depth_limited,
-                       corridor_nm, p.cell_nm)
-    return None
+        p = Passage(p.lon_deg + shift, p.lat_deg, p.clearance_nm, p.depth_limited,
+                    corridor_nm, p.cell_nm)
+        if not _better(p, found):
+            return found
+        if p.clearance_nm >= rules.clearances_nm[0] or cell_nm <= rules.fine_cell_nm:
+            return p
+        found = p  # narrow water: finer cells may leave a wider clearance
+    return found
+
+
+def _better(p: Passage, than: Passage | None) -> bool:
+    """True when `p` keeps the depth limit where `than` does not, or keeps as much of it
+    and more clearance from land."""
+    if than is None:
+        return True
+    if p.depth_limited != than.depth_limited:
+        return p.depth_limited
+    return p.clearance_nm > than.clearance_nm
