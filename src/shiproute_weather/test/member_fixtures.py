@@ -4,7 +4,8 @@ Debian `python-grib-doc` ships a real NCEP GFS 2.5 deg GRIB2 (10 m wind, 2011-01
 120 h) and a real ECMWF TIGGE GRIB (10 m wind). Ensembles are made from them the way ECMWF and
 NCEP encode members: product definition template 4.1 (`productDefinitionTemplateNumber` 1),
 `typeOfEnsembleForecast` (1 control, 3 perturbed), `perturbationNumber` and
-`numberOfForecastsInEnsemble`, `typeOfProcessedData` 3 (control) / 4 (perturbed), with the eastward wind of member k shifted by a known amount.
+`numberOfForecastsInEnsemble`, `typeOfProcessedData` 3 (control) / 4 (perturbed), with the
+eastward wind of member k shifted by a known amount.
 """
 
 from __future__ import annotations

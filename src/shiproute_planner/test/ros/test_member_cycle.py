@@ -15,8 +15,8 @@ from shiproute_planner.ros.member_packer import EnsembleCycle, MemberCyclePacker
 from shiproute_planner.ros.plan_call import plan_forecast
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[3] / "shiproute_weather/test"))
-from member_fixtures import perturbed_members  # noqa: E402
-from weather_fixtures import small_canonical  # noqa: E402
+from member_fixtures import perturbed_members
+from weather_fixtures import small_canonical
 
 
 def _messages(n_members: int = 2, n_time: int = 3):
@@ -64,9 +64,10 @@ def test_ensemble_is_complete_only_with_every_member_and_keeps_them() -> None:
 
 
 def test_member_count_mismatch_fails_the_cycle_with_the_reason() -> None:
-    _, (cycle, msgs) = _messages()
-    items = _fields(msgs)
     import dataclasses
+
+    _, (_, msgs) = _messages()
+    items = _fields(msgs)
 
     asm = _assembler()
     asm.announce("c", 6)

@@ -9,8 +9,8 @@ import xarray as xr
 
 from ..errors import GridError, MissingVariableError, ValueRangeError
 from . import canonical as cv
-from .members import MEMBER_DIM, MEMBER_DIMS_ORDER, check_members
 from .limits import CURRENT_SPEED_MAX_M_S, WIND_SPEED_MAX_M_S
+from .members import MEMBER_DIM, MEMBER_DIMS_ORDER, check_members
 
 #: Physical limits (the same as `outliers`, which masks what lies beyond them when a file is
 #: read): Hs 0-30 m, |wind| < 100 m/s, periods 0-40 s, currents below 5 m/s, directions

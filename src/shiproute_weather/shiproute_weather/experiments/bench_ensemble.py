@@ -1,7 +1,10 @@
 """Benchmark part: what a 20-member cycle costs on the wire and in each node, within the weather
-node's default budget. The members are the bundled storm with its wind scaled by 1 + 0.1 N(0, 1)
-per member (Hs by the square): a test ensemble, not a forecast. Run in its own process (its own
-memory peak): prints one JSON object."""
+node's default budget. The members are the bundled storm (16 days, 3-hourly) with its wind
+scaled by 1 + 0.1 N(0, 1) per member (Hs by the square): a test ensemble, not a forecast. The
+budget keeps one valid time in k (`cycle_builder.thin`); the members are built on those times
+only (20 members of all 129 times would take 3.6 GB to build just to be thinned) and the uncut
+cycle's size is computed. Run in its own process (its own memory peak): prints one JSON
+object."""
 
 from __future__ import annotations
 
@@ -13,17 +16,13 @@ import numpy as np
 
 #: members of the benchmark ensemble (ECMWF ENS has 51, GEFS 31; the issue's target is 20)
 MEMBERS = 20
-#: valid times taken from the scenario before the budget cuts (more than the budget holds)
-SOURCE_TIMES = 12
 
 
-def perturbed_ensemble(scenario: str, members: int, times: int, seed: int = 19):  # type: ignore[no-untyped-def]
-    """`members` members of the first `times` valid times of a bundled scenario."""
+def perturbed_ensemble(base, members: int, seed: int = 19):  # type: ignore[no-untyped-def]
+    """`members` members of a deterministic dataset (member 0 is `base` itself)."""
     from ..contract import canonical as cv
     from ..contract.members import stack_members
-    from ..scenarios.catalogue import scenario_dataset
 
-    base = scenario_dataset(scenario).isel(time=slice(0, times)).load()
     rng = np.random.default_rng(seed)
     out = [base]
     for _ in range(1, members):
@@ -44,10 +43,16 @@ def main(scenario: str = "storm_march") -> dict:
     from ..contract.members import member_count
     from ..ingest.cycle_builder import CycleConfig, thin
     from ..ros.convert import slice_to_msg, wire_bytes
+    from ..scenarios.catalogue import scenario_dataset
     from ..wire.slices import dataset_to_slices
 
-    ds = perturbed_ensemble(scenario, MEMBERS, SOURCE_TIMES)
     cfg = CycleConfig()
+    full = scenario_dataset(scenario)
+    n_t = full.sizes["time"]
+    stride = -(-n_t // max(1, cfg.max_slices // MEMBERS))
+    full_bytes = MEMBERS * n_t * full.sizes["latitude"] * full.sizes["longitude"] * len(
+        present_variables(full)) * 2
+    ds = perturbed_ensemble(full.isel(time=slice(0, None, stride)).load(), MEMBERS)
     t0 = time.perf_counter()
     kept, notes = thin(ds, cfg)
     cycle_bytes = 0
@@ -59,8 +64,12 @@ def main(scenario: str = "storm_march") -> dict:
     cells = kept.sizes["latitude"] * kept.sizes["longitude"]
     n_fields = len(present_variables(kept))
     times_kept = kept.sizes["time"]
+    t = kept["time"].values
     return {"ensemble_members": member_count(kept), "ensemble_slices": slices,
             "ensemble_valid_times_per_member": times_kept,
+            "ensemble_source_valid_times": n_t,
+            "ensemble_step_h": float((t[1] - t[0]) / np.timedelta64(1, "h")),
+            "ensemble_full_cycle_bytes": full_bytes,
             "ensemble_cycle_bytes": cycle_bytes,
             "ensemble_slice_bytes": cycle_bytes // max(slices, 1),
             "ensemble_max_slices": cfg.max_slices,
@@ -68,7 +77,8 @@ def main(scenario: str = "storm_march") -> dict:
             "ensemble_planner_dataset_mb": round(
                 member_count(kept) * times_kept * cells * n_fields * 4 / 2**20, 1),
             "ensemble_encode_s": round(encode_s, 3),
-            "ensemble_budget_notes": notes,
+            "ensemble_budget_notes": [*notes, f"one valid time in {stride} kept to fit "
+                                              f"max_slices {cfg.max_slices}"],
             "ensemble_bench_rss_mb": round(
                 resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0, 1)}
 

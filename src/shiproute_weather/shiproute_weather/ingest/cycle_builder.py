@@ -77,13 +77,29 @@ def thin(ds: xr.Dataset, cfg: CycleConfig) -> tuple[xr.Dataset, list[str]]:
     ds, member_notes = _member_budget(ds, cfg)
     notes += member_notes
     m = member_count(ds)
-    if m * ds.sizes["time"] > cfg.max_slices:
-        keep = max(1, cfg.max_slices // m)
-        each = f" of each of {m} members" if m > 1 else ""
-        notes.append(f"cycle cut to its first {keep} of {ds.sizes['time']} valid times{each} "
-                     f"to keep <= {cfg.max_slices} slices")
-        ds = ds.isel(time=slice(0, keep))
+    if m > 1 and m * ds.sizes["time"] > cfg.max_slices:
+        ds, note = _member_time_stride(ds, m, cfg.max_slices)
+        notes.append(note)
+    if ds.sizes["time"] > cfg.max_slices:
+        notes.append(f"cycle cut to its first {cfg.max_slices} of {ds.sizes['time']} slices")
+        ds = ds.isel(time=slice(0, cfg.max_slices))
     return ds, notes
+
+
+def _member_time_stride(ds: xr.Dataset, members: int, max_slices: int
+                        ) -> tuple[xr.Dataset, str]:
+    """Every k-th valid time of each member so that members x times <= max_slices: the whole
+    horizon stays covered at a coarser step (a voyage outlives a forecast; cutting the horizon
+    instead would leave the plan on persistence and calm water after a day or two)."""
+    n_t = ds.sizes["time"]
+    budget = max(1, max_slices // members)
+    stride = -(-n_t // budget)
+    kept = ds.isel(time=slice(0, None, stride))
+    t = kept["time"].values
+    step_h = float((t[1] - t[0]) / np.timedelta64(1, "h")) if t.size > 1 else 0.0
+    return kept, (f"{members} members x {n_t} valid times exceed max_slices {max_slices}: "
+                  f"one valid time in {stride} kept ({kept.sizes['time']} per member, "
+                  f"{step_h:g} h apart, the whole horizon)")
 
 
 def _member_budget(ds: xr.Dataset, cfg: CycleConfig) -> tuple[xr.Dataset, list[str]]:

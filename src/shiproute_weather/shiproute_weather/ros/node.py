@@ -39,8 +39,8 @@ from ..ingest.cycle_builder import (
     build_cycle,
     corridor_box,
 )
-from ..ingest.stream import load_encoded, streamable, warm_array_backends
 from ..ingest.members import member_file_groups
+from ..ingest.stream import load_encoded, streamable, warm_array_backends
 from ..ingest.watch import DirectoryWatcher
 from ..scenarios.catalogue import scenario_path
 from .convert import (

@@ -1,4 +1,4 @@
-"""The member part of the canonical contract: helpers, validation and refusals that name the input."""
+"""The member part of the canonical contract: helpers, validation, refusals naming the input."""
 
 from __future__ import annotations
 

@@ -86,15 +86,17 @@ def test_member_count_mismatch_across_slices_is_refused() -> None:
 
 
 def test_twenty_member_cycle_is_kept_within_the_slice_budget() -> None:
-    """A 20-member cycle of 8 valid times is 160 slices: within max_slices 200 as it is; with
-    max_slices 100 each member keeps its first 5 valid times; with max_members 5 the first 5
-    members are kept whole. Each cut is stated."""
+    """A 20-member cycle of 8 valid times (3-hourly) is 160 slices: within max_slices 200 as it
+    is; with max_slices 100 (5 per member) every 2nd valid time is kept, 6 h apart, and the
+    last kept time is still 18 h on (the horizon); with max_members 5 the first 5 members are
+    kept whole. Each cut is stated."""
     ds = perturbed_members(small_canonical(n_time=8), 20)
     kept, notes = thin(ds, CycleConfig(max_slices=200))
     assert member_count(kept) == 20 and kept.sizes["time"] == 8 and not notes
     kept, notes = thin(ds, CycleConfig(max_slices=100))
-    assert member_count(kept) == 20 and kept.sizes["time"] == 5
-    assert any("first 5 of 8 valid times of each of 20 members" in n for n in notes)
+    assert member_count(kept) == 20 and kept.sizes["time"] == 4
+    assert np.array_equal(kept["time"].values, ds["time"].values[::2])
+    assert any("one valid time in 2 kept (4 per member, 6 h apart" in n for n in notes)
     kept, notes = thin(ds, CycleConfig(max_members=5))
     assert member_labels(kept) == ("0", "1", "2", "3", "4") and kept.sizes["time"] == 8
     assert any("15 of 20 members dropped (max_members 5)" in n for n in notes)
