@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
+from typing import Any
 
 from .errors import WeatherError
 
@@ -37,7 +38,7 @@ def _member_options(p: argparse.ArgumentParser) -> None:
                    help="comma-separated labels of the members (default: their sources)")
 
 
-def _load(args: argparse.Namespace):  # type: ignore[no-untyped-def]
+def _load(args: argparse.Namespace) -> Any:
     """The canonical dataset of the files: one cycle, or its members with --as-members."""
     from .ingest.loaders import open_forecast
     from .ingest.members import member_file_groups, open_members

@@ -11,6 +11,7 @@ from __future__ import annotations
 import json
 import resource
 import time
+from typing import Any
 
 import numpy as np
 
@@ -18,7 +19,7 @@ import numpy as np
 MEMBERS = 20
 
 
-def perturbed_ensemble(base, members: int, seed: int = 19):  # type: ignore[no-untyped-def]
+def perturbed_ensemble(base: Any, members: int, seed: int = 19) -> Any:
     """`members` members of a deterministic dataset (member 0 is `base` itself)."""
     from ..contract import canonical as cv
     from ..contract.members import stack_members
