@@ -84,11 +84,12 @@ def test_two_member_cycle_from_weather_node_to_planner_intake(tmp_path: Path) ->
         peer = Peer(ctx)
         try:
             weather.wait_for_line(r"published cycle \S+: 6 slices of 2 member", timeout_s=90)
-            cycle_id = spin_until(peer.executor, lambda: peer.cycles and peer.cycles[-1].cycle_id,
-                                  30, "cycle announcement")
+            spin_until(peer.executor, lambda: len(peer.cycles) > 0, 30, "cycle announcement")
+            cycle_id = peer.cycles[-1].cycle_id
             spin_until(peer.executor, lambda: len(
                 {m.slice_index for m in peer.slices if m.cycle_id == cycle_id}) == 6, 30,
-                "six slices")
+                f"six slices of {cycle_id} (have "
+                f"{sorted({(m.cycle_id, m.slice_index) for m in peer.slices})})")
             cycle = peer.cycles[-1]
             assert cycle.member_count == 2 and list(cycle.member_labels) == ["0", "1"]
             assert cycle.member_kind == "ensemble" and cycle.slice_count == 6
