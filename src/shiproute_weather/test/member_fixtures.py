@@ -22,9 +22,16 @@ GFS = EXAMPLES / "gfs.t12z.pgrbf120.2p5deg.grib2"
 TIGGE = EXAMPLES / "ecmwf_tigge.grb"
 
 
-def _wind_messages(path: Path) -> list[tuple[str, object]]:
-    """(shortName, cloned handle) of every 10 m wind field of a GRIB file (one handle per
-    field, also when u and v share one message)."""
+_GRID_KEYS = ("Ni", "Nj", "latitudeOfFirstGridPointInDegrees",
+              "latitudeOfLastGridPointInDegrees", "longitudeOfFirstGridPointInDegrees",
+              "longitudeOfLastGridPointInDegrees", "iDirectionIncrementInDegrees",
+              "jDirectionIncrementInDegrees", "iScansNegatively", "jScansPositively",
+              "jPointsAreConsecutive", "dataDate", "dataTime", "centre")
+
+
+def _wind_fields(path: Path) -> list[tuple[str, dict[str, object], np.ndarray]]:
+    """(shortName, grid/time keys, values) of every 10 m wind field of a regular lat/lon GRIB
+    file (also when u and v share one message); handles are released as they are read."""
     import eccodes
 
     out = []
@@ -32,13 +39,16 @@ def _wind_messages(path: Path) -> list[tuple[str, object]]:
     try:
         with path.open("rb") as f:
             while (h := eccodes.codes_grib_new_from_file(f)) is not None:
-                short = str(eccodes.codes_get(h, "shortName"))
-                level = int(eccodes.codes_get(h, "level"))
-                tol = str(eccodes.codes_get(h, "typeOfLevel"))
-                name = {"u": "10u", "v": "10v"}.get(short, short)
-                if name in ("10u", "10v") and (tol != "heightAboveGround" or level == 10):
-                    out.append((name, h))
-                else:
+                try:
+                    short = str(eccodes.codes_get(h, "shortName"))
+                    level = int(eccodes.codes_get(h, "level"))
+                    tol = str(eccodes.codes_get(h, "typeOfLevel"))
+                    name = {"u": "10u", "v": "10v"}.get(short, short)
+                    if name in ("10u", "10v") and tol == "heightAboveGround" and level == 10:
+                        keys = {k: eccodes.codes_get(h, k) for k in _GRID_KEYS}
+                        keys["step"] = int(eccodes.codes_get(h, "endStep"))
+                        out.append((name, keys, eccodes.codes_get_values(h).copy()))
+                finally:
                     eccodes.codes_release(h)
             eccodes.codes_grib_multi_support_reset_file(f)
     finally:
@@ -46,42 +56,34 @@ def _wind_messages(path: Path) -> list[tuple[str, object]]:
     return out
 
 
-def _single_field(h: object) -> object:
-    """A GRIB2 handle of one field with `h`'s grid, time and values (a field read out of a
-    multi-field message is re-encoded on its own)."""
-    import eccodes
-
-    clone = eccodes.codes_clone(h)
-    if eccodes.codes_get(clone, "edition") != 2:
-        eccodes.codes_set(clone, "edition", 2)
-    return clone
-
-
 def ensemble_grib2(path: Path, u_shift_m_s: Sequence[float], source: Path = GFS) -> Path:
-    """A GRIB2 ensemble of the real 10 m wind of `source`: member k (0 = control) has the
-    eastward wind + u_shift_m_s[k]. Returns `path`."""
+    """A GRIB2 ensemble of the real 10 m wind of `source` (its grid, times and values in fresh
+    GRIB2 messages): member k (0 = control) has the eastward wind + u_shift_m_s[k]."""
     import eccodes
 
     n = len(u_shift_m_s)
     parts = []
-    for name, h in _wind_messages(source):
-        try:
-            values = eccodes.codes_get_values(h)
-            for k, du in enumerate(u_shift_m_s):
-                m = _single_field(h)
-                try:
-                    eccodes.codes_set(m, "productDefinitionTemplateNumber", 1)
-                    eccodes.codes_set(m, "typeOfEnsembleForecast", 3 if k else 1)
-                    # control / perturbed forecast (code table 1.4): separate hypercubes
-                    eccodes.codes_set(m, "typeOfProcessedData", 4 if k else 3)
-                    eccodes.codes_set(m, "perturbationNumber", k)
-                    eccodes.codes_set(m, "numberOfForecastsInEnsemble", n)
-                    eccodes.codes_set_values(m, values + (du if name == "10u" else 0.0))
-                    parts.append(bytes(eccodes.codes_get_message(m)))
-                finally:
-                    eccodes.codes_release(m)
-        finally:
-            eccodes.codes_release(h)
+    seen = set()
+    for name, keys, values in _wind_fields(source):
+        if (name, keys["step"]) in seen:  # one field per name and step
+            continue
+        seen.add((name, keys["step"]))
+        for k, du in enumerate(u_shift_m_s):
+            m = eccodes.codes_grib_new_from_samples("regular_ll_sfc_grib2")
+            try:
+                for key, value in keys.items():
+                    eccodes.codes_set(m, key, value)
+                eccodes.codes_set(m, "productDefinitionTemplateNumber", 1)
+                eccodes.codes_set(m, "typeOfEnsembleForecast", 3 if k else 1)
+                # control / perturbed forecast (code table 1.4): separate hypercubes
+                eccodes.codes_set(m, "typeOfProcessedData", 4 if k else 3)
+                eccodes.codes_set(m, "perturbationNumber", k)
+                eccodes.codes_set(m, "numberOfForecastsInEnsemble", n)
+                eccodes.codes_set_string(m, "shortName", name)
+                eccodes.codes_set_values(m, values + (du if name == "10u" else 0.0))
+                parts.append(bytes(eccodes.codes_get_message(m)))
+            finally:
+                eccodes.codes_release(m)
     path.write_bytes(b"".join(parts))
     return path
 

@@ -21,18 +21,22 @@ needs_examples = pytest.mark.skipif(not GFS.exists(), reason="Debian python-grib
 
 
 @needs_examples
-def test_two_member_grib2_ensemble_keeps_both_winds(tmp_path: Path) -> None:
-    path = ensemble_grib2(tmp_path / "gefs.grib2", [0.0, 3.0])
+def test_grib2_ensemble_keeps_every_member_and_its_wind(tmp_path: Path) -> None:
+    # control + 2 perturbed: cfgrib reads the control (scalar number) and the perturbed
+    # members (number 1..2) as separate hypercubes; all three must be kept
+    path = ensemble_grib2(tmp_path / "gefs.grib2", [0.0, 3.0, -2.0])
     real = open_file(GFS)
     ds = open_file(path)
-    assert member_count(ds) == 2 and member_labels(ds) == ("0", "1")
+    assert member_count(ds) == 3 and member_labels(ds) == ("0", "1", "2")
+    assert str(ds["time"].values[0])[:13] == str(real["time"].values[0])[:13]
     assert ds.attrs["member_kind"] == "ensemble"
     u = ds[cv.WIND_U].values
     # GFS packs 10 m wind to 0.01 m/s or finer (decimal scale); re-encoding keeps that step
     np.testing.assert_allclose(u[0], real[cv.WIND_U].values, atol=0.011)
     np.testing.assert_allclose(u[1] - u[0], 3.0, atol=0.022)
+    np.testing.assert_allclose(u[2] - u[0], -2.0, atol=0.022)
     np.testing.assert_allclose(ds[cv.WIND_V].values[1], ds[cv.WIND_V].values[0], atol=0.011)
-    assert any("2 members kept" in n for n in load_notes(ds))
+    assert any("3 members kept" in n for n in load_notes(ds))
 
 
 def test_two_member_netcdf_realization_keeps_both_winds(tmp_path: Path) -> None:
