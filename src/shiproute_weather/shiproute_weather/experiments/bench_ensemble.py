@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import time
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -57,8 +58,9 @@ def main(scenario: str = "storm_march", max_slices: int = 0, grid_stride: int = 
     from ..scenarios.catalogue import scenario_dataset
     from ..wire.slices import dataset_to_slices
 
-    cfg = CycleConfig(grid_stride=grid_stride,
-                      **({"max_slices": max_slices} if max_slices > 0 else {}))
+    cfg = CycleConfig(grid_stride=grid_stride)
+    if max_slices > 0:
+        cfg = replace(cfg, max_slices=max_slices)
     full = scenario_dataset(scenario)
     n_t = full.sizes["time"]
     stride = -(-n_t // max(1, cfg.max_slices // MEMBERS))
