@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
+from typing import Any
 
 from .errors import WeatherError
 
@@ -18,13 +19,36 @@ def _parser() -> argparse.ArgumentParser:
     sc.add_argument("--list", action="store_true", help="only list, do not build")
     info = sub.add_parser("info", help="load files and describe the canonical dataset")
     info.add_argument("files", nargs="+")
+    _member_options(info)
     conv = sub.add_parser("convert", help="load + combine + validate files, write canonical NetCDF")
     conv.add_argument("files", nargs="+")
+    _member_options(conv)
     conv.add_argument("-o", "--output", required=True, help="output .nc path")
     conv.add_argument("--region", type=float, nargs=4,
                       metavar=("LAT_MIN", "LAT_MAX", "LON_MIN", "LON_MAX"),
                       help="cut to a box (LON_MAX may exceed 180)")
     return ap
+
+
+def _member_options(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--as-members", action="store_true",
+                   help="each FILE (or FILE+FILE...) is one member of a multi-model cycle "
+                        "(regridded onto the first member's grid and valid times)")
+    p.add_argument("--member-labels", default="",
+                   help="comma-separated labels of the members (default: their sources)")
+
+
+def _load(args: argparse.Namespace) -> Any:
+    """The canonical dataset of the files: one cycle, or its members with --as-members."""
+    from .ingest.loaders import open_forecast
+    from .ingest.members import member_file_groups, open_members
+
+    if args.as_members:
+        labels = [x.strip() for x in args.member_labels.split(",") if x.strip()]
+        return open_members(member_file_groups(args.files), labels)
+    if args.member_labels:
+        raise WeatherError("--member-labels needs --as-members")
+    return open_forecast(args.files)
 
 
 def _scenarios(args: argparse.Namespace) -> int:
@@ -43,14 +67,14 @@ def _scenarios(args: argparse.Namespace) -> int:
     return 0
 
 
-def _describe(files: list[str]) -> str:
+def _describe(args: argparse.Namespace) -> str:
     import numpy as np
 
     from .contract.canonical import VARIABLES, present_variables
+    from .contract.members import member_count, member_labels
     from .contract.record import field_record, load_notes
-    from .ingest.loaders import open_forecast
 
-    ds = open_forecast(files)
+    ds = _load(args)
     lat, lon, t = ds["latitude"].values, ds["longitude"].values, ds["time"].values
     lines = [f"cycle {ds.attrs['cycle_id']}  source {ds.attrs['source']}  reference "
              f"{ds.attrs['forecast_reference_time']}",
@@ -58,6 +82,9 @@ def _describe(files: list[str]) -> str:
              f"{lon[-1]:g} (step {lat[1] - lat[0] if lat.size > 1 else 0:g} x "
              f"{lon[1] - lon[0] if lon.size > 1 else 0:g} deg)",
              f"times {t.size}: {str(t[0])[:16]}Z .. {str(t[-1])[:16]}Z"]
+    if member_count(ds) > 1:
+        lines.append(f"members {member_count(ds)} ({ds.attrs.get('member_kind', '')}): "
+                     f"{', '.join(member_labels(ds))}")
     record = field_record(ds)
     for n in present_variables(ds):
         a = ds[n].values
@@ -74,9 +101,8 @@ def _convert(args: argparse.Namespace) -> int:
     import numpy as np
 
     from .ingest.combine import Box, subset
-    from .ingest.loaders import open_forecast
 
-    ds = open_forecast(args.files)
+    ds = _load(args)
     if args.region:
         ds = subset(ds, Box(*args.region))
     out = Path(args.output)
@@ -96,12 +122,12 @@ def main(argv: list[str] | None = None) -> int:
         if args.cmd == "scenarios":
             return _scenarios(args)
         if args.cmd == "info":
-            print(_describe(args.files))
+            print(_describe(args))
             return 0
         return _convert(args)
     except WeatherError as exc:
         print(f"shiproute weather: {exc}", file=sys.stderr)
-        return 1
+        return 2
 
 
 if __name__ == "__main__":

@@ -162,7 +162,8 @@ def slice_fields(msg: ForecastSlice) -> SliceFields:
             fields.append((f.name, np.frombuffer(f.data, dtype=np.float32)))
     return SliceFields(msg.cycle_id, int(msg.slice_index), int(msg.slice_count),
                        posix_s(msg.valid_time), grid, tuple(fields), tuple(problems),
-                       posix_s(msg.reference_time), str(msg.publication_id))
+                       posix_s(msg.reference_time), str(msg.publication_id),
+                       int(msg.member), max(1, int(msg.member_count)), str(msg.member_label))
 
 
 def cycle_record(msg: Any) -> dict:
@@ -172,7 +173,10 @@ def cycle_record(msg: Any) -> dict:
     fields = {str(n): {"source_file": str(sources[k]) if k < len(sources) else ""}
               for k, n in enumerate(msg.fields)}
     return {"cycle_id": str(msg.cycle_id), "source_files": [str(f) for f in msg.source_files],
-            "fields": fields, "notes": [str(n) for n in getattr(msg, "notes", []) or []]}
+            "fields": fields, "notes": [str(n) for n in getattr(msg, "notes", []) or []],
+            "member_count": max(1, int(getattr(msg, "member_count", 1) or 1)),
+            "member_labels": [str(x) for x in getattr(msg, "member_labels", []) or []],
+            "member_kind": str(getattr(msg, "member_kind", "") or "")}
 
 
 def port_call_from_msg(msg: Any) -> PortCall:

@@ -49,6 +49,9 @@ class SliceFields:
     problems: tuple[str, ...] = ()  # malformed fields found while reading the message
     reference_time_s: float = 0.0  # forecast reference time (POSIX s); 0 = not stated
     publication_id: str = ""  # the publisher's publication of the cycle ('' = not stated)
+    member: int = 0  # member of this slice (ForecastSlice.member)
+    member_count: int = 1  # members of its cycle (1: deterministic)
+    member_label: str = ""  # the member's label
 
 
 class CyclePacker:
@@ -81,6 +84,10 @@ class CyclePacker:
         if s.cycle_id != self.cycle_id or s.count != self.count:
             raise ForecastCycleError(f"{where}: belongs to {s.cycle_id!r} of {s.count} slices, "
                                      f"expected {self.count}")
+        if s.member_count != 1 or s.member != 0:
+            raise ForecastCycleError(f"{where}: member {s.member} of {s.member_count} in a "
+                                     "cycle whose first slice is deterministic (member count "
+                                     "mismatch)")
         if s.problems:
             raise ForecastCycleError(f"{where}: {'; '.join(s.problems)}")
         if s.reference_time_s != self.reference_time_s:

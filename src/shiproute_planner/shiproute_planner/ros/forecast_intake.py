@@ -20,7 +20,8 @@ from .convert import cycle_record, slice_fields
 from .cycle_assembler import CycleAssembler
 from .cycle_packer import CyclePacker, SliceFields
 from .drop_log import DropLog
-from .intake_keys import RejectedKeys, assembly_key
+from .intake_keys import MembersSeen, RejectedKeys, assembly_key
+from .member_packer import MemberCyclePacker
 
 ANNOUNCEMENT = -1  # the slice index `feed` takes for a cycle announcement
 CYCLE_RECORDS_KEPT = 8  # cycle records (what a cycle holds, where from) kept for the plans
@@ -49,6 +50,7 @@ class ForecastIntake:
         self._rejected = RejectedKeys()
         self._cycle_records: dict[str, Any] = {}
         self._cycle_timing: dict[str, list[float]] = {}  # first slice arrival, packing [s]
+        self._members_seen = MembersSeen()  # slices per member of cycles being assembled
         self.last_refusal = ""
 
     def on_cycle(self, msg: ForecastCycle) -> None:
@@ -68,8 +70,9 @@ class ForecastIntake:
         # a zero-copy view: packed straight from the message's buffers
         key = assembly_key(msg.cycle_id, msg.publication_id)
         self._cycle_timing.setdefault(key, [time.monotonic(), 0.0])
-        self._feed(key, msg.cycle_id, int(msg.slice_index), int(msg.slice_count),
-                   slice_fields(msg))
+        item = slice_fields(msg)
+        self._members_seen.note(key, item)
+        self._feed(key, msg.cycle_id, int(msg.slice_index), int(msg.slice_count), item)
 
     def _feed(self, key: str, cycle_id: str, index: int, count: int,
               item: SliceFields | None) -> None:
@@ -98,10 +101,13 @@ class ForecastIntake:
                 timing[1] += time.monotonic() - t0
         self._take(sampler, key, cycle_id)
 
-    def _new_packer(self, _key: str, first: SliceFields) -> CyclePacker:
-        """The sampler array of a new cycle, made from its first (checked) slice once it is
-        known not to be older than the cycle in force."""
+    def _new_packer(self, _key: str, first: SliceFields) -> CyclePacker | MemberCyclePacker:
+        """The sampler array (or, for several members, the member arrays) of a new cycle, made
+        from its first (checked) slice once it is known not to be older than the one in
+        force."""
         self._check_fresh(first.cycle_id, first.reference_time_s)
+        if first.member_count > 1:
+            return MemberCyclePacker(first)
         return CyclePacker(first, self._ship_time_s)
 
     def _check_fresh(self, cycle_id: str, reference_s: float) -> None:
@@ -112,7 +118,9 @@ class ForecastIntake:
     def _on_evict(self, key: str, received: int) -> None:
         """An incomplete cycle pushed out by newer ones: its slices are dropped, counted."""
         self._cycle_timing.pop(key, None)
-        reason = f"cycle {key!r} incomplete ({received} slice(s)) when newer cycles arrived"
+        reason = (f"cycle {key!r} incomplete ({received} slice(s)"
+                  f"{self._members_seen.missing_text(key)}) when newer cycles arrived")
+        self._members_seen.forget(key)
         self._drops.drop("forecast_cycles", reason)
         if received:
             self._drops.drop("forecast_slices", reason, received)
@@ -121,6 +129,7 @@ class ForecastIntake:
     def _reject_cycle(self, key: str, cycle_id: str, err: Exception, slices: int = 0) -> None:
         """A bad slice or cycle is reported and counted; the cycle in force stays."""
         self._cycle_timing.pop(key, None)
+        self._members_seen.forget(key)
         self._rejected.add(key, str(err))
         self._assembler.discard(key)  # not also counted as incomplete later
         kept = self._in_force()[0] or "none"
@@ -137,6 +146,10 @@ class ForecastIntake:
         if sampler is None:
             return
         sampler.record = self._cycle_records.get(cycle_id)
+        members = int(getattr(sampler, "member_count", 1))
+        if members > 1:
+            sampler.set_kind(str((sampler.record or {}).get("member_kind", "")))
+        self._members_seen.forget(key)
         reference_s = float(getattr(sampler, "reference_time_s", 0.0))
         try:
             self._check_fresh(cycle_id, reference_s)
@@ -146,6 +159,7 @@ class ForecastIntake:
         self._take_cycle(sampler, cycle_id, reference_s)
         first_s, pack_s = self._cycle_timing.pop(key, (time.monotonic(), 0.0))
         self._logger.info(
-            f"forecast cycle {cycle_id} complete: {sampler.times_s.size} slices kept "
+            f"forecast cycle {cycle_id} complete: {members} member(s), "
+            f"{sampler.times_s.size} slices kept{' per member' if members > 1 else ''} "
             f"({sampler.nbytes / 2**20:.0f} MiB), received over {time.monotonic() - first_s:.2f} s"
             f" ({pack_s:.2f} s unpacking)")

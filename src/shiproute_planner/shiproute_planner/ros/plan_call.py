@@ -12,8 +12,16 @@ from ..plan_types import RoutePlan
 from ..voyage.node_calls import calls_ahead, node_port_calls
 from ..voyage_params import parse_utc
 from .cycle_packer import hs_field_at
+from .member_packer import EnsembleCycle, ensemble_hs_field_at
 from .parameters import paths
 from .replan_policy import at_departure_port
+
+
+def plan_forecast(forecast: Any) -> Any:
+    """What `plan_voyage` is given: the sampler of a deterministic cycle, or the canonical
+    dataset with its `member` dimension of an ensemble / multi-model cycle (no member is
+    dropped or averaged here: planning on members is `plan_voyage`'s)."""
+    return forecast.dataset if isinstance(forecast, EnsembleCycle) else forecast
 
 
 def economics(p: Callable[[str], Any]) -> Economics:
@@ -39,7 +47,7 @@ def plan_from_parameters(p: Callable[[str], Any], forecast: Any, *, cycle_id: st
     return plan_voyage(
         origin, str(p("destination")), depart_s,
         parse_utc(str(p("rta"))) if rta_s is None else rta_s,
-        str(p("ship")), forecast, cycle_id=cycle_id,
+        str(p("ship")), plan_forecast(forecast), cycle_id=cycle_id,
         objective=objective or str(p("objective")), method=str(p("method")),
         budget_s=budget_s, seed=int(p("rng_seed")) + seed_offset,
         stage_hours=float(p("stage_hours")) or None, previous_plan=previous,
@@ -95,5 +103,8 @@ def write_outputs(plan: RoutePlan, sampler: Any, out_dir: str, png: bool) -> Non
     """The plan's RTZ, GeoJSON, JSON (and PNG over the forecast's wave height) in `out_dir`."""
     from ..io.files import write_plan_files
 
-    hs = hs_field_at(sampler, plan.departure_s) if png else None
+    hs = None
+    if png:
+        hs = (ensemble_hs_field_at(sampler, plan.departure_s)
+              if isinstance(sampler, EnsembleCycle) else hs_field_at(sampler, plan.departure_s))
     write_plan_files(plan, Path(out_dir), forecast=hs, png=png)

@@ -10,6 +10,7 @@ import xarray as xr
 from ..errors import GridError, MissingVariableError, ValueRangeError
 from . import canonical as cv
 from .limits import CURRENT_SPEED_MAX_M_S, WIND_SPEED_MAX_M_S
+from .members import MEMBER_DIM, MEMBER_DIMS_ORDER, check_members
 
 #: Physical limits (the same as `outliers`, which masks what lies beyond them when a file is
 #: read): Hs 0-30 m, |wind| < 100 m/s, periods 0-40 s, currents below 5 m/s, directions
@@ -44,7 +45,8 @@ def _check_speed(ds: xr.Dataset, u: str, v: str, limit: float, where: str) -> No
 
 def validate(ds: xr.Dataset, where: str = "dataset",
              required: Iterable[str] = ()) -> xr.Dataset:
-    """Check attrs, grid, required variables and physical ranges; return `ds` unchanged."""
+    """Check attrs, grid, members, required variables and physical ranges (every member like a
+    deterministic field); return `ds` unchanged."""
     for attr in cv.REQUIRED_ATTRS:
         if not ds.attrs.get(attr):
             raise GridError(where, f"attribute {attr!r} missing")
@@ -59,10 +61,12 @@ def validate(ds: xr.Dataset, where: str = "dataset",
     if not present:
         raise MissingVariableError(where, "any canonical variable",
                                    ", ".join(cv.CANONICAL_ORDER))
+    check_members(ds, where)
+    dims = MEMBER_DIMS_ORDER if MEMBER_DIM in ds.dims else ("time", "latitude", "longitude")
     for name in present:
-        if ds[name].dims != ("time", "latitude", "longitude"):
+        if ds[name].dims != dims:
             raise GridError(where, f"variable {name!r} has dims {ds[name].dims}; expected "
-                                   "(time, latitude, longitude)")
+                                   f"({', '.join(dims)})")
         _check_range(ds, name, where)
     _check_speed(ds, cv.WIND_U, cv.WIND_V, WIND_SPEED_MAX_M_S, where)
     _check_speed(ds, cv.CURRENT_U, cv.CURRENT_V, CURRENT_SPEED_MAX_M_S, where)

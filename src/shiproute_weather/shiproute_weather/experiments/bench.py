@@ -1,5 +1,6 @@
-"""Benchmark: load + validate + publish one 16-day 3-hourly 0.5 deg North Pacific cycle; and a
-two-source cycle (wind and waves + currents on another grid and step) loaded and encoded."""
+"""Benchmark: load + validate + publish one 16-day 3-hourly 0.5 deg North Pacific cycle; a
+two-source cycle (wind and waves + currents on another grid and step) loaded and encoded; and
+what a 20-member cycle costs within the node's slice budget (`bench_ensemble`)."""
 
 from __future__ import annotations
 
@@ -88,6 +89,12 @@ def main(argv: list[str] | None = None) -> int:
         if out.returncode != 0:
             raise RuntimeError(f"two-source benchmark failed: {out.stderr[-2000:]}")
         result.update(json.loads(out.stdout.strip().splitlines()[-1]))
+        ens = subprocess.run([sys.executable, "-m",
+                              "shiproute_weather.experiments.bench_ensemble"],
+                             capture_output=True, text=True, timeout=args.timeout_s, env=env)
+        if ens.returncode != 0:
+            raise RuntimeError(f"ensemble budget benchmark failed: {ens.stderr[-2000:]}")
+        result.update(json.loads(ens.stdout.strip().splitlines()[-1]))
     if args.json:
         print(json.dumps(result))
     else:

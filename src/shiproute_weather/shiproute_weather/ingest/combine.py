@@ -9,6 +9,7 @@ import numpy as np
 import xarray as xr
 
 from ..contract import canonical as cv
+from ..contract.members import MEMBER_DIM, MEMBER_LABEL, member_labels, select_member
 from ..errors import GridError
 from ..wire.slices import snap_grid
 from .regrid import regrid
@@ -61,7 +62,7 @@ def _lon_overlap(a: np.ndarray, b: np.ndarray) -> bool:
     return rel0 <= a[-1] - a[0] + 1e-9 or rel1 <= b[-1] - b[0] + 1e-9
 
 
-def _check_overlap(base: xr.Dataset, d: xr.Dataset) -> None:
+def check_overlap(base: xr.Dataset, d: xr.Dataset) -> None:
     """Refuse a file whose grid or valid times do not meet the cycle's first file at all."""
     where = str(d.attrs.get("source_files", d.attrs.get("cycle_id", "dataset")))
     target = str(base.attrs.get("source_files", base.attrs.get("cycle_id", "dataset")))
@@ -113,23 +114,40 @@ def _onto(d: xr.Dataset, names: list[str], base: xr.Dataset) -> xr.Dataset:
     return out
 
 
-def _members_onto(d: xr.Dataset, names: list[str], base: xr.Dataset) -> dict[str, xr.DataArray]:
-    """Ensemble member variables of `d` on the axes of `base` (member by member)."""
-    from .normalise import ENSEMBLE_PREFIX
+def onto(d: xr.Dataset, names: list[str], base: xr.Dataset) -> xr.Dataset:
+    """Variables `names` of `d` on the axes of `base`, member by member when `d` has members
+    (see `_onto`; `d`'s member dimension and labels are kept)."""
+    if MEMBER_DIM not in d.dims:
+        return _onto(d, names, base)
+    per = [_onto(select_member(d, k), names, base) for k in range(d.sizes[MEMBER_DIM])]
+    out = xr.concat(per, dim=MEMBER_DIM, combine_attrs="override")
+    out = out.assign_coords({MEMBER_DIM: d[MEMBER_DIM].values,
+                             MEMBER_LABEL: (MEMBER_DIM, list(member_labels(d)))})
+    return out.transpose(MEMBER_DIM, "time", "latitude", "longitude")
 
-    out: dict[str, xr.DataArray] = {}
-    for n in names:
-        key = f"{ENSEMBLE_PREFIX}{n}"
-        if key not in d:
-            continue
-        per = []
-        for k in range(d.sizes["member"]):
-            one = xr.Dataset({n: d[key].isel(member=k, drop=True)}, coords={
-                c: d[c] for c in ("time", "latitude", "longitude")}, attrs=d.attrs)
-            per.append(_onto(one, [n], base)[n].values)
-        out[key] = xr.DataArray(np.stack(per), dims=("member", "time", "latitude", "longitude"),
-                                coords={"member": d["member"].values})
-    return out
+
+def _members_broadcast(merged: dict[str, xr.DataArray], where: str
+                       ) -> tuple[dict[str, xr.DataArray], str]:
+    """Give every variable the member axis of the ones that have it (deterministic fields are
+    the same in every member, stated); member counts of different files must agree."""
+    counts = {n: a.sizes[MEMBER_DIM] for n, a in merged.items() if MEMBER_DIM in a.dims}
+    if not counts:
+        return merged, ""
+    if len(set(counts.values())) > 1:
+        raise GridError(where, f"member count mismatch between files: {counts}; an ensemble "
+                               "cycle needs the same members in every file")
+    ref = next(a for a in merged.values() if MEMBER_DIM in a.dims)
+    n = ref.sizes[MEMBER_DIM]
+    shared = [k for k, a in merged.items() if MEMBER_DIM not in a.dims]
+    out = {}
+    for k, a in merged.items():
+        if MEMBER_DIM not in a.dims:
+            a = xr.DataArray(np.repeat(a.values[None], n, axis=0),
+                             dims=(MEMBER_DIM, *a.dims), attrs=a.attrs)
+        out[k] = a.drop_vars([c for c in a.coords if c not in a.dims], errors="ignore")
+    note = (f"{', '.join(shared)} have no members and are the same in every member"
+            if shared else "")
+    return out, note
 
 
 def combine(datasets: Sequence[xr.Dataset], target: int | None = None) -> xr.Dataset:
@@ -145,26 +163,28 @@ def combine(datasets: Sequence[xr.Dataset], target: int | None = None) -> xr.Dat
     times = base["time"].values
     lat, lon = base["latitude"].values, base["longitude"].values
     merged: dict[str, xr.DataArray] = {}
-    members: dict[str, xr.DataArray] = {}
     sources, files = [], []
     order = [target] + [i for i in range(len(datasets)) if i != target]
     for i in order:
         d = datasets[i]
         if i != target:
-            _check_overlap(base, d)
+            check_overlap(base, d)
         sources.append(str(d.attrs.get("source", "")))
         files.append(str(d.attrs.get("source_files", "")))
         new = [n for n in cv.present_variables(d) if n not in merged]
         if not new:
             continue
-        sub = d[new] if i == target else _onto(d, new, base)
+        sub = d[new] if i == target else onto(d, new, base)
         merged.update({n: sub[n] for n in new})
-        members.update(_members_onto(d, new, base) if i != target else {
-            str(k): d[k] for k in d.data_vars if str(k).startswith("ensemble_")
-            and str(k)[9:] in new})
+    labelled = next((d for d in (datasets[i] for i in order) if MEMBER_DIM in d.dims), None)
+    merged, shared_note = _members_broadcast(merged, ", ".join(
+        str(d.attrs.get("source_files", "")) for d in datasets))
     ordered = {n: merged[n] for n in cv.CANONICAL_ORDER if n in merged}
-    ordered.update(members)
-    out = xr.Dataset(ordered, coords={"time": times, "latitude": lat, "longitude": lon})
+    coords: dict[str, object] = {"time": times, "latitude": lat, "longitude": lon}
+    if labelled is not None:
+        coords[MEMBER_DIM] = np.arange(labelled.sizes[MEMBER_DIM], dtype=np.int64)
+        coords[MEMBER_LABEL] = (MEMBER_DIM, list(member_labels(labelled)))
+    out = xr.Dataset(ordered, coords=coords)
     out.attrs = {
         "forecast_reference_time": max(str(d.attrs["forecast_reference_time"])
                                        for d in datasets),
@@ -173,8 +193,11 @@ def combine(datasets: Sequence[xr.Dataset], target: int | None = None) -> xr.Dat
         "source_files": ", ".join(f for f in files if f),
     }
     for d in datasets:
-        if "ensemble" in d.attrs:
-            out.attrs["ensemble"] = d.attrs["ensemble"]
+        for key in ("ensemble", "member_kind"):
+            if key in d.attrs:
+                out.attrs[key] = d.attrs[key]
+    if shared_note:
+        out.attrs["ensemble"] = f"{out.attrs.get('ensemble', 'members')}; {shared_note}"
     return cv.annotate(out)
 
 

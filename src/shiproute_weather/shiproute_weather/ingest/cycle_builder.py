@@ -9,11 +9,13 @@ import numpy as np
 import xarray as xr
 
 from ..contract import canonical as cv
+from ..contract.members import MEMBER_DIM, member_count, member_labels, select_member
 from ..contract.record import load_notes
 from ..errors import SliceError
 from ..wire.slices import CycleInfo, SliceData, cycle_info, dataset_to_slices, snap_grid
 from .combine import Box, subset
 from .loaders import open_forecast
+from .members import open_members
 
 #: Default bound on one ForecastSlice message (field bytes). A 0.5 deg North Pacific grid
 #: (105 x 261) with 13 fields is 1.43 MB; larger sources are thinned (grid stride) to fit.
@@ -35,6 +37,8 @@ class CycleConfig:
     cycle_id: str = ""
     notes: list[str] = field(default_factory=list)
     waves_from_wind: bool = True  # estimate waves of a wind-only cycle (else refuse it)
+    max_members: int = 0  # most members published (0: all); the rest dropped, stated
+    member_labels: tuple[str, ...] = ()  # labels of multi-model members (default: sources)
 
 
 def corridor_box(lat_deg: Sequence[float], lon_deg: Sequence[float], margin_deg: float) -> Box:
@@ -70,20 +74,64 @@ def thin(ds: xr.Dataset, cfg: CycleConfig) -> tuple[xr.Dataset, list[str]]:
                                longitude=slice(None, None, stride)))
         if stride != cfg.grid_stride:
             notes.append(f"grid thinned by {stride} to keep slices <= {cfg.max_slice_bytes} B")
+    ds, member_notes = _member_budget(ds, cfg)
+    notes += member_notes
+    m = member_count(ds)
+    if m > 1 and m * ds.sizes["time"] > cfg.max_slices:
+        ds, note = _member_time_stride(ds, m, cfg.max_slices)
+        notes.append(note)
     if ds.sizes["time"] > cfg.max_slices:
         notes.append(f"cycle cut to its first {cfg.max_slices} of {ds.sizes['time']} slices")
         ds = ds.isel(time=slice(0, cfg.max_slices))
     return ds, notes
 
 
-def build_cycle(paths: Sequence[str], cfg: CycleConfig
+def _member_time_stride(ds: xr.Dataset, members: int, max_slices: int
+                        ) -> tuple[xr.Dataset, str]:
+    """Every k-th valid time of each member so that members x times <= max_slices: the whole
+    horizon stays covered at a coarser step (a voyage outlives a forecast; cutting the horizon
+    instead would leave the plan on persistence and calm water after a day or two)."""
+    n_t = ds.sizes["time"]
+    budget = max(1, max_slices // members)
+    stride = -(-n_t // budget)
+    kept = ds.isel(time=slice(0, None, stride))
+    t = kept["time"].values
+    step_h = float((t[1] - t[0]) / np.timedelta64(1, "h")) if t.size > 1 else 0.0
+    return kept, (f"{members} members x {n_t} valid times exceed max_slices {max_slices}: "
+                  f"one valid time in {stride} kept ({kept.sizes['time']} per member, "
+                  f"{step_h:g} h apart, the whole horizon)")
+
+
+def _member_budget(ds: xr.Dataset, cfg: CycleConfig) -> tuple[xr.Dataset, list[str]]:
+    """The first `cfg.max_members` members (the control and the first perturbed ones of an
+    ensemble: members are exchangeable draws, so a prefix is an unbiased subset), stated."""
+    m = member_count(ds)
+    if cfg.max_members <= 0 or m <= cfg.max_members:
+        return ds, []
+    kept = ds.isel({MEMBER_DIM: slice(0, cfg.max_members)})
+    kept = kept.assign_coords({MEMBER_DIM: np.arange(cfg.max_members, dtype=np.int64)})
+    if cfg.max_members == 1:
+        kept = select_member(kept, 0)
+    labels = member_labels(ds)
+    return kept, [f"{m - cfg.max_members} of {m} members dropped (max_members "
+                  f"{cfg.max_members}): kept {', '.join(labels[:cfg.max_members])}"]
+
+
+def build_cycle(paths: Sequence[str], cfg: CycleConfig,
+                members: Sequence[Sequence[str]] = ()
                 ) -> tuple[CycleInfo, list[SliceData], list[str]]:
-    """Load + validate + thin files into the cycle announcement and its slices."""
-    ds = open_forecast(list(paths), required=cfg.required, cycle_id=cfg.cycle_id or None,
-                       waves_from_wind=cfg.waves_from_wind)
+    """Load + validate + thin files into the cycle announcement and its slices; with
+    `members` (the files of each member) a multi-model cycle (`members.open_members`)."""
+    if members:
+        ds = open_members(members, cfg.member_labels, required=cfg.required,
+                          cycle_id=cfg.cycle_id or None, waves_from_wind=cfg.waves_from_wind)
+        paths = [str(f) for files in members for f in files]
+    else:
+        ds = open_forecast(list(paths), required=cfg.required, cycle_id=cfg.cycle_id or None,
+                           waves_from_wind=cfg.waves_from_wind)
     report = load_notes(ds)
     ds, notes = thin(ds, cfg)
     if ds.sizes["time"] == 0:
         raise SliceError(f"{', '.join(paths)}: no valid time left after thinning")
-    info = replace(cycle_info(ds, paths), notes=tuple(report))
+    info = replace(cycle_info(ds, paths), notes=tuple(report + notes))
     return info, list(dataset_to_slices(ds)), report + notes

@@ -151,8 +151,7 @@ def _variables(ds: xr.Dataset,
             levels = da[tol].values
             pick = int(np.argmin(np.abs(levels - (10 if tol == "heightAboveGround" else 1))))
             da = da.isel({tol: pick}, drop=True)
-        da = da.drop_vars([c for c in da.coords if c == tol
-                           or (c == "number" and "number" not in da.dims)], errors="ignore")
+        da = da.drop_vars([c for c in da.coords if c == tol], errors="ignore")
         out.append(da.rename(_RENAME.get(short, str(name))).to_dataset())
     return out
 
@@ -174,10 +173,34 @@ def _flatten_runs(p: xr.Dataset) -> xr.Dataset:
     return out.to_dataset(name=name).assign_coords(reference_time=ref.min())
 
 
-def _merge(parts: list[xr.Dataset], path: Path) -> xr.Dataset:
-    """Merge per-variable datasets; forecast steps become valid times."""
-    fixed = []
+def _join_members(parts: list[xr.Dataset]) -> list[xr.Dataset]:
+    """Parts of one variable split by member joined along `number`: ECMWF and NCEP encode the
+    control ('cf') and the perturbed members ('pf') as separate hypercubes, and every member
+    must be kept. Parts of a variable whose numbers repeat are left as they are."""
+    by_name: dict[str, list[xr.Dataset]] = {}
     for p in parts:
+        by_name.setdefault(str(next(iter(p.data_vars))), []).append(p)
+    out: list[xr.Dataset] = []
+    for group in by_name.values():
+        if len(group) < 2 or any("number" not in p.coords for p in group):
+            out.extend(group)
+            continue
+        expanded = [p if "number" in p.dims else p.expand_dims("number") for p in group]
+        numbers = np.concatenate([np.atleast_1d(p["number"].values) for p in expanded])
+        if len(set(numbers.tolist())) != numbers.size:
+            out.extend(group)
+            continue
+        joined = xr.concat(expanded, dim="number", join="outer", coords="minimal",
+                           compat="override", combine_attrs="drop_conflicts")
+        out.append(joined.sortby("number"))
+    return out
+
+
+def _merge(parts: list[xr.Dataset], path: Path) -> xr.Dataset:
+    """Merge per-variable datasets (members of one variable joined); forecast steps become
+    valid times."""
+    fixed = []
+    for p in _join_members(parts):
         p = p.drop_vars([c for c in ("surface", "meanSea", "heightAboveGround",
                                      "orderedSequenceData") if c in p.coords], errors="ignore")
         if "step" in p.dims and "time" in p.dims:

@@ -9,6 +9,13 @@ import numpy as np
 import xarray as xr
 
 from ..contract import canonical as cv
+from ..contract.members import (
+    MEMBER_DIM,
+    member_count,
+    member_labels,
+    select_member,
+    stack_members,
+)
 from ..contract.validate import validate
 from ..errors import ForecastFileError, MissingVariableError, WeatherError
 from .combine import combine
@@ -143,5 +150,15 @@ def open_forecast(paths: Sequence[str | Path], required: Sequence[str] = (),
         if not waves_from_wind:
             raise MissingVariableError(where, cv.WAVE_HS, "wave fields (the forecast has wind "
                                        "only; allow estimating waves from wind to use it)")
-        ds = estimate_waves(ds)
+        ds = _estimate_member_waves(ds) if MEMBER_DIM in ds.dims else estimate_waves(ds)
     return validate(ds, where, required)
+
+
+def _estimate_member_waves(ds: xr.Dataset) -> xr.Dataset:
+    """Waves grown from each member's own wind (the members keep their labels and kind)."""
+    grown = [estimate_waves(select_member(ds, k)) for k in range(member_count(ds))]
+    out = stack_members(grown, member_labels(ds), str(ds.attrs.get("member_kind", "ensemble")))
+    for key in ("ensemble", "member_sources", "source_files", "source"):
+        if key in ds.attrs:
+            out.attrs[key] = ds.attrs[key]
+    return out

@@ -3,12 +3,12 @@
 from __future__ import annotations
 
 import re
-import warnings
 
 import numpy as np
 import xarray as xr
 
 from ..contract import canonical as cv
+from ..contract.members import MEMBER_DIM, MEMBER_LABEL, check_unique_labels
 from ..contract.timefmt import canonical_iso
 from ..contract.units import si_factor
 from ..errors import GridError, MissingVariableError
@@ -34,8 +34,6 @@ from .namemap import (
 from .outliers import mask_outliers
 
 _DIMS = ("time", "latitude", "longitude")
-#: prefix of the variables holding every ensemble member of a canonical field
-ENSEMBLE_PREFIX = "ensemble_"
 _EXPECTED = ("wind (u10/v10, UGRD/VGRD, eastward_wind...), waves (swh, HTSGW, VHM0, "
              "sea_surface_wave_significant_height...) or currents (uo/vo, utotal/vtotal...)")
 
@@ -176,38 +174,33 @@ def _slug(text: str) -> str:
     return re.sub(r"[^a-z0-9]+", "-", text.lower()).strip("-")[:40] or "forecast"
 
 
-def _split_members(out: dict[str, np.ndarray], member_values: np.ndarray | None,
-                   member_dim: str) -> tuple[dict[str, np.ndarray], dict[str, np.ndarray], str]:
-    """Fields with a member axis -> (control or mean fields, member fields, what was used)."""
+def _label(value: object) -> str:
+    """A member number as a label: 3.0 -> '3', anything else as written."""
+    if isinstance(value, float) and value.is_integer():
+        return str(int(value))
+    return str(value)
+
+
+def _member_axis(out: dict[str, np.ndarray], member_values: np.ndarray | None,
+                 member_dim: str, where: str) -> tuple[dict[str, np.ndarray], list[str], str]:
+    """Fields with a member axis kept whole: (fields, member labels, statement). A field
+    without members beside member fields is the same in every member (broadcast, stated)."""
     if not any(v.ndim == 4 for v in out.values()):
-        return out, {}, ""
+        return out, [], ""
     n = next(v.shape[0] for v in out.values() if v.ndim == 4)
-    if any(v.ndim == 4 and v.shape[0] != n for v in out.values()):
-        raise GridError("ensemble", "fields have different member counts")
-    control = None
-    if member_dim == "number" and member_values is not None:
-        hits = np.flatnonzero(np.asarray(member_values) == 0)
-        control = int(hits[0]) if hits.size else None
-    main: dict[str, np.ndarray] = {}
-    members: dict[str, np.ndarray] = {}
-    for c, v in out.items():
-        if v.ndim != 4:
-            main[c] = v
-            continue
-        members[c] = v
-        if control is not None:
-            main[c] = v[control]
-        elif c in cv.DIRECTION_VARIABLES:
-            rad = np.deg2rad(v.astype(np.float64))
-            main[c] = np.rad2deg(np.arctan2(np.nanmean(np.sin(rad), axis=0),
-                                            np.nanmean(np.cos(rad), axis=0))) % 360.0
-        else:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore", RuntimeWarning)  # all-NaN nodes stay NaN
-                main[c] = np.nanmean(v, axis=0)
-    used = (f"control (member {member_dim}=0) of {n} members" if control is not None
-            else f"ensemble mean of {n} members")
-    return main, members, used
+    counts = {c: v.shape[0] for c, v in out.items() if v.ndim == 4}
+    if len(set(counts.values())) > 1:
+        raise GridError(where, f"fields have different member counts {counts}")
+    labels = ([_label(x) for x in np.asarray(member_values).tolist()]
+              if member_values is not None else [str(k) for k in range(n)])
+    check_unique_labels(labels, f"{where} ({member_dim})")
+    shared = [c for c, v in out.items() if v.ndim != 4]
+    full = {c: (v if v.ndim == 4 else np.repeat(v[None], n, axis=0)) for c, v in out.items()}
+    said = f"{n} members kept from dimension {member_dim!r} (labels {', '.join(labels[:8])}" \
+           f"{', ...' if n > 8 else ''})"
+    if shared:
+        said += f"; {', '.join(shared)} have no members and are the same in every member"
+    return full, labels, said
 
 
 def _member_info(ds: xr.Dataset, chosen: dict[str, tuple[str, Mapping]]
@@ -223,8 +216,9 @@ def to_canonical(raw: xr.Dataset, where: str) -> xr.Dataset:
     """Canonical dataset from a raw one: names, SI units, directions, grid, UTC times.
 
     Every canonical variable records its `source_file`, `source_variable` and `conversion`;
-    impossible values are masked (see `outliers`); an ensemble keeps its members as
-    `ensemble_<name>` (member, time, latitude, longitude) beside the control or mean.
+    impossible values are masked (see `outliers`); an ensemble keeps every member: its
+    variables get a leading `member` dim (`contract.members`), labelled by the source's
+    member numbers (GRIB `number`, CF `realization`, ...).
     """
     ds = rename_coords(raw, where)
     ds = make_regular_lonlat(ds, where)
@@ -239,16 +233,15 @@ def to_canonical(raw: xr.Dataset, where: str) -> xr.Dataset:
     if not out:
         raise MissingVariableError(where, "any forecast variable", _EXPECTED)
     member_values, member_dim = _member_info(ds, chosen)
-    out, members, used = _split_members(out, member_values, member_dim)
+    out, labels, used = _member_axis(out, member_values, member_dim, where)
+    dims = (MEMBER_DIM, *_DIMS) if labels else _DIMS
     data: dict[str, tuple[tuple[str, ...], np.ndarray]] = {
-        c: (_DIMS, out[c].astype(np.float32, copy=False)) for c in cv.CANONICAL_ORDER if c in out}
-    data.update({f"{ENSEMBLE_PREFIX}{c}": (("member", *_DIMS), members[c].astype(np.float32))
-                 for c in cv.CANONICAL_ORDER if c in members})
-    coords = {"time": ds["time"].values, "latitude": ds["latitude"].values,
-              "longitude": ds["longitude"].values}
-    if members:
-        coords["member"] = (np.asarray(member_values) if member_values is not None
-                            else np.arange(next(iter(members.values())).shape[0]))
+        c: (dims, out[c].astype(np.float32, copy=False)) for c in cv.CANONICAL_ORDER if c in out}
+    coords: dict[str, object] = {"time": ds["time"].values, "latitude": ds["latitude"].values,
+                                 "longitude": ds["longitude"].values}
+    if labels:
+        coords[MEMBER_DIM] = np.arange(len(labels), dtype=np.int64)
+        coords[MEMBER_LABEL] = (MEMBER_DIM, np.array(labels, dtype=object))
     res = xr.Dataset(data, coords=coords)
     res = utc_naive_times(ascending_latitude(normalise_longitude(res, where)), where)
     res, dropped = regular_axes(res, where)
@@ -267,7 +260,8 @@ def to_canonical(raw: xr.Dataset, where: str) -> xr.Dataset:
     res.attrs = {"forecast_reference_time": ref, "source": source, "cycle_id": cycle,
                  "source_files": where}
     if used:
-        res.attrs["ensemble"] = f"planned on the {used}"
+        res.attrs["ensemble"] = used
+        res.attrs["member_kind"] = "ensemble"
     if dropped or "regridded_from" in ds.attrs:
         res.attrs["grid_notes"] = "; ".join([*dropped, *([str(ds.attrs["regridded_from"])]
                                                          if "regridded_from" in ds.attrs else [])])

@@ -35,13 +35,26 @@ T = TypeVar("T")
 
 
 def streamable(paths: list[str], cfg: CycleConfig) -> bool:
-    """One NetCDF file with waves (or no wind), no time thinning: the streaming path applies.
+    """One deterministic NetCDF file with waves (or no wind), no time thinning: the streaming
+    path applies.
 
     A wind-only file is loaded whole: its waves are grown from the wind through all of its
     valid times (`wind_waves`)."""
     return (len(paths) == 1 and cfg.slice_interval_s <= 0 and cfg.grid_stride == 1
             and Path(paths[0]).exists() and detect_format(Path(paths[0])) == "netcdf"
-            and not _wind_without_waves(paths[0]))
+            and not _wind_without_waves(paths[0]) and not _has_members(paths[0]))
+
+
+def _has_members(path: str) -> bool:
+    """Whether a NetCDF file has an ensemble member dimension of more than one member (read
+    lazily): such a file is loaded whole, so every member's slices are made and counted."""
+    from .normalise import MEMBER_DIMS
+
+    try:
+        with xr.open_dataset(path, engine="netcdf4", decode_times=False) as raw:
+            return any(raw.sizes.get(d, 1) > 1 for d in MEMBER_DIMS)
+    except Exception:
+        return False  # the block-wise path reports what is wrong with the file
 
 
 def _wind_without_waves(path: str) -> bool:

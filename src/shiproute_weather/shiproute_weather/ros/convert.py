@@ -102,6 +102,7 @@ def slice_to_msg(s: SliceData, stamp: Time | None = None,
     msg.dlat_deg, msg.dlon_deg = g.dlat_deg, g.dlon_deg
     msg.n_lat, msg.n_lon = g.n_lat, g.n_lon
     msg.fields = [field_to_msg(f, encoding) for f in s.fields]
+    msg.member, msg.member_count, msg.member_label = s.member, s.member_count, s.member_label
     return msg
 
 
@@ -130,7 +131,8 @@ def _slice_of(msg: ForecastSlice, copy: bool) -> SliceData:
         fields.append(FieldData(f.name, f.units, f.direction_convention, values))
     return SliceData(msg.cycle_id, time_to_ns(msg.reference_time), time_to_ns(msg.valid_time),
                      int(msg.slice_index), int(msg.slice_count), msg.source, grid,
-                     tuple(fields))
+                     tuple(fields), int(msg.member), max(1, int(msg.member_count)),
+                     str(msg.member_label))
 
 
 def cycle_to_msg(c: CycleInfo, stamp: Time | None = None) -> ForecastCycle:
@@ -152,6 +154,9 @@ def cycle_to_msg(c: CycleInfo, stamp: Time | None = None) -> ForecastCycle:
     msg.source_files = list(c.source_files)
     msg.field_sources = list(c.field_sources)
     msg.notes = list(c.notes)
+    msg.member_count = c.member_count
+    msg.member_labels = list(c.member_labels)
+    msg.member_kind = c.member_kind
     return msg
 
 
@@ -162,7 +167,9 @@ def msg_to_cycle(msg: ForecastCycle) -> CycleInfo:
                      float(msg.step_s), int(msg.slice_count), msg.source,
                      float(msg.lat_min_deg), float(msg.lat_max_deg), float(msg.lon_min_deg),
                      float(msg.lon_max_deg), tuple(msg.fields), tuple(msg.source_files),
-                     tuple(msg.field_sources), tuple(msg.notes))
+                     tuple(msg.field_sources), tuple(msg.notes),
+                     max(1, int(msg.member_count)),  # 0: a publisher from before members
+                     tuple(msg.member_labels), str(msg.member_kind))
 
 
 def dataset_to_msgs(ds: xr.Dataset, source_files: Sequence[str] = (),
@@ -173,10 +180,12 @@ def dataset_to_msgs(ds: xr.Dataset, source_files: Sequence[str] = (),
             [slice_to_msg(s, encoding=encoding) for s in dataset_to_slices(ds)])
 
 
-def msgs_to_dataset(slices: Sequence[ForecastSlice]) -> xr.Dataset:
-    """Canonical dataset from the complete set of a cycle's ForecastSlice messages.
+def msgs_to_dataset(slices: Sequence[ForecastSlice], member_kind: str = "ensemble"
+                    ) -> xr.Dataset:
+    """Canonical dataset from the complete set of a cycle's ForecastSlice messages (with a
+    member dimension for several members; `member_kind` from the cycle's announcement).
 
     The messages' buffers are read in place (no per-slice copy; packed fields are decoded
     straight into the dataset's arrays): the dataset is one copy.
     """
-    return slices_to_dataset([_slice_of(m, copy=False) for m in slices])
+    return slices_to_dataset([_slice_of(m, copy=False) for m in slices], member_kind)

@@ -39,6 +39,7 @@ from ..ingest.cycle_builder import (
     build_cycle,
     corridor_box,
 )
+from ..ingest.members import member_file_groups
 from ..ingest.stream import load_encoded, streamable, warm_array_backends
 from ..ingest.watch import DirectoryWatcher
 from ..scenarios.catalogue import scenario_path
@@ -69,6 +70,7 @@ class LoadRequest:
     paths: list[str]
     origin: str
     done: threading.Event | None = None
+    members: list[list[str]] | None = None  # files of each member of a multi-model cycle
     result: tuple[bool, str, str] = (False, "", "")
 
 
@@ -94,13 +96,20 @@ class WeatherNode(Node):
         margin = float(p("corridor_margin_deg", 5.0).value)
         self.max_slices = int(p("max_slices", MAX_SLICES).value)
         required = [str(x) for x in _list_value(p("required_fields", [""])) if x]
+        members = member_file_groups(_list_value(p("member_files", [""], ParameterDescriptor(
+            description="a multi-model cycle: one entry per member, its files joined by '+' "
+                        "(e.g. gfs.grib2, ecmwf_wind.grib2+ecmwf_waves.grib2)"))))
         self.cfg_base = CycleConfig(
             box=self._box(region, corridor, margin),
             slice_interval_s=float(p("slice_interval_s", 0.0).value),
             grid_stride=int(p("grid_stride", 1).value), max_slices=self.max_slices,
             max_slice_bytes=int(p("max_slice_bytes", MAX_SLICE_BYTES).value),
             required=tuple(required), cycle_id=str(p("cycle_id", "").value),
-            waves_from_wind=bool(p("estimate_waves_from_wind", True).value))
+            waves_from_wind=bool(p("estimate_waves_from_wind", True).value),
+            max_members=int(p("max_members", 0, ParameterDescriptor(
+                description="most members of an ensemble published (0: all); the first "
+                            "ones are kept and the drop is stated")).value),
+            member_labels=tuple(str(x) for x in _list_value(p("member_labels", [""])) if x))
         diag_period_s = float(p("diagnostics_period_s", 1.0).value)
         encoding = str(p("slice_encoding", DEFAULT_SLICE_ENCODING, ParameterDescriptor(
             description="field encoding of published slices: " + ", ".join(SLICE_ENCODINGS)
@@ -130,7 +139,8 @@ class WeatherNode(Node):
         # assemble slices per publication, so a reload is new and a restart never merges
         self.session = uuid.uuid4().hex[:12]
         self.loads = 0
-        self.state: dict[str, str] = {"cycle_id": "", "slices": "0", "slice_encoding": "",
+        self.state: dict[str, str] = {"cycle_id": "", "slices": "0", "members": "0",
+                                      "member_labels": "", "slice_encoding": "",
                                       "bytes_per_slice": "0",
                                       "source_files": "", "load_s": "", "last_error": "",
                                       "notes": "", "cycles_published": "0",
@@ -152,7 +162,10 @@ class WeatherNode(Node):
             if not initial and existing:
                 initial = [str(x) for x in existing]
             self.create_timer(watch_period_s, self._poll_watch, callback_group=timers)
-        if initial:
+        if members:
+            self.requests.put(LoadRequest([f for g in members for f in g], "member_files",
+                                          members=members))
+        elif initial:
             self.requests.put(LoadRequest(initial, "startup"))
         self.get_logger().info(f"ready: watching {watch_dir or '(nothing)'}, "
                                f"initial files {initial}")
@@ -212,11 +225,11 @@ class WeatherNode(Node):
             # the transport's pace (no encoding sits in between)
             encoding = str(self.get_parameter("slice_encoding").value)
             kept: list[ForecastSlice]
-            if streamable(req.paths, self.cfg_base):  # block-wise, encoded block by block
+            if not req.members and streamable(req.paths, self.cfg_base):  # block-wise
                 info, kept, notes = load_encoded(
                     req.paths[0], self.cfg_base, lambda s: slice_to_msg(s, None, encoding))
             else:
-                info, slices, notes = build_cycle(req.paths, self.cfg_base)
+                info, slices, notes = build_cycle(req.paths, self.cfg_base, req.members or ())
                 kept = []
                 for k in range(len(slices)):
                     s, slices[k] = slices[k], None  # type: ignore[call-overload]  # free
@@ -247,14 +260,18 @@ class WeatherNode(Node):
             self.current = (cycle, kept) if self.publish_period_s > 0 else None
             n = int(self.state["cycles_published"]) + 1
             self.state.update(cycle_id=info.cycle_id, slices=str(info.slice_count),
+                              members=str(info.member_count),
+                              member_labels=", ".join(info.member_labels),
                               slice_encoding=encoding, bytes_per_slice=str(nbytes),
                               source_files=", ".join(req.paths),
                               load_s=f"{dt:.3f}", last_error="", notes="; ".join(notes),
                               cycles_published=str(n), publication_id=publication)
             self.level = DiagnosticStatus.WARN if notes else DiagnosticStatus.OK
-            self.message = f"serving cycle {info.cycle_id} ({info.slice_count} slices)"
+            self.message = f"serving cycle {info.cycle_id} ({info.slice_count} slices, " \
+                           f"{info.member_count} member(s))"
         return_freed_memory()  # the loaded dataset and encoded slices: back to the OS
         self.get_logger().info(f"published cycle {info.cycle_id}: {info.slice_count} slices "
+                               f"of {info.member_count} member(s) "
                                f"({encoding}, {nbytes} B of field values each) in {dt:.2f} s "
                                f"from {req.paths}")
         self._publish_diagnostics()

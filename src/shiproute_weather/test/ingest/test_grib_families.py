@@ -72,7 +72,7 @@ def test_ecmwf_open_data_grib2_names(tmp_path: Path) -> None:
     assert any("mwp Tm-1,0" in n for n in load_notes(ds))
 
 
-def test_grib_ensemble_keeps_members_and_plans_on_the_control(tmp_path: Path) -> None:
+def test_grib_ensemble_keeps_every_member_by_number(tmp_path: Path) -> None:
     p = tmp_path / "enfo.grib2"
     msgs = []
     for number in range(4):  # control 0 and three perturbed members
@@ -82,10 +82,11 @@ def test_grib_ensemble_keeps_members_and_plans_on_the_control(tmp_path: Path) ->
             msgs.append(_message("swh", 1.0 + 0.5 * number, step, number))
     p.write_bytes(b"".join(msgs))
     ds = open_forecast([p])
-    assert ds["ensemble_eastward_wind"].sizes["member"] == 4
-    assert np.allclose(ds["ensemble_eastward_wind"].values[:, 0, 0, 0], [4, 5, 6, 7], atol=0.01)
-    assert float(ds[cv.WIND_U].values[0, 0, 0]) == pytest.approx(4.0, abs=0.01)  # control
-    assert "control" in ds.attrs["ensemble"] and "4 members" in ds.attrs["ensemble"]
+    assert ds[cv.WIND_U].dims == ("member", "time", "latitude", "longitude")
+    assert ds.sizes["member"] == 4 and list(ds["member_label"].values) == ["0", "1", "2", "3"]
+    assert np.allclose(ds[cv.WIND_U].values[:, 0, 0, 0], [4, 5, 6, 7], atol=0.01)
+    assert np.allclose(ds[cv.WAVE_HS].values[:, 1, 0, 0], [1.0, 1.5, 2.0, 2.5], atol=0.01)
+    assert ds.attrs["member_kind"] == "ensemble" and "4 members kept" in ds.attrs["ensemble"]
 
 
 @needs_examples
