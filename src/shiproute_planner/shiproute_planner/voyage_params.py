@@ -50,6 +50,14 @@ def check_parameter(name: str, value: Any) -> str | None:
         return port_calls_reason(str(value))
     if name == "ship_model":
         return _ship_model_reason(str(value))
+    if name == "risk" and str(value).strip():
+        from .errors import ParameterError
+        from .route.risk import parse_risk
+
+        try:
+            parse_risk(str(value))
+        except ParameterError as exc:
+            return str(exc)
     if name == "fuel_type" and str(value).strip().upper() not in ("", *CO2_FACTOR_T_PER_T):
         return f"fuel_type must be '' or one of {', '.join(CO2_FACTOR_T_PER_T)}, got {value!r}"
     if name in ("fuel_price_usd_per_t", "charter_usd_per_day") and (

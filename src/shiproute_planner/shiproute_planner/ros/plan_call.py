@@ -55,6 +55,8 @@ def plan_from_parameters(p: Callable[[str], Any], forecast: Any, *, cycle_id: st
         clearance_nm=float(p("clearance_nm")),
         approaches_given=paths(str(p("approach_files"))),
         loading=str(p("loading")), economics=economics(p),
+        risk=str(p("risk")) or None, p_hs_max=float(p("p_hs_max")),
+        p_late_max=float(p("p_late_max")),
     )
 
 
