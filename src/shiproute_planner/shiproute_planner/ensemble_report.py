@@ -123,8 +123,23 @@ def with_ensemble(plan: RoutePlan, block: dict[str, Any] | None, said: list[str]
     """The plan with its ensemble statement in `extra` and its warnings."""
     if block is None and not said:
         return plan
-    extra = {**plan.extra, "ensemble": block} if block is not None else plan.extra
-    return dataclasses.replace(plan, warnings=(*plan.warnings, *said), extra=extra)
+    if block is None:
+        return dataclasses.replace(plan, warnings=(*plan.warnings, *said))
+    legs = block["legs"]
+
+    def spread(name: str) -> tuple[tuple[float, float, float], ...]:
+        return tuple(zip(legs[name]["min"], legs[name]["median"], legs[name]["max"],
+                         strict=True))
+
+    f, e = block["fuel_t"], block["eta_s"]
+    return dataclasses.replace(
+        plan, warnings=(*plan.warnings, *said), extra={**plan.extra, "ensemble": block},
+        ensemble_members=int(block["members"]),
+        risk_measure="" if block["p_hs_max"] is None else str(block["risk_measure"]),
+        fuel_quantiles_t=(f["p10"], f["p50"], f["p90"]),
+        eta_quantiles_s=(e["p10"], e["p50"], e["p90"]),
+        p_hs_violation=float(block["p_hs_violation"]), p_late=float(block["p_late"]),
+        leg_hs_spread_m=spread("hs_m"), leg_wind_spread_m_s=spread("wind_speed_m_s"))
 
 
 def summary_lines(block: dict[str, Any]) -> list[str]:

@@ -198,6 +198,10 @@ def main(argv: list[str]) -> int:
             from ..io.plots import write_png
 
             write_png(plan, out / f"{stem}.png", forecast)
+            if plan.extra.get("ensemble"):
+                from ..io.ensemble_plots import write_ensemble_png
+
+                write_ensemble_png(plan, out / f"{stem}_ensemble.png", forecast)
     except PlannerError as exc:
         print(f"\nshiproute plan: error: {exc}", file=sys.stderr)
         return 2
