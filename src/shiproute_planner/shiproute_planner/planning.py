@@ -31,7 +31,7 @@ from .checks.parameters import require_number
 from .coastal_passages import passage_rules, passages_note
 from .depth_setup import depth_limits, with_depth_report
 from .ensemble_report import MemberLeg, ensemble_block, with_ensemble
-from .errors import InvalidVoyageError, PlanCancelledError
+from .errors import InvalidVoyageError, ParameterError, PlanCancelledError
 from .forecast_statement import forecast_statement, prepare_forecast
 from .ga.loop import GAConfig
 from .ga.pool import SeedPool
@@ -193,6 +193,10 @@ def plan_voyage(
     if stage_hours is not None:
         require_number("stage_hours", stage_hours)
     rta_tolerance_s = check_rta_tolerance_s(rta_tolerance_s)
+    if risk is None and (p_hs_max is not None or p_late_max is not None):
+        raise ParameterError("p_hs_max / p_late_max bound a risk-aware plan: give risk too")
+    risk_spec = (risk if isinstance(risk, RiskSpec) or risk is None
+                 else parse_risk(risk, p_hs_max, p_late_max))
     if port_calls:
         via = [c.port for c in port_calls]
     land = land or default_land_mask()
@@ -235,8 +239,6 @@ def plan_voyage(
         leg_rtas = [*sched.arrival_s[:-1], rta_s]  # the last leg aims at the RTA itself
     else:
         call_at, leg_rtas = {}, [rta_s]
-    risk_spec = (risk if isinstance(risk, RiskSpec) or risk is None
-                 else parse_risk(risk, p_hs_max, p_late_max))
     env = dataclasses.replace(env, sampler=prepare_forecast(env.sampler, depart_s, rta_s,
                                                             persistence_h, climatology),
                               risk=risk_spec)
