@@ -27,7 +27,7 @@ def _ensemble_sampler():
 @pytest.mark.slow
 def test_risk_aware_plan_has_lower_p90_fuel_and_hs_risk_than_the_mean_plan(land_mask):
     sampler = _ensemble_sampler()
-    kw = dict(budget_s=600.0, max_generations=25, land=land_mask, seed=0,
+    kw = dict(budget_s=1e6, max_generations=25, land=land_mask, seed=0,
               default_bathymetry=True)
     risky = plan_voyage("Busan", "Long Beach", DEPART, timedelta(days=13), "container_4600teu",
                         sampler, risk="cvar:0.9", p_hs_max=0.1, p_late_max=0.1, **kw)
