@@ -20,6 +20,7 @@ from shiproute_core.flags import FLAG_NAMES, FLAG_RTA, FLAG_WAVE_LIMIT
 
 from .geo.landmask import LandMask
 from .plan_types import RoutePlan
+from .route.encoding import join_genes
 from .route.environment import Environment
 from .route.evaluation import RouteEvaluation
 from .route.fast_eval import fast_evaluator
@@ -37,6 +38,16 @@ class MemberLeg:
     problem: RouteProblem
     genes: np.ndarray | None
     exact: RouteEvaluation
+
+
+def _genes_of(leg: MemberLeg) -> np.ndarray | None:
+    """Stage genes (headings, RPMs) of a leg's exact result when it sails the problem's
+    stages (a constant-RPM baseline chosen over the GA does), else None."""
+    n = leg.problem.n_stages
+    legs = leg.exact.legs
+    if legs["rpm"].shape[1] != n + 1:
+        return None
+    return join_genes(legs["heading_deg"][:1, :n], legs["rpm"][:1])[0]
 
 
 def ensemble_members(env: Environment) -> Any:
@@ -78,10 +89,13 @@ def ensemble_block(plan: RoutePlan, env: Environment, land: LandMask | None,
     spans = plan.optimised_spans or ((0, n_wp - 1),)
     for leg, (a, b) in zip(legs, spans, strict=False):
         fast = fast_evaluator(leg.problem, env, land)
-        if fast is None or leg.genes is None:
-            return None, ["ensemble spread not evaluated: the ship model has no compiled "
-                          "kernel; the plan was made on the members' mean"]
-        ev = fast.evaluate_members(leg.genes[None, :])
+        genes = leg.genes if leg.genes is not None else _genes_of(leg)
+        if fast is None or genes is None:
+            why = ("the ship model has no compiled kernel" if fast is None else
+                   "a leg's route is not in stage genes (a baseline track)")
+            return None, [f"ensemble spread not evaluated: {why}; the plan was made on the "
+                          "members' mean forecast"]
+        ev = fast.evaluate_members(genes[None, :])
         out = member_outcomes(leg.problem, ev, m_count, w)
         fuel += out.fuel_t[:, 0] - float(leg.exact.fuel_t[0])
         eta += out.eta_s[:, 0] - float(leg.exact.eta_s[0])

@@ -18,6 +18,7 @@ from .ga.ranking import deb_order, is_better
 from .geo.landmask import LandMask
 from .geo.verify import land_crossings
 from .method_context import Baseline, MethodContext, MethodResult, Progress, compute_baseline
+from .risk_choice import risk_choice
 from .route.encoding import clip_genes, gene_bounds
 from .route.environment import Environment
 from .route.evaluation import RouteEvaluation
@@ -25,7 +26,6 @@ from .route.fast_eval import fast_evaluator
 from .route.generate import evaluate_genes
 from .route.member_eval import risk_evaluate
 from .route.problem import RouteProblem
-from .risk_choice import risk_choice
 from .route.seeding import TrackSeed, great_circle_track, sea_lane_track, track_to_genes, via_track
 
 EXACT_CHOICE_RESERVE_S = 0.25  # wall time kept for the exact final choice and dense land check

@@ -56,7 +56,7 @@ def test_bad_risk_measures_are_refused_with_the_reason(text, words):
 
 @pytest.mark.parametrize("p", [-0.1, 1.5, float("nan"), float("inf")])
 def test_probabilities_outside_0_1_are_refused(p):
-    with pytest.raises(ParameterError, match="p_hs_max must be a probability in 0..1"):
+    with pytest.raises(ParameterError, match=r"p_hs_max must be a probability in 0\.\.1"):
         parse_risk("mean", p_hs_max=p)
     with pytest.raises(ParameterError, match="p_late_max must be a probability"):
         parse_risk("cvar:0.9", p_late_max=p)

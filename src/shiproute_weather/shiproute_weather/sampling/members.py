@@ -10,7 +10,7 @@ of the packed channels (directions as the mean of their unit vectors).
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -70,17 +70,16 @@ def pack_members(ds: xr.Dataset, names: Sequence[str], shape: tuple[int, ...],
     members = np.empty((m, *shape), dtype=member_dtype)
     mean = np.zeros(shape, dtype=np.float64)
     one = np.empty(shape, dtype=np.float32)
+    def values_of(member: xr.Dataset) -> Callable[[str], np.ndarray]:
+        return lambda n: member[n].transpose("time", "latitude", "longitude").values
+
     for k in range(m):
-        member = ds.isel({MEMBER_DIM: k})
-        pack_fields(one, names,
-                    lambda n, d=member: d[n].transpose("time", "latitude", "longitude").values)
+        pack_fields(one, names, values_of(ds.isel({MEMBER_DIM: k})))
         mean += weights[k] * one
         members[k] = one
     if m == 1:  # exactly the deterministic packing
         mean_out = np.empty(shape, dtype=dtype)
-        member = ds.isel({MEMBER_DIM: 0})
-        pack_fields(mean_out, names,
-                    lambda n: member[n].transpose("time", "latitude", "longitude").values)
+        pack_fields(mean_out, names, values_of(ds.isel({MEMBER_DIM: 0})))
     else:
         mean_out = mean.astype(dtype)
     labels = (tuple(str(v) for v in ds["member_label"].values) if "member_label" in ds.coords

@@ -129,6 +129,7 @@ def build_scenario(name: str) -> xr.Dataset:
     lead_h = np.arange(0.0, LENGTH_H + 1e-9, step)
     times = ref + (lead_h * 3600).astype("timedelta64[s]").astype("timedelta64[ns]")
     coords: dict = {"time": times, "latitude": lat, "longitude": lon}
+    data: dict[str, tuple[tuple[str, ...], np.ndarray]]
     if ens is not None:
         members = member_fields(spec, ens, lat, lon, lead_h + offset_h, offset_h)
         data = {n: (("member", "time", "latitude", "longitude"),

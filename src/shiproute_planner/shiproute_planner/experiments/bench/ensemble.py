@@ -58,15 +58,18 @@ def run(budget_s: float, risk: str, p_hs_max: float, p_late_max: float, seed: in
     wire = cycle_bytes(ds)
     del ds
     load_s = time.perf_counter() - t
-    common = dict(ship="container_4600teu", seed=seed, default_bathymetry=True,
-                  budget_s=budget_s)
+    common: dict = dict(ship="container_4600teu", seed=seed, default_bathymetry=True,
+                        budget_s=budget_s)
     t = time.perf_counter()
     plan = plan_voyage("Busan", "Long Beach", DEPART, timedelta(days=13), forecast=sampler,
                        risk=risk, p_hs_max=p_hs_max, p_late_max=p_late_max, **common)
     plan_s = time.perf_counter() - t
     mean_plan = plan_voyage("Busan", "Long Beach", DEPART, timedelta(days=13),
                             forecast=sampler, **common)
-    ens, ens_mean = plan.extra["ensemble"], mean_plan.extra["ensemble"]
+    ens, ens_mean = plan.extra.get("ensemble") or {}, mean_plan.extra.get("ensemble") or {}
+    if not ens or not ens_mean:
+        raise SystemExit("a plan has no ensemble statement: " + "; ".join(
+            w for w in (*plan.warnings, *mean_plan.warnings) if "ensemble" in w))
     return {
         "members": members,
         "risk": risk, "p_hs_max": p_hs_max, "p_late_max": p_late_max, "budget_s": budget_s,
