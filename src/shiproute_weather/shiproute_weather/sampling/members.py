@@ -57,14 +57,17 @@ def member_weights(ds: xr.Dataset) -> np.ndarray:
     return np.full(m, 1.0 / m)
 
 
+#: `sampler.pack_fields`: fill a packed array from the values of each named field
+PackFn = Callable[[np.ndarray, Sequence[str], Callable[[str], np.ndarray]], None]
+
+
 def pack_members(ds: xr.Dataset, names: Sequence[str], shape: tuple[int, ...],
-                 dtype: np.dtype, member_dtype: np.dtype) -> tuple[np.ndarray, MemberFields]:
+                 dtype: np.dtype, member_dtype: np.dtype,
+                 pack_fields: PackFn) -> tuple[np.ndarray, MemberFields]:
     """(weighted member mean packed in `dtype`, every member packed in `member_dtype`).
 
     `shape` is the (time, lat, lon, channel) shape of one member's packed array. A one-member
     dataset packs exactly as the same deterministic dataset would (no averaging)."""
-    from .sampler import pack_fields
-
     m = int(ds.sizes[MEMBER_DIM])
     weights = member_weights(ds)
     members = np.empty((m, *shape), dtype=member_dtype)

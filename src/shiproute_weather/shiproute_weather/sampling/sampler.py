@@ -151,7 +151,7 @@ class ForecastSampler:
             from .members import pack_members
 
             data, members = pack_members(ds, names, shape, _storage_dtype(dtype),
-                                         _storage_dtype(member_dtype))
+                                         _storage_dtype(member_dtype), pack_fields)
         else:
             data = np.empty(shape, dtype=_storage_dtype(dtype))
             pack_fields(data, names, lambda n: ds[n].transpose("time", "latitude",
