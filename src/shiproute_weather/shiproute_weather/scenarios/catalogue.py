@@ -197,9 +197,8 @@ def scenario_path(name: str, rebuild: bool = False) -> Path:
 
 def scenario_dataset(name: str) -> xr.Dataset:
     """A scenario as a canonical dataset, loaded from its NetCDF file through the loader."""
-    if name in ENSEMBLES:  # members kept: read as the canonical dataset it was written as
-        with xr.open_dataset(scenario_path(name), engine="netcdf4") as ds:
-            return cv.annotate(ds.load())
+    if name in ENSEMBLES:  # members kept, read lazily: a sampler packs one member at a time
+        return cv.annotate(xr.open_dataset(scenario_path(name), engine="netcdf4"))
     from ..ingest.loaders import open_forecast
 
     return open_forecast([scenario_path(name)])
