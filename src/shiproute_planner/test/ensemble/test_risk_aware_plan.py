@@ -30,14 +30,15 @@ def test_risk_aware_plan_has_lower_p90_fuel_and_hs_risk_than_the_mean_plan(land_
     kw = dict(budget_s=1e6, max_generations=25, land=land_mask, seed=0,
               default_bathymetry=True)
     risky = plan_voyage("Busan", "Long Beach", DEPART, timedelta(days=13), "container_4600teu",
-                        sampler, risk="cvar:0.9", p_hs_max=0.1, p_late_max=0.1, **kw)
+                        sampler, risk="cvar:0.9", p_hs_max=0.1, p_late_max=0.5, **kw)
     mean = plan_voyage("Busan", "Long Beach", DEPART, timedelta(days=13), "container_4600teu",
                        sampler, **kw)
     a, b = risky.extra["ensemble"], mean.extra["ensemble"]
     assert a["members"] == b["members"] == 20
     assert a["fuel_t"]["p90"] < b["fuel_t"]["p90"]
     assert a["p_hs_violation"] < b["p_hs_violation"]
-    assert a["p_hs_violation"] <= 0.1 + 1e-9  # the chance constraint holds
+    # the chance constraints hold (lateness as often as the mean plan is late: ~half)
+    assert a["p_hs_violation"] <= 0.1 + 1e-9 and a["p_late"] <= 0.5 + 1e-9
     # the plan says what it was made on
     assert risky.risk_measure == "cvar:0.9" and risky.ensemble_members == 20
     assert any("20 members" in w and "cvar:0.9" in w for w in risky.warnings)
