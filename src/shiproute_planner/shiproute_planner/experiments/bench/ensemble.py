@@ -2,8 +2,8 @@
 `storm_march_ensemble` scenario.
 
 Plans once on every member with a risk measure (default cvar:0.9, P(Hs > limit) <= 0.1,
-P(late) <= 0.5: as often late as a plan on the mean forecast is) and once on the members' mean forecast alone; both plans are then sailed on
-the same members (the plan's `ensemble` block). Reports the cold plan time of the risk-aware
+P(late) <= 0.5: as often late as a plan on the mean forecast is) and once on the members'
+mean forecast alone; both plans are then sailed on the same members (the plan's `ensemble` block). Reports the cold plan time of the risk-aware
 plan (a fresh process except for the scenario file: sampler, land mask and kernels are built
 inside the timing as a first plan would), its P90 fuel and P(Hs > limit), the same two of the
 mean plan, the process's peak RSS and the 16-bit packed wire size of the whole cycle
