@@ -3,10 +3,11 @@
 
 Plans once on every member with a risk measure (default cvar:0.9, P(Hs > limit) <= 0.1,
 P(late) <= 0.5: as often late as a plan on the mean forecast is) and once on the members'
-mean forecast alone; both plans are then sailed on the same members (the plan's `ensemble` block). Reports the cold plan time of the risk-aware
-plan (a fresh process except for the scenario file: sampler, land mask and kernels are built
-inside the timing as a first plan would), its P90 fuel and P(Hs > limit), the same two of the
-mean plan, the process's peak RSS and the 16-bit packed wire size of the whole cycle
+mean forecast alone; both plans are then sailed on the same members (the plan's `ensemble`
+block). Reports the cold plan time of the risk-aware plan (the sampler is packed before the
+timing, `load_and_pack_s`; land mask, sea lanes and the first use of the kernels are inside
+it, as for a first plan), its P90 fuel and P(Hs > limit), the same of the mean plan, the
+process's peak RSS and the 16-bit packed wire size of the whole cycle
 (`shiproute_weather.wire.packing`: codes + offset and scale per field and valid time).
 """
 
