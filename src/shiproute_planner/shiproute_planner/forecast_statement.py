@@ -52,6 +52,12 @@ def prepare_forecast(sampler: Any, depart_s: float, rta_s: float,
             raise InvalidVoyageError(str(exc)) from exc
         if climatology is not None:
             out.climatology = str(climatology.attrs.get("source_files", "climatology"))
+        if getattr(sampler, "members", None) is not None:  # each member keeps its own edges
+            from shiproute_weather.sampling.members import bounded_members
+
+            out.members = bounded_members(sampler.members, times, out.times_s,
+                                          out.kernel_data.view(out.dtype),
+                                          max(persistence_h, 0.0) * 3600.0)
         return out
     return sampler
 

@@ -85,6 +85,19 @@ class RoutePlan:
     # what the plan was made without, estimated or did not check, in words (never silent)
     warnings: tuple[str, ...] = ()
     extra: dict = field(default_factory=dict, compare=False)
+    # ensemble forecasts (`ensemble_report`): members the plan was sailed on (0: one forecast),
+    # the risk measure that chose it ("" = planned on the members' mean), P10/P50/P90 of fuel
+    # [t] and ETA [POSIX s] over the members, the probability (member weight) of meeting Hs
+    # above the ship's limit and of arriving late, and per leg the members' (min, median, max)
+    # of Hs [m] and wind speed [m/s] (NaN on legs not sailed on the members)
+    ensemble_members: int = 0
+    risk_measure: str = ""
+    fuel_quantiles_t: tuple[float, ...] = ()
+    eta_quantiles_s: tuple[float, ...] = ()
+    p_hs_violation: float = float("nan")
+    p_late: float = float("nan")
+    leg_hs_spread_m: tuple[tuple[float, float, float], ...] = ()
+    leg_wind_spread_m_s: tuple[tuple[float, float, float], ...] = ()
 
     @property
     def fuel_saving_t(self) -> float:

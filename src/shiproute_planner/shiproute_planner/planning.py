@@ -31,7 +31,8 @@ from .checks.parameters import require_number
 from .coastal_depth import with_coarse_coast_note
 from .coastal_passages import passage_rules, passages_note
 from .depth_setup import depth_limits, with_depth_report
-from .errors import InvalidVoyageError, PlanCancelledError
+from .ensemble_report import MemberLeg, ensemble_block, with_ensemble
+from .errors import InvalidVoyageError, ParameterError, PlanCancelledError
 from .forecast_statement import forecast_statement, prepare_forecast
 from .ga.loop import GAConfig
 from .ga.pool import SeedPool
@@ -54,6 +55,7 @@ from .plan_setup import (
 )
 from .plan_types import RoutePlan
 from .river_passages import river_calls, river_times, with_river_passages
+from .route.risk import RiskSpec, parse_risk
 from .route.voyage_legs import leg_setup
 from .straits import route_straits, sail_strait
 from .voyage.legs import voyage_schedule
@@ -141,6 +143,9 @@ def plan_voyage(
     economics: Economics | None = None,
     port_calls: Sequence[PortCall] = (),
     rta_tolerance_s: float = RTA_TOLERANCE_S,
+    risk: str | RiskSpec | None = None,
+    p_hs_max: float | None = None,
+    p_late_max: float | None = None,
 ) -> RoutePlan:
     """Plan a voyage and return a frozen RoutePlan.
 
@@ -180,11 +185,20 @@ def plan_voyage(
     `port_calls` (or `via` with `via_rta` as latest arrivals) make a multi-port voyage whose
     leg times are scheduled together for the least fuel (`voyage.schedule`); a plan is on
     time when it arrives within `rta_tolerance_s` of each deadline.
+    `risk` (`mean`, `cvar:ALPHA`, `worst` or a `RiskSpec`) plans on every member of an
+    ensemble forecast: the seed GA minimises that measure of the members' objective under
+    the chance constraints P(Hs > limit) <= `p_hs_max` and P(late) <= `p_late_max` (None: 0);
+    without it an ensemble is planned on its members' mean. Either way an ensemble plan
+    states its spread over the members (`ensemble_report`).
     """
     t0 = time.perf_counter()
     if stage_hours is not None:
         require_number("stage_hours", stage_hours)
     rta_tolerance_s = check_rta_tolerance_s(rta_tolerance_s)
+    if risk is None and (p_hs_max is not None or p_late_max is not None):
+        raise ParameterError("p_hs_max / p_late_max bound a risk-aware plan: give risk too")
+    risk_spec = (risk if isinstance(risk, RiskSpec) or risk is None
+                 else parse_risk(risk, p_hs_max, p_late_max))
     if port_calls:
         via = [c.port for c in port_calls]
     land = land or default_land_mask()
@@ -238,7 +252,8 @@ def plan_voyage(
     else:
         call_at, leg_rtas = {}, [rta_s]
     env = dataclasses.replace(env, sampler=prepare_forecast(env.sampler, depart_s, rta_s,
-                                                            persistence_h, climatology))
+                                                            persistence_h, climatology),
+                              risk=risk_spec)
     rta_warning, earliest_s = rta_warning_of(ports, depart_s, rta_s, spec)
     # an RTA beyond reach is searched best effort: over the time the great circle takes at
     # full speed (a lower bound), lateness being a violation the search minimises; a
@@ -252,6 +267,7 @@ def plan_voyage(
     dists = np.array([float(inverse(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)[1])
                       for a, b in itertools.pairwise(ports)])
     results, baselines, problems, sources, approaches = [], [], [], [], []
+    member_legs: list[MemberLeg] = []
     arrivals: list[float] = []
     gens = evals = 0
     leg_depart = depart_s
@@ -318,6 +334,7 @@ def plan_voyage(
         if res.evaluation is None:
             raise PlanCancelledError("planning was cancelled before a route was found")
         results.append(res.evaluation)
+        member_legs.append(MemberLeg(problem, res.genes, res.evaluation))
         sources.append(res.seed_source)
         problems.append(problem)
         gens += res.generations
@@ -352,6 +369,8 @@ def plan_voyage(
                         clearance_nm)
     plan = with_coarse_coast_note(with_river_passages(plan, river_rows + call_rows),
                                   lim.under_keel, land)
+    plan = with_ensemble(plan, *ensemble_block(plan, env, land, member_legs, risk_spec,
+                                               rta_tolerance_s))
     block, said = forecast_statement(env.sampler, plan, persistence_h)
     goal = objective_block(terms, plan.total_fuel_t, plan.total_time_s / 3600.0,
                            plan.total_distance_nm)

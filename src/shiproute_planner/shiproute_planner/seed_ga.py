@@ -18,11 +18,13 @@ from .ga.ranking import deb_order, is_better
 from .geo.landmask import LandMask
 from .geo.verify import land_crossings
 from .method_context import Baseline, MethodContext, MethodResult, Progress, compute_baseline
+from .risk_choice import risk_choice
 from .route.encoding import clip_genes, gene_bounds
 from .route.environment import Environment
 from .route.evaluation import RouteEvaluation
 from .route.fast_eval import fast_evaluator
 from .route.generate import evaluate_genes
+from .route.member_eval import risk_evaluate
 from .route.problem import RouteProblem
 from .route.seeding import TrackSeed, great_circle_track, sea_lane_track, track_to_genes, via_track
 
@@ -50,9 +52,13 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
         seeds.append(TrackSeed(name, lon, lat, np.broadcast_to(rpm, lon.size - 1).copy()))
 
     fast = fast_evaluator(p, env, ctx.land)
+    risk = env.risk if fast is not None and fast.member_count > 1 else None
 
     def evaluate(x: np.ndarray) -> RouteEvaluation:
-        """GA-loop evaluator: the compiled one when the environment allows it."""
+        """GA-loop evaluator: the compiled one when the environment allows it (on every
+        ensemble member, reduced by the risk measure, when a risk measure is set)."""
+        if risk is not None and fast is not None:
+            return risk_evaluate(fast, risk, x)
         return fast.evaluate(x) if fast is not None else evaluate_genes(p, env, ctx.land, x)
 
     x_seed = (track_to_genes(p, env, seeds, ctx.land, fast=fast) if seeds
@@ -101,7 +107,8 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
         ga.tell(x, ev.violation, ev.objective)
         # archive of bests the exact evaluator confirms: the fallback when the final
         # population sits where a boolean criterion flips between the two evaluators
-        if (fast is not None and ga.generation % EXACT_CHECK_EVERY == 0 and ga.best[1] <= 0
+        if (fast is not None and risk is None and ga.generation % EXACT_CHECK_EVERY == 0
+                and ga.best[1] <= 0
                 and evaluate_genes(p, env, ctx.land, ga.best[0][None, :]).feasible[0]):
             confirmed.append(ga.best[0].copy())
         if ga.generation == 0:
@@ -119,6 +126,9 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
             break
     pool_x = ga.pop if not confirmed else np.concatenate([ga.pop[:24], confirmed[::-1],
                                                           ga.pop[24:]])
+    if risk is not None and fast is not None:  # the risk measure chooses, not the mean
+        best_x, final = risk_choice(p, env, ctx.land, ga.pop, lambda x: evaluate(x))
+        return MethodResult(final, best_src, ga.generation, ga.evaluations, best_x.copy())
     best_x, final = exact_choice(p, env, ctx.land, pool_x, top=min(24, len(ga.pop)))
     b = ctx.baseline
     if b is not None and is_better(

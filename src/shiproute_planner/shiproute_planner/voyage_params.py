@@ -48,8 +48,8 @@ def check_parameter(name: str, value: Any) -> str | None:
         from .voyage.node_calls import port_calls_reason
 
         return port_calls_reason(str(value))
-    if name == "ship_model":
-        return _ship_model_reason(str(value))
+    if name in ("ship_model", "risk"):
+        return (_ship_model_reason if name == "ship_model" else _risk_reason)(str(value))
     if name == "fuel_type" and str(value).strip().upper() not in ("", *CO2_FACTOR_T_PER_T):
         return f"fuel_type must be '' or one of {', '.join(CO2_FACTOR_T_PER_T)}, got {value!r}"
     if name in ("fuel_price_usd_per_t", "charter_usd_per_day") and (
@@ -62,6 +62,20 @@ def check_parameter(name: str, value: Any) -> str | None:
         if missing:
             return f"{name}: no such file {', '.join(missing)}"
     return check_number(name, value)
+
+
+def _risk_reason(value: str) -> str | None:
+    """Why `value` is not a risk measure ('' = none), or None."""
+    from .errors import ParameterError
+    from .route.risk import parse_risk
+
+    if not value.strip():
+        return None
+    try:
+        parse_risk(value)
+    except ParameterError as exc:
+        return str(exc)
+    return None
 
 
 def _ship_model_reason(value: str) -> str | None:

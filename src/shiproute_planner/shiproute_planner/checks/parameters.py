@@ -60,6 +60,10 @@ RANGES: dict[str, Range] = {
     "persistence_hours": Range(
         0.0, 240.0, "h", "a forecast's last fields say little of the weather days later; "
         "beyond 10 days give a climatology instead"),
+    "p_hs_max": Range(0.0, 1.0, "", "a probability (member weight): 0 asks every member to "
+                      "keep Hs within the ship's limit, 1 accepts any"),
+    "p_late_max": Range(0.0, 1.0, "", "a probability (member weight): 0 asks every member to "
+                        "arrive on time, 1 accepts any"),
     "budget_evaluations": Range(
         1, 72_000_000, "evaluations", "a plan needs at least one evaluation; 72 M is the "
         "hour of the wall-time budget's limit at 20,000 evaluations/s", integer=True),

@@ -12,6 +12,7 @@ import argparse
 from ..checks.parameters import check_number
 from ..errors import InvalidVoyageError, ParameterError
 from ..plan_request import Budget, duration_s
+from ..route.risk import RiskSpec, parse_risk
 
 #: option -> (argparse destination, parameter of the range table)
 PLAN_OPTIONS: dict[str, tuple[str, str]] = {
@@ -20,6 +21,8 @@ PLAN_OPTIONS: dict[str, tuple[str, str]] = {
     "--ukc-margin": ("ukc_margin", "ukc_margin_m"),
     "--clearance-nm": ("clearance_nm", "clearance_nm"),
     "--persistence-hours": ("persistence_hours", "persistence_hours"),
+    "--p-hs-max": ("p_hs_max", "p_hs_max"),
+    "--p-late-max": ("p_late_max", "p_late_max"),
 }
 CHECK_OPTIONS: dict[str, tuple[str, str]] = {
     "--ukc-margin": ("ukc_margin", "ukc_margin_m"),
@@ -61,3 +64,19 @@ def check_options(args: argparse.Namespace, options: dict[str, tuple[str, str]],
         reason = check_number(parameter, value, label=option)
         if reason is not None:
             raise ParameterError(reason)
+
+
+def risk_option(measure: str | None, p_hs_max: float | None,
+                p_late_max: float | None) -> RiskSpec | None:
+    """The `--risk` measure with its chance bounds (None: no --risk), or ParameterError
+    naming the option; a bound without --risk is refused (it would be silently ignored)."""
+    if measure is None:
+        for option, value in (("--p-hs-max", p_hs_max), ("--p-late-max", p_late_max)):
+            if value is not None:
+                raise ParameterError(f"{option} needs --risk (mean, cvar:ALPHA or worst)")
+        return None
+    try:
+        return parse_risk(measure, p_hs_max, p_late_max)
+    except ParameterError as exc:
+        text = str(exc).replace("p_hs_max", "--p-hs-max").replace("p_late_max", "--p-late-max")
+        raise ParameterError(f"--risk: {text}" if text.startswith("risk") else text) from None

@@ -19,7 +19,7 @@ from ..objectives import (
 )
 from ..plan_request import build_request, duration_s, run_request
 from ..ship.fuel import CO2_FACTOR_T_PER_T
-from .option_ranges import PLAN_OPTIONS, check_options
+from .option_ranges import PLAN_OPTIONS, check_options, risk_option
 
 
 def parse_duration_s(text: str) -> float:
@@ -80,6 +80,16 @@ def build_parser() -> argparse.ArgumentParser:
     ap.add_argument("--charter-rate", type=float, default=None, metavar="USD_PER_DAY",
                     help=f"time-charter rate for the cost objective (default: ship file "
                          f"economics, else {DEFAULT_CHARTER_USD_PER_DAY:.0f} USD/day)")
+    ap.add_argument("--risk", default=None, metavar="MEASURE",
+                    help="plan on every ensemble member minimising mean, cvar:ALPHA (e.g. "
+                         "cvar:0.9) or worst of the objective (default: the members' mean "
+                         "forecast)")
+    ap.add_argument("--p-hs-max", type=float, default=None, metavar="P",
+                    help="with --risk: largest accepted probability of meeting Hs above the "
+                         "ship's limit (0..1, default 0)")
+    ap.add_argument("--p-late-max", type=float, default=None, metavar="P",
+                    help="with --risk: largest accepted probability of arriving late "
+                         "(0..1, default 0)")
     ap.add_argument("--method", default="seed_ga", help="planning method (see --list-methods)")
     ap.add_argument("--budget", default=None,
                     help="wall time (3s) or route evaluations (4000ev: reproducible); "
@@ -146,6 +156,7 @@ def main(argv: list[str]) -> int:
 
     try:
         check_options(args, PLAN_OPTIONS, budget_option="--budget")
+        risk = risk_option(args.risk, args.p_hs_max, args.p_late_max)
         req = build_request(
             origin=args.origin, destination=args.destination, depart=args.depart, rta=args.rta,
             via=args.via, ship=args.ship, objective=args.objective, method=args.method,
@@ -168,7 +179,7 @@ def main(argv: list[str]) -> int:
             persistence_h=args.persistence_hours, climatology=_climatology(args.climatology),
             bathymetry=args.bathymetry, default_bathymetry=not args.no_default_bathymetry,
             ukc_margin_m=args.ukc_margin, zones=args.zones, clearance_nm=args.clearance_nm,
-            approaches_given=args.approach)
+            approaches_given=args.approach, risk=risk)
         if req.objective == "front":
             from .plan_front import run_front
 
@@ -187,6 +198,10 @@ def main(argv: list[str]) -> int:
             from ..io.plots import write_png
 
             write_png(plan, out / f"{stem}.png", forecast)
+            if plan.extra.get("ensemble"):
+                from ..io.ensemble_plots import write_ensemble_png
+
+                write_ensemble_png(plan, out / f"{stem}_ensemble.png", forecast)
     except PlannerError as exc:
         print(f"\nshiproute plan: error: {exc}", file=sys.stderr)
         return 2
@@ -252,5 +267,9 @@ def format_summary(plan) -> str:
         lines.append(f"call       {row['port']:<24s} arrive {row['arrival']}  depart "
                      f"{row['departure']}{window}"
                      + ("" if row["in_window"] else "  LATE"))
+    if plan.extra.get("ensemble"):
+        from ..ensemble_report import summary_lines
+
+        lines += summary_lines(plan.extra["ensemble"])
     lines += [f"warning    {w}" for w in plan.warnings]
     return "\n".join(lines)

@@ -32,6 +32,8 @@ def write_png(plan: RoutePlan, path: str | Path, forecast: Any = None,
     if forecast is not None and HS_VAR in forecast:
         when = np.datetime64(datetime.fromtimestamp(t_map, UTC).replace(tzinfo=None), "ns")
         hs = forecast[HS_VAR].sel(time=when, method="nearest")
+        if "member" in hs.dims:  # an ensemble: the members' mean (the ensemble PNG has each)
+            hs = hs.mean("member")
         glon = forecast["longitude"].values
         glon = centre + (glon - centre + 180.0) % 360.0 - 180.0
         order = np.argsort(glon)

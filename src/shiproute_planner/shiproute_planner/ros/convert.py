@@ -72,7 +72,22 @@ def plan_to_msg(plan: RoutePlan, stamp: Time) -> RoutePlanMsg:
     msg.call_ports = [str(r["port"]) for r in calls]
     msg.call_arrivals = [time_msg(float(r["arrival_s"])) for r in calls]
     msg.call_departures = [time_msg(float(r["departure_s"])) for r in calls]
+    _ensemble_fields(msg, plan)
     return msg
+
+
+def _ensemble_fields(msg: RoutePlanMsg, plan: RoutePlan) -> None:
+    """The plan's spread over ensemble members (empty / NaN for one forecast)."""
+    msg.ensemble_members = int(plan.ensemble_members)
+    msg.risk_measure = plan.risk_measure
+    msg.fuel_quantiles_t = [float(v) for v in plan.fuel_quantiles_t]
+    msg.eta_quantiles = [time_msg(float(t)) for t in plan.eta_quantiles_s]
+    msg.p_hs_violation = float(plan.p_hs_violation)
+    msg.p_late = float(plan.p_late)
+    for name, rows in (("hs", plan.leg_hs_spread_m), ("wind", plan.leg_wind_spread_m_s)):
+        unit = "m" if name == "hs" else "m_s"
+        for k, stat in enumerate(("min", "median", "max")):
+            setattr(msg, f"leg_{name}_{stat}_{unit}", [float(r[k]) for r in rows])
 
 
 def _waypoint_msg(w) -> RouteWaypoint:

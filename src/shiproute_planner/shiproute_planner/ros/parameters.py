@@ -28,6 +28,11 @@ PARAMETERS: dict[str, tuple[object, str]] = {
                         "is on time [s]"),
     "port_calls": ("", "intermediate port calls, ';'-separated "
                    "PORT[@EARLIEST..LATEST][+BERTH_H] (ISO UTC times); set by SetVoyage"),
+    "risk": ("", "plan an ensemble on every member minimising mean | cvar:ALPHA (e.g. "
+             "cvar:0.9) | worst of the objective; '' = on the members' mean forecast"),
+    "p_hs_max": (0.0, "with risk: largest accepted probability (member weight) of meeting Hs "
+                 "above the ship's limit along the route (0..1)"),
+    "p_late_max": (0.0, "with risk: largest accepted probability of arriving late (0..1)"),
     "budget_s": (3.0, "wall-time budget of one plan [s]"),
     "rng_seed": (0, "seed of the GA's random generator"),
     "seed_pool_dir": ("", "seed pool directory (persists across restarts); '' = none"),

@@ -31,6 +31,15 @@ def economics(p: Callable[[str], Any]) -> Economics:
                      rate if rate >= 0 else None)
 
 
+def risk_keywords(p: Callable[[str], Any]) -> dict[str, Any]:
+    """`plan_voyage`'s risk keywords from the parameters (none when `risk` is '')."""
+    risk = str(p("risk")).strip()
+    if not risk:
+        return {}
+    return {"risk": risk, "p_hs_max": float(p("p_hs_max")),
+            "p_late_max": float(p("p_late_max"))}
+
+
 def plan_from_parameters(p: Callable[[str], Any], forecast: Any, *, cycle_id: str,
                          origin: str, depart_s: float, budget_s: float,
                          previous: RoutePlan | None,
@@ -63,6 +72,7 @@ def plan_from_parameters(p: Callable[[str], Any], forecast: Any, *, cycle_id: st
         clearance_nm=float(p("clearance_nm")),
         approaches_given=paths(str(p("approach_files"))),
         loading=str(p("loading")), economics=economics(p),
+        **risk_keywords(p),
     )
 
 

@@ -36,6 +36,9 @@ class Environment:
     model: Any
     sampler: Any = None
     cycle_id: str = ""
+    #: `route.risk.RiskSpec` to plan on every ensemble member of the sampler (None: plan on
+    #: its one forecast, the members' mean for an ensemble)
+    risk: Any = None
 
     def sea_state(self, lon_deg: np.ndarray, lat_deg: np.ndarray, time_s: np.ndarray) -> Any:
         """SeaState at the points (longitudes in any frame)."""

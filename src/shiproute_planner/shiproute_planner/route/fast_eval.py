@@ -23,6 +23,7 @@ from ..geo.landmask import LandMask
 from ..threads import planner_threads
 from . import _fast_kernels as fk
 from . import _route_kernel as rk
+from . import member_kernel as mk
 from .encoding import split_genes
 from .environment import PERF_FIELDS, Environment
 from .evaluation import RouteEvaluation, clear_ports, finish
@@ -76,6 +77,9 @@ class FastEvaluator:
             self._weather = (False, np.zeros((1, 1, 1, 1)), np.zeros(1), 0.0, 1.0, 0.0, 1.0,
                              False, np.full(len(fk.SEA_VARIABLES), -1, dtype=np.int64),
                              np.zeros(len(fk.SEA_VARIABLES), dtype=np.bool_))
+        self._members = None
+        if env.sampler is not None and getattr(env.sampler, "members", None) is not None:
+            self._members = env.sampler.members
         self._coarse = None
         if land is not None:
             key = id(land)
@@ -107,6 +111,55 @@ class FastEvaluator:
                                out_b[:, a:b], heading_n[a:b], dist_n[a:b], dur_n[a:b])
 
         in_chunks(pop, generate)
+        return self._finish(headings, rpm, lon, lat, t, out_f, out_b, heading_n, dist_n, dur_n)
+
+    @property
+    def member_count(self) -> int:
+        """Ensemble members of the forecast (1: one forecast)."""
+        return 1 if self._members is None else self._members.count
+
+    @property
+    def member_weights(self) -> np.ndarray:
+        """Weights of the ensemble members (sum 1)."""
+        return np.ones(1) if self._members is None else self._members.weights
+
+    def evaluate_members(self, x: np.ndarray) -> RouteEvaluation:
+        """Genes `x` (pop, 2n + 1) sailed on every ensemble member in one compiled call
+        (`member_kernel.generate_member_routes`): rows member-major, row k * pop + i is
+        candidate i on member k; needs a forecast with members."""
+        assert self._members is not None, "evaluate_members needs an ensemble forecast"
+        p = self.problem
+        headings, rpm = split_genes(p, x)
+        pop, n = headings.shape
+        m, mc = n + 1, self._members.count
+        lon, lat, t = (np.empty((mc, pop, m + 1)) for _ in range(3))
+        out_f = np.empty((11, mc, pop, m))
+        out_b = np.empty((5, mc, pop, m), dtype=np.bool_)
+        heading_n, dist_n, dur_n = (np.empty((mc, pop)) for _ in range(3))
+        headings, rpm = np.ascontiguousarray(headings), np.ascontiguousarray(rpm)
+        wx = list(self._weather)
+        wx[1] = self._members.kernel_data
+
+        def generate(a: int, b: int) -> None:
+            mk.generate_member_routes(
+                headings[a:b], rpm[a:b], p.dep_lon_deg, p.dep_lat_deg, p.depart_s, p.stage_s,
+                p.arr_lon_deg, p.arr_lat_deg, self._rpm_lo, self._rpm_hi, *wx, self._limits,
+                *self._ship, lon[:, a:b], lat[:, a:b], t[:, a:b], out_f[:, :, a:b],
+                out_b[:, :, a:b], heading_n[:, a:b], dist_n[:, a:b], dur_n[:, a:b])
+
+        in_chunks(pop, generate)
+        rows = mc * pop
+        return self._finish(np.tile(headings, (mc, 1)), np.tile(rpm, (mc, 1)),
+                            lon.reshape(rows, -1), lat.reshape(rows, -1), t.reshape(rows, -1),
+                            out_f.reshape(11, rows, m), out_b.reshape(5, rows, m),
+                            heading_n.reshape(-1), dist_n.reshape(-1), dur_n.reshape(-1))
+
+    def _finish(self, headings, rpm, lon, lat, t, out_f, out_b, heading_n, dist_n,
+                dur_n) -> RouteEvaluation:
+        """Leg arrays, land samples and constraints of generated routes."""
+        p = self.problem
+        pop, n = headings.shape
+        m = n + 1
         legs = {k: out_f[r] for k, r in _F_ROWS.items()}
         legs.update({k: out_b[r] for k, r in _B_ROWS.items()})
         legs = {k: legs[k] for k in PERF_FIELDS}

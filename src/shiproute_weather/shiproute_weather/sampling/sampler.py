@@ -29,6 +29,8 @@ from .pack_kernel import (
 if TYPE_CHECKING:  # xarray is only needed by whoever passes a Dataset
     import xarray as xr
 
+    from .members import MemberFields
+
 __all__ = ["MIN_VALID_WEIGHT", "STORAGE_DTYPES", "FieldValues", "ForecastSampler",
            "channel_count", "pack_fields"]
 
@@ -125,12 +127,17 @@ class ForecastSampler:
     packed elsewhere (e.g. slice by slice as a cycle arrives) without another copy.
     """
 
+    #: the ensemble's members when the dataset has a `member` dimension (`sample` and
+    #: `kernel_data` then give their weighted mean), else None
+    members: MemberFields | None
+
     #: what the cycle holds and where each field came from (`record.cycle_record`), or None
     #: when the sampler was packed from elsewhere without one
     record: dict[str, Any] | None
 
     def __init__(self, ds: xr.Dataset, variables: Iterable[str] | None = None,
-                 dtype: np.dtype | type = np.float32) -> None:
+                 dtype: np.dtype | type = np.float32,
+                 member_dtype: np.dtype | type = np.float16) -> None:
         names = present_variables(ds) if variables is None else list(variables)
         for n in names:
             if n not in ds.data_vars:
@@ -138,11 +145,19 @@ class ForecastSampler:
                                            "a variable present in the forecast dataset")
         grid = grid_of(ds)
         times_s = times_posix_s(ds)
-        data = np.empty((times_s.size, grid.n_lat, grid.n_lon, channel_count(names)),
-                        dtype=_storage_dtype(dtype))
-        pack_fields(data, names, lambda n: ds[n].transpose("time", "latitude",
-                                                           "longitude").values)
+        shape = (times_s.size, grid.n_lat, grid.n_lon, channel_count(names))
+        members = None
+        if "member" in ds.dims:  # ensemble: the weighted member mean is the one-forecast view
+            from .members import pack_members
+
+            data, members = pack_members(ds, names, shape, _storage_dtype(dtype),
+                                         _storage_dtype(member_dtype), pack_fields)
+        else:
+            data = np.empty(shape, dtype=_storage_dtype(dtype))
+            pack_fields(data, names, lambda n: ds[n].transpose("time", "latitude",
+                                                               "longitude").values)
         self._init(data, times_s, grid, names)
+        self.members = members
         from ..contract.record import cycle_record
 
         self.record = cycle_record(ds)
@@ -164,6 +179,8 @@ class ForecastSampler:
               names: list[str]) -> None:
         self.variables: tuple[str, ...] = tuple(names)
         self.record = None
+        #: every ensemble member stacked (`sampling.members`), None for one forecast
+        self.members: MemberFields | None = None
         self.grid = grid
         self.times_s = np.ascontiguousarray(times_s, dtype=np.float64)
         if self.times_s.size > 1 and np.any(np.diff(self.times_s) <= 0):

@@ -18,6 +18,7 @@ import xarray as xr
 
 from ..contract import canonical as cv
 from ..errors import ScenarioError
+from .ensemble import EnsembleSpec, member_fields, spread_summary
 from .synth_seas import JUNE_SWELL, MARCH_SWELL, BackgroundSwell
 from .synth_wind import JUNE, MARCH, Season, TrackPoint
 
@@ -83,17 +84,28 @@ SCENARIOS: dict[str, ScenarioSpec] = {
 }
 
 
+#: ensemble scenarios (`scenarios.ensemble`: spread model and its sources): 1 deg, 6-hourly
+ENSEMBLES: dict[str, EnsembleSpec] = {
+    "storm_march_ensemble": EnsembleSpec(
+        "storm_march", 20, 1.0, 6.0, 20260304,
+        "storm_march as a 20-member ensemble: storm timing, track, intensity and size "
+        "perturbed, spread growing with lead time"),
+}
+
+
 def scenario_names() -> list[str]:
     """Names of the bundled scenarios."""
-    return list(SCENARIOS)
+    return [*SCENARIOS, *ENSEMBLES]
 
 
 def _spec(name: str) -> ScenarioSpec:
+    if name in ENSEMBLES:
+        return SCENARIOS[ENSEMBLES[name].base]
     try:
         return SCENARIOS[name]
     except KeyError:
         raise ScenarioError(f"unknown scenario {name!r}; expected one of "
-                            f"{', '.join(SCENARIOS)}") from None
+                            f"{', '.join(scenario_names())}") from None
 
 
 def _stored(name: str, a: np.ndarray) -> np.ndarray:
@@ -108,23 +120,38 @@ def build_scenario(name: str) -> xr.Dataset:
     from .fields import build_fields  # numba-heavy: only when generating
 
     spec = _spec(name)
-    lat = np.arange(LAT_RANGE_DEG[0], LAT_RANGE_DEG[1] + 1e-9, SPACING_DEG)
-    lon = np.arange(LON_RANGE_DEG[0], LON_RANGE_DEG[1] + 1e-9, SPACING_DEG)
+    ens = ENSEMBLES.get(name)
+    spacing, step = (ens.spacing_deg, ens.step_h) if ens else (SPACING_DEG, STEP_H)
+    lat = np.arange(LAT_RANGE_DEG[0], LAT_RANGE_DEG[1] + 1e-9, spacing)
+    lon = np.arange(LON_RANGE_DEG[0], LON_RANGE_DEG[1] + 1e-9, spacing)
     ref = np.datetime64(spec.reference_time, "ns")
     offset_h = float((ref - np.datetime64(spec.epoch, "ns")) / np.timedelta64(1, "h"))
-    lead_h = np.arange(0.0, LENGTH_H + 1e-9, STEP_H)
-    rng = np.random.default_rng(spec.seed)
-    fields = build_fields(spec.season, spec.swell, spec.track, rng, lat, lon, lead_h + offset_h)
+    lead_h = np.arange(0.0, LENGTH_H + 1e-9, step)
     times = ref + (lead_h * 3600).astype("timedelta64[s]").astype("timedelta64[ns]")
-    dims = ("time", "latitude", "longitude")
+    coords: dict = {"time": times, "latitude": lat, "longitude": lon}
+    data: dict[str, tuple[tuple[str, ...], np.ndarray]]
+    if ens is not None:
+        members = member_fields(spec, ens, lat, lon, lead_h + offset_h, offset_h)
+        data = {n: (("member", "time", "latitude", "longitude"),
+                    np.stack([_stored(n, f[n]) for f in members])) for n in members[0]}
+        coords = {"member": np.arange(ens.members, dtype=np.int64), **coords,
+                  "member_label": ("member", ["control"] + [f"perturbed {k}" for k in
+                                                           range(1, ens.members)])}
+    else:
+        fields = build_fields(spec.season, spec.swell, spec.track,
+                              np.random.default_rng(spec.seed), lat, lon, lead_h + offset_h)
+        data = {n: (("time", "latitude", "longitude"), _stored(n, a))
+                for n, a in fields.items()}
     ds = xr.Dataset(
-        {n: (dims, _stored(n, a)) for n, a in fields.items()},
-        coords={"time": times, "latitude": lat, "longitude": lon},
+        data,
+        coords=coords,
         attrs={"forecast_reference_time": spec.reference_time + "Z",
                "source": f"shiproute synthetic scenario {name} v{FORMAT_VERSION}",
                "cycle_id": f"{name}-{spec.reference_time[:13].replace('-', '').replace('T', '')}",
-               "title": spec.description},
+               "title": ens.description if ens else spec.description},
     )
+    if ens is not None:
+        ds.attrs.update(member_kind="ensemble", ensemble_spread=spread_summary())
     return cv.annotate(ds)
 
 
@@ -137,7 +164,11 @@ def write_scenario(name: str, path: Path) -> Path:
     ds = build_scenario(name)
     enc = {n: {"zlib": False, "contiguous": True, "dtype": "float32",
                "_FillValue": np.float32(np.nan)} for n in ds.data_vars}
-    enc["time"] = {"units": f"hours since {SCENARIOS[name].reference_time}", "dtype": "float64",
+    if name in ENSEMBLES:  # 16-bit CF packing at the stored 0.01 (0.1 deg): half the bytes
+        enc = {n: {"zlib": False, "contiguous": True, "dtype": "int16", "_FillValue": -32768,
+                   "scale_factor": np.float32(0.1 if n in cv.DIRECTION_VARIABLES else 0.01),
+                   "add_offset": np.float32(0.0)} for n in ds.data_vars}
+    enc["time"] = {"units": f"hours since {_spec(name).reference_time}", "dtype": "float64",
                    "calendar": "proleptic_gregorian"}
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_suffix(f".tmp{os.getpid()}")
@@ -166,6 +197,8 @@ def scenario_path(name: str, rebuild: bool = False) -> Path:
 
 def scenario_dataset(name: str) -> xr.Dataset:
     """A scenario as a canonical dataset, loaded from its NetCDF file through the loader."""
+    if name in ENSEMBLES:  # members kept, read lazily: a sampler packs one member at a time
+        return cv.annotate(xr.open_dataset(scenario_path(name), engine="netcdf4"))
     from ..ingest.loaders import open_forecast
 
     return open_forecast([scenario_path(name)])
