@@ -52,6 +52,7 @@ from .plan_setup import (
     to_posix_s,
 )
 from .plan_types import RoutePlan
+from .route.evaluation import RouteEvaluation
 from .route.voyage_legs import leg_setup
 from .straits import route_straits, sail_strait
 from .voyage.legs import voyage_schedule
@@ -239,7 +240,8 @@ def plan_voyage(
     fn = get_method(method)
     dists = np.array([float(inverse(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)[1])
                       for a, b in itertools.pairwise(ports)])
-    results, baselines, problems, sources, approaches = [], [], [], [], []
+    results: list[RouteEvaluation] = []
+    baselines, problems, sources, approaches = [], [], [], []
     arrivals: list[float] = []
     gens = evals = 0
     leg_depart = depart_s
@@ -332,8 +334,8 @@ def plan_voyage(
     if model_notes:
         from .learned.select import plan_warnings
 
-        notes = model_notes + plan_warnings(env.model, plan)
-        plan = dataclasses.replace(plan, warnings=plan.warnings + notes)
+        model_warnings = (*model_notes, *plan_warnings(env.model, plan))
+        plan = dataclasses.replace(plan, warnings=(*plan.warnings, *model_warnings))
     if rta_warning:
         plan = dataclasses.replace(plan, warnings=(*plan.warnings, rta_warning))
     plan = checked_plan(with_depth_report(plan, lim.under_keel, warnings), land, lim,
