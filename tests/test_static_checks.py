@@ -31,10 +31,7 @@ def test_ruff_is_clean() -> None:
 
 
 # packages mypy does not pass yet, with the reason (issue #22 keeps them listed until they do)
-MYPY_PENDING = {
-    "shiproute_planner": "about 140 findings left (numpy array types, Optional members), "
-                         "being worked through room by room",
-}
+MYPY_PENDING: dict[str, str] = {}
 
 
 def test_mypy_pending_list_names_real_packages() -> None:

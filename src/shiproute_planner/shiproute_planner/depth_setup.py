@@ -52,7 +52,9 @@ def depth_limits(limits: RouteLimits, spec: Any, bathymetry: Sequence[str | Path
     return dataclasses.replace(limits, under_keel=uk), [note]
 
 
-def _cut_ends(lon0, lat0, lon1, lat1, first: bool, last: bool):
+def _cut_ends(lon0: np.ndarray, lat0: np.ndarray, lon1: np.ndarray, lat1: np.ndarray,
+              first: bool, last: bool
+              ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Leg ends with PORT_CLEARANCE_M cut off the voyage's first start and last end."""
     lon0, lat0, lon1, lat1 = (np.array(a, dtype=float) for a in (lon0, lat0, lon1, lat1))
     for k, at_start in ((0, True), (lon0.size - 1, False)):

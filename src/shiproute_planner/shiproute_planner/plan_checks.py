@@ -64,8 +64,8 @@ def checked_plan(plan: RoutePlan, land: LandMask, limits: RouteLimits,
     # depth next to ports and approach ends is pilotage (dredged channels): listed, not
     # deciding; elsewhere the optimiser's own UKC constraint has decided already
     bad = [v for v in found if planned[v.leg] and v.kind != "depth"]
-    extra = {}
     if bad and plan.feasible:
-        extra = {"feasible": False, "infeasible_reasons": tuple(
-            dict.fromkeys(f"route check: {v.kind} on leg {v.leg}" for v in bad))}
-    return dataclasses.replace(plan, warnings=tuple(warnings), **extra)
+        return dataclasses.replace(
+            plan, warnings=tuple(warnings), feasible=False, infeasible_reasons=tuple(
+                dict.fromkeys(f"route check: {v.kind} on leg {v.leg}" for v in bad)))
+    return dataclasses.replace(plan, warnings=tuple(warnings))

@@ -55,6 +55,7 @@ from .plan_setup import (
 )
 from .plan_types import RoutePlan
 from .river_passages import river_calls, river_times, with_river_passages
+from .route.evaluation import RouteEvaluation
 from .route.risk import RiskSpec, parse_risk
 from .route.voyage_legs import leg_setup
 from .straits import route_straits, sail_strait
@@ -266,7 +267,8 @@ def plan_voyage(
     fn = get_method(method)
     dists = np.array([float(inverse(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)[1])
                       for a, b in itertools.pairwise(ports)])
-    results, baselines, problems, sources, approaches = [], [], [], [], []
+    results: list[RouteEvaluation] = []
+    baselines, problems, sources, approaches = [], [], [], []
     member_legs: list[MemberLeg] = []
     arrivals: list[float] = []
     gens = evals = 0
@@ -361,8 +363,8 @@ def plan_voyage(
     if model_notes:
         from .learned.select import plan_warnings
 
-        notes = model_notes + plan_warnings(env.model, plan)
-        plan = dataclasses.replace(plan, warnings=plan.warnings + notes)
+        model_warnings = (*model_notes, *plan_warnings(env.model, plan))
+        plan = dataclasses.replace(plan, warnings=(*plan.warnings, *model_warnings))
     if rta_warning:
         plan = dataclasses.replace(plan, warnings=(*plan.warnings, rta_warning))
     plan = checked_plan(with_depth_report(plan, lim.under_keel, warnings), land, lim,

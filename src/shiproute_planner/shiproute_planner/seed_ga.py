@@ -124,12 +124,13 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
                 or 0 < ctx.max_evaluations <= ga.evaluations
                 or (ctx.stall_generations and ga.stalled(ctx.stall_generations))):
             break
-    pool_x = ga.pop if not confirmed else np.concatenate([ga.pop[:24], confirmed[::-1],
-                                                          ga.pop[24:]])
+    pop = ga.pop
+    assert pop is not None, "the loop tells the GA one population before it can stop"
+    pool_x = pop if not confirmed else np.concatenate([pop[:24], confirmed[::-1], pop[24:]])
     if risk is not None and fast is not None:  # the risk measure chooses, not the mean
-        best_x, final = risk_choice(p, env, ctx.land, ga.pop, lambda x: evaluate(x))
+        best_x, final = risk_choice(p, env, ctx.land, pop, lambda x: evaluate(x))
         return MethodResult(final, best_src, ga.generation, ga.evaluations, best_x.copy())
-    best_x, final = exact_choice(p, env, ctx.land, pool_x, top=min(24, len(ga.pop)))
+    best_x, final = exact_choice(p, env, ctx.land, pool_x, top=min(24, len(pop)))
     b = ctx.baseline
     if b is not None and is_better(
         float(b.evaluation.violation[0]), float(b.evaluation.objective[0]),
@@ -245,7 +246,8 @@ def _seed_tracks(ctx: MethodContext, base: Baseline) -> list[tuple]:
                                          p.limits.lat_bound_deg))
                     v = via_track(base.lon_deg, base.lat_deg, float(g_lon[j]), mlat)
                     tracks.append(("via_point", *v))
-    out = [(name, lon, lat, scaled(lon, lat)) for name, lon, lat in tracks]
+    out: list[tuple[str, np.ndarray, np.ndarray, float | np.ndarray]] = [
+        (name, lon, lat, scaled(lon, lat)) for name, lon, lat in tracks]
     # the baseline track with RPM ramps: passing a storm earlier or later than the
     # constant-RPM schedule does is often cheaper than steering around it
     n_leg = base.lon_deg.size - 1

@@ -31,7 +31,7 @@ class BaselineInputs:
 
     problem: RouteProblem
     env: Environment
-    land: LandMask | None
+    land: LandMask
     seed_tracks: tuple[TrackSeed, ...] = ()
     seed_genes: np.ndarray | None = field(default=None, repr=False)
 

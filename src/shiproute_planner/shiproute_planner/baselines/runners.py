@@ -76,6 +76,7 @@ def _path_only(inp: BaselineInputs, method: str, search) -> BaselineResult:
         rpm = new_rpm
         if not moved and ev.feasible[0]:
             break
+    assert best is not None, "PATH_ONLY_ROUNDS >= 1: one round always runs"
     rpm, ev = best
     return BaselineResult(method, ev, time.perf_counter() - t0, False, route_evals, legs,
                           notes=(f"constant rpm {rpm:.2f}",))

@@ -65,7 +65,9 @@ def plot_comparison(outcomes: list[MethodOutcome], path: Path, ds=None, title: s
 
 def plot_pareto(outcomes: list[MethodOutcome], path: Path) -> Path | None:
     """ETA-vs-fuel Pareto fronts of the methods that have one (3DDP, two-objective NSGA-II)."""
-    fronts = [o for o in outcomes if o.pareto_eta_s is not None and o.pareto_eta_s.size]
+    fronts = [(o, o.pareto_eta_s, o.pareto_fuel_t) for o in outcomes
+              if o.pareto_eta_s is not None and o.pareto_fuel_t is not None
+              and o.pareto_eta_s.size]
     if not fronts:
         return None
     import matplotlib
@@ -74,9 +76,9 @@ def plot_pareto(outcomes: list[MethodOutcome], path: Path) -> Path | None:
     import matplotlib.pyplot as plt
 
     fig, ax = plt.subplots(figsize=(7, 5))
-    for o in fronts:
-        rel_h = (o.pareto_eta_s - o.rta_s) / 3600.0
-        ax.plot(rel_h, o.pareto_fuel_t, "o-", ms=3, lw=1, label=o.label)
+    for o, eta_s, fuel_t in fronts:
+        rel_h = (eta_s - o.rta_s) / 3600.0
+        ax.plot(rel_h, fuel_t, "o-", ms=3, lw=1, label=o.label)
         ax.plot([(o.eta_s - o.rta_s) / 3600.0], [o.tfoc_t], "k*", ms=10)
     ax.axvline(0.0, color="r", ls="--", lw=1, label="RTA")
     ax.set_xlabel("ETA - RTA [h]")

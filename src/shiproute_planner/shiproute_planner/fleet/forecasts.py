@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import threading
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, overload
 
 from .keys import forecast_files
 
@@ -37,6 +37,18 @@ def load_forecast_spec(spec: str) -> LoadedForecast:
 
         ds = open_forecast([str(p) for p in forecast_files(spec)])
     return LoadedForecast(ds, ForecastSampler(ds), str(ds.attrs.get("cycle_id", "")))
+
+
+@overload
+def cached_forecast(spec: str, key: str) -> LoadedForecast: ...
+
+
+@overload
+def cached_forecast(spec: None, key: str) -> None: ...
+
+
+@overload
+def cached_forecast(spec: str | None, key: str) -> LoadedForecast | None: ...
 
 
 def cached_forecast(spec: str | None, key: str) -> LoadedForecast | None:

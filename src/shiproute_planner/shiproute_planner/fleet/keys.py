@@ -30,6 +30,8 @@ def code_version() -> str:
 
     h = hashlib.sha256()
     for pkg in (shiproute_planner, shiproute_weather):
+        if pkg.__file__ is None:  # a namespace package: no sources of its own to hash
+            raise RuntimeError(f"{pkg.__name__} is not installed as a regular package")
         root = Path(pkg.__file__).parent
         files = sorted(p for p in root.rglob("*")
                        if p.is_file() and p.suffix in (".py", ".yaml", ".json", ".nc")

@@ -150,7 +150,7 @@ def run_fleet(voyages: Sequence[VoyageSpec], opts: FleetOptions, *, force: bool 
                                 "already_planned": True})
         else:
             todo.append(t)
-    specs_order = {s: k for k, s in enumerate(opts.forecasts)}
+    specs_order: dict[str | None, int] = {s: k for k, s in enumerate(opts.forecasts)}
     progress = FleetProgress(len(tasks), cached=len(tasks) - len(todo), stream=stream)
     t0 = time.perf_counter()
     if todo:

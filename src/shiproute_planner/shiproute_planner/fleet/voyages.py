@@ -233,10 +233,10 @@ def _csv_rows(p: Path) -> list[tuple[int, dict[str, Any]]]:
     header = next(csv.reader([lines[0][1]]))
     cols = [h.strip().lower() for h in header]
     _check_columns(p, cols)
-    out = []
+    out: list[tuple[int, dict[str, Any]]] = []
     for n, text in lines[1:]:
         values = next(csv.reader([text]))
-        row = dict(zip(cols, values, strict=False))
+        row: dict[str, Any] = dict(zip(cols, values, strict=False))
         if len(values) > len(cols):
             row["__extra__"] = values[len(cols):]
         out.append((n, row))
@@ -267,7 +267,7 @@ def _yaml_rows(p: Path) -> list[tuple[int, dict[str, Any]]]:
         node = next((v for k, v in root.value if k.value == "voyages"), None)
     if not isinstance(node, yaml.SequenceNode):
         raise VoyageFileError(f"voyages file {p}: expected a list of voyages (or 'voyages:')")
-    out = []
+    out: list[tuple[int, dict[str, Any]]] = []
     for item in node.value:
         line = item.start_mark.line + 1
         value = yaml.SafeLoader(yaml.serialize(item)).get_single_data()

@@ -58,10 +58,12 @@ class Bathymetry:
         spacing), capped at `cap_m` (with a finite cap deep water is skipped cheaply); NaN
         where no grid covers the segment."""
         shape = np.shape(lon0)
-        ends = [np.ascontiguousarray(a, dtype=float).ravel() for a in (lon0, lat0, lon1, lat1)]
+        x0, y0, x1, y1 = (np.ascontiguousarray(a, dtype=float).ravel()
+                          for a in (lon0, lat0, lon1, lat1))
         cap = np.ascontiguousarray(np.broadcast_to(cap_m, shape), dtype=float).ravel()
-        out = np.empty(ends[0].size)
-        dk.segment_min_depth(*ends, cap, self._data, self._table, self._coarse, BLOCK_DEG, out)
+        out = np.empty(x0.size)
+        dk.segment_min_depth(x0, y0, x1, y1, cap, self._data, self._table, self._coarse,
+                             BLOCK_DEG, out)
         return out.reshape(shape)
 
 

@@ -118,15 +118,16 @@ class LandMask:
 
     def _scan(self, ends: np.ndarray, spacing: float) -> np.ndarray:
         """Land samples of segments given as rows (lon0, lat0, lon1, lat1)."""
-        arrays = [np.ascontiguousarray(ends[:, i]) for i in range(4)]
-        n_seg = arrays[0].size
+        x0, y0, x1, y1 = (np.ascontiguousarray(ends[:, i]) for i in range(4))
+        n_seg = x0.size
         land = np.zeros(n_seg, dtype=np.int64)
         cap = max(1024, 64 * n_seg)
         raster = np.asarray(self.raster)
         while True:
             c_lon, c_lat = np.empty(cap), np.empty(cap)
             c_seg = np.empty(cap, dtype=np.int64)
-            n = scan_segments(*arrays, raster, self.cell_deg, spacing, land, c_lon, c_lat, c_seg)
+            n = scan_segments(x0, y0, x1, y1, raster, self.cell_deg, spacing, land,
+                              c_lon, c_lat, c_seg)
             if n >= 0:
                 break
             cap *= 4

@@ -102,6 +102,9 @@ def validate_rtz(path: str | Path) -> None:
     errors = [str(e.reason) for e in schema.iter_errors(str(path))]
     if errors:
         raise OutputError(f"{path} is not valid RTZ 1.2: {errors[0]}")
-    name = ET.parse(path).getroot().find(f"{{{NS}}}routeInfo").get("routeName")
+    info = ET.parse(path).getroot().find(f"{{{NS}}}routeInfo")
+    if info is None:
+        raise OutputError(f"{path} has no routeInfo element")
+    name = info.get("routeName")
     if name != path.stem:
         raise OutputError(f"{path}: routeName {name!r} does not match the file name")

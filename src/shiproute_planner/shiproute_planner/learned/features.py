@@ -14,6 +14,7 @@ import hashlib
 import json
 
 import numpy as np
+import numpy.typing as npt
 from shiproute_core.units import M_S_PER_KNOT
 
 from ..ship.condition import at_drafts
@@ -45,8 +46,9 @@ def sea_of(columns: dict[str, np.ndarray]) -> SeaState:
     return SeaState.from_arrays(**{k: np.asarray(columns[k], dtype=float) for k in SEA_COLUMNS})
 
 
-def feature_matrix(stw_kn: np.ndarray, heading_deg: np.ndarray, draft_fore_m: np.ndarray,
-                   draft_aft_m: np.ndarray, sea: SeaState) -> np.ndarray:
+def feature_matrix(stw_kn: npt.ArrayLike, heading_deg: npt.ArrayLike,
+                   draft_fore_m: npt.ArrayLike, draft_aft_m: npt.ArrayLike,
+                   sea: SeaState) -> np.ndarray:
     """(n, len(FEATURES)) inputs; arrays broadcast to one 1-D shape."""
     stw_kn = np.asarray(stw_kn, dtype=float)
     n = np.broadcast_shapes(stw_kn.shape, np.shape(heading_deg), sea.shape())

@@ -25,6 +25,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+import numpy.typing as npt
 
 from ..ship.seastate import SeaState
 from ..ship.spec import ShipSpec
@@ -109,7 +110,8 @@ class LearnedModel:
         return out
 
     def predict(self, ship: ShipSpec, stw_kn: np.ndarray, heading_deg: np.ndarray,
-                draft_fore_m: np.ndarray, draft_aft_m: np.ndarray, sea: SeaState) -> Prediction:
+                draft_fore_m: npt.ArrayLike, draft_aft_m: npt.ArrayLike,
+                sea: SeaState) -> Prediction:
         """RPM and fuel rate the ship needs for ``stw_kn`` (1-D arrays) in ``sea``."""
         x = feature_matrix(stw_kn, heading_deg, draft_fore_m, draft_aft_m, sea)
         n = x.shape[0]
@@ -168,13 +170,14 @@ class LearnedModel:
             raise ModelFileError(f"{path}: features {ds.attrs['features']} differ from "
                                  f"{list(FEATURES)}")
         try:
-            nets = {o: Network(*(np.asarray(ds[f"{o}_{k}"].values, dtype=float)
-                                 for k in ("w0", "b0", "w1", "b1")),
+            def arr(name: str) -> np.ndarray:
+                return np.asarray(ds[name].values, dtype=float)
+
+            nets = {o: Network(arr(f"{o}_w0"), arr(f"{o}_b0"), arr(f"{o}_w1"), arr(f"{o}_b1"),
                                float(ds[f"{o}_y_mean"]), float(ds[f"{o}_y_std"]))
                     for o in OUTPUTS}
             return cls(str(ds.attrs["ship_name"]), str(ds.attrs["ship_identity"]),
-                       *(np.asarray(ds[k].values, dtype=float)
-                         for k in ("x_mean", "x_std", "x_lo", "x_hi")),
+                       arr("x_mean"), arr("x_std"), arr("x_lo"), arr("x_hi"),
                        nets["rpm"], nets["fuel"], float(ds.attrs["reference_draft_fore_m"]),
                        float(ds.attrs["reference_draft_aft_m"]), float(ds.attrs["fallback_std"]),
                        json.loads(ds.attrs.get("report", "{}")))

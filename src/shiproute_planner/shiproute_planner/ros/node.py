@@ -20,6 +20,7 @@ from diagnostic_msgs.msg import DiagnosticArray
 from nav_msgs.msg import Path as PathMsg
 from rcl_interfaces.msg import ParameterDescriptor, SetParametersResult
 from rclpy.action import ActionServer, CancelResponse, GoalResponse
+from rclpy.action.server import ServerGoalHandle
 from rclpy.callback_groups import MutuallyExclusiveCallbackGroup, ReentrantCallbackGroup
 from rclpy.node import Node
 
@@ -36,18 +37,12 @@ from ..ship.errors import ShipModelError
 from ..voyage_params import check_parameter, parse_utc
 from ..voyage_request import check_voyage_request
 from . import process_tuning as tuning
-from .convert import (
-    plan_messages,
-    posix_s,
-    ship_position,
-    ship_state_optionals,
-    voyage_request,
-)
+from .convert import plan_messages, posix_s, ship_position, ship_state_optionals, voyage_request
 from .dds_profile import forget_profile, use_dynamic_slice_buffers
 from .diagnostics import plan_log_line, planner_status, progress_values
 from .drop_log import DropLog
 from .forecast_intake import ForecastIntake
-from .goal import run_goal
+from .goal import GoalDesk, run_goal
 from .parameters import DROP_KINDS, PARAMETERS, method_reason, paths
 from .plan_call import front_from_parameters, plan_from_parameters, run_start, write_outputs
 from .plan_worker import PlanInputs, PlanWorker
@@ -89,6 +84,10 @@ class PlannerNode(Node):
         self._progress: dict[str, float] = {}
         self._plans_made = 0
         self._trim_memory = False
+        self._goal_desk = GoalDesk(  # what a PlanRoute goal may see and ask of this node
+            self._worker, self._drops, default_budget_s=lambda: float(self._p("budget_s")),
+            request=self._request, front=lambda: self._front, progress=lambda: self._progress,
+            last_error=lambda: self._last_error, stamp=lambda: self.get_clock().now().to_msg())
 
         io_group = ReentrantCallbackGroup()
         # the forecast arrives on a node of its own, spun by a single-threaded executor (see
@@ -358,9 +357,9 @@ class PlannerNode(Node):
             self._report_error(f"writing plan files to {out} failed: {err}")
 
     # ----------------------------------------------------------------- action
-    def _execute_goal(self, goal_handle):
+    def _execute_goal(self, goal_handle: ServerGoalHandle) -> PlanRoute.Result:
         """Plan for this goal (its own budget and objective; the parameters untouched)."""
-        return run_goal(self, goal_handle)
+        return run_goal(self._goal_desk, goal_handle)
 
     # ----------------------------------------------------------------- diagnostics
     def _publish_diagnostics(self) -> None:

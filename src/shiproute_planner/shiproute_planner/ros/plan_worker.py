@@ -101,6 +101,7 @@ class PlanWorker:
                 if self._stop:
                     return
                 reason, self._pending = self._pending, None
+                assert reason is not None, "the wait above ends only on a request or a stop"
                 inputs = self._snapshot(reason, self._pending_budget_s, self._request_seq)
                 if isinstance(inputs, str):
                     self._answer(self._request_seq, False, inputs)

@@ -12,10 +12,14 @@ published transit time (waiting for a convoy or a lock slot not included).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 from shiproute_core.geodesy import inverse
 from shiproute_core.units import M_S_PER_KNOT
+
+if TYPE_CHECKING:
+    from .evaluation import RouteEvaluation
 
 
 @dataclass(frozen=True)
@@ -106,7 +110,8 @@ def route_canals(ports: list, spec, via_rta: list) -> tuple[list, dict[int, tupl
         c, h = spec.condition, spec.hull
         draft, beam, length = max(c.draft_fore_m, c.draft_aft_m), h.breadth_m, h.lpp_m
     rtas = list(via_rta) + [None] * (len(ports) - 2 - len(via_rta))
-    out, out_rta, legs, notes = [ports[0]], [], {}, []
+    out, legs, notes = [ports[0]], {}, []
+    out_rta: list[float | None] = []
     for k in range(len(ports) - 1):
         a, b = ports[k], ports[k + 1]
         coords = sea_lane_between(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)
@@ -115,8 +120,8 @@ def route_canals(ports: list, spec, via_rta: list) -> tuple[list, dict[int, tupl
         for _, canal, rev in found:
             why = canal.too_big(draft, beam, length)
             if why:
-                lat, lon, where = canal.round_via
-                out.append(Port(f"turning point {where}", "", lat, lon))
+                round_lat, round_lon, where = canal.round_via
+                out.append(Port(f"turning point {where}", "", round_lat, round_lon))
                 out_rta.append(None)
                 notes.append(f"{canal.name}: the ship is over its limits ({why}); routed "
                               f"round via {where}")
@@ -164,7 +169,8 @@ def sail_canal(env, canal: Canal, reverse: bool, depart_s: float, limits, stage_
             rpm = float(env.model.rpm_for_speed(np.array([speed]), np.array([0.0]),
                                                 SeaState.calm(1))[0])
     rpm = float(np.clip(rpm, inside.rpm_min, inside.rpm_max))
-    out, t = [], depart_s
+    out: list[RouteEvaluation | None] = []
+    t = depart_s
     for lo, la, slow in pieces:
         if lo.size < 2:
             out.append(None)

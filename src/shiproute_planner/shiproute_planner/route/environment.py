@@ -3,11 +3,16 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING
 
 import numba
 import numpy as np
 from shiproute_core.geodesy import wrap_lon
+
+from .forecast_source import ForecastSource
+
+if TYPE_CHECKING:
+    from ..ship import LegPerformance, PerformanceModel, SeaState
 
 # LegPerformance fields the evaluator keeps per leg (ship-model contract in ARCHITECTURE.md).
 PERF_FIELDS = (
@@ -33,14 +38,15 @@ class Environment:
     follows the PerformanceModel contract of `shiproute_planner.ship`.
     """
 
-    model: Any
-    sampler: Any = None
+    model: PerformanceModel
+    sampler: ForecastSource | None = None
     cycle_id: str = ""
     #: `route.risk.RiskSpec` to plan on every ensemble member of the sampler (None: plan on
     #: its one forecast, the members' mean for an ensemble)
     risk: Any = None
 
-    def sea_state(self, lon_deg: np.ndarray, lat_deg: np.ndarray, time_s: np.ndarray) -> Any:
+    def sea_state(self, lon_deg: np.ndarray, lat_deg: np.ndarray,
+                  time_s: np.ndarray) -> SeaState:
         """SeaState at the points (longitudes in any frame)."""
         from ..ship import SeaState
 
@@ -53,15 +59,18 @@ class Environment:
                 sample[key] = np.clip(sample[key], 0.5, 30.0)
         return SeaState.from_forecast(sample)
 
-    def weather(self, lon_deg: np.ndarray, lat_deg: np.ndarray, time_s: np.ndarray) -> dict:
+    def weather(self, lon_deg: np.ndarray, lat_deg: np.ndarray,
+                time_s: np.ndarray) -> dict[str, np.ndarray]:
         """Raw forecast sample (for reporting wave/wind directions); empty in calm water."""
         if self.sampler is None:
             return {}
         return self._sample(lon_deg, lat_deg, time_s)
 
-    def _sample(self, lon_deg, lat_deg, time_s) -> dict:
+    def _sample(self, lon_deg: np.ndarray, lat_deg: np.ndarray,
+                time_s: np.ndarray) -> dict[str, np.ndarray]:
         """Sample on one thread: populations are a few hundred points, where a parallel
         kernel spends more time waking threads (and far more on a busy machine) than working."""
+        assert self.sampler is not None, "callers sample only with a forecast"
         prev = numba.get_num_threads()
         numba.set_num_threads(1)
         try:
@@ -69,6 +78,7 @@ class Environment:
         finally:
             numba.set_num_threads(prev)
 
-    def perform(self, rpm: np.ndarray, heading_deg: np.ndarray, sea: Any) -> Any:
+    def perform(self, rpm: np.ndarray, heading_deg: np.ndarray,
+                sea: SeaState) -> LegPerformance:
         """LegPerformance of the ship model."""
         return self.model.evaluate(rpm, heading_deg, sea)

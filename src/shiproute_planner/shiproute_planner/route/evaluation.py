@@ -76,7 +76,7 @@ PILOTAGE_DEPTH_M = 10.0 * M_PER_NM  # depth next to ports/approach ends: dredged
 
 def clear_ports(problem: RouteProblem, lon: np.ndarray, lat: np.ndarray,
                  distance_m: np.ndarray, clearance_m: float | None = None
-                 ) -> tuple[np.ndarray, ...]:
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Leg end points with the first/last `port_clearance_m` (or `clearance_m`) next to a
     port cut off."""
     lon0, lat0 = lon[:, :-1].copy(), lat[:, :-1].copy()

@@ -61,13 +61,18 @@ class FastEvaluator:
 
     def __init__(self, problem: RouteProblem, env: Environment, land: LandMask | None) -> None:
         self.problem, self.env, self.land = problem, env, land
+        from ..ship.fast import FastModel
+
         m = env.model
+        assert isinstance(m, FastModel), "`fast_evaluator` builds one for the tabulated model only"
         par, tables, self._limits = m.kernel_arrays()
         self._ship = (par, *tables)
         self._rpm_lo, self._rpm_hi = float(self._limits[0, 0]), float(self._limits[0, 1])
         if env.sampler is not None:
+            from shiproute_weather.sampling.sampler import ForecastSampler
             from shiproute_weather.sampling.sampler_arrays import sampler_arrays
 
+            assert isinstance(env.sampler, ForecastSampler), "built for a ForecastSampler only"
             a = sampler_arrays(env.sampler)
             chan = np.array([a.channels.get(v, -1) for v in fk.SEA_VARIABLES], dtype=np.int64)
             isdir = np.array([v in a.directions for v in fk.SEA_VARIABLES])
@@ -181,18 +186,20 @@ class FastEvaluator:
                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """Speed [m/s] and course [deg] over ground of one leg from each point (time `t`)
         at `rpm` and `heading_deg` for `duration_s`, and its end (lon, lat) [deg]."""
-        args = [np.ascontiguousarray(a, dtype=float) for a in (lon, lat, t, rpm, heading_deg)]
-        out = [np.empty(args[0].size) for _ in range(4)]
-        rk.sail_stage(*args, float(duration_s), *self._weather, self._limits, *self._ship, *out)
-        return out[0], out[1], out[2], out[3]
+        lon_c, lat_c, t_c, rpm_c, heading_c = (
+            np.ascontiguousarray(a, dtype=float) for a in (lon, lat, t, rpm, heading_deg))
+        sog, cog, lon1, lat1 = (np.empty(lon_c.size) for _ in range(4))
+        rk.sail_stage(lon_c, lat_c, t_c, rpm_c, heading_c, float(duration_s), *self._weather,
+                      self._limits, *self._ship, sog, cog, lon1, lat1)
+        return sog, cog, lon1, lat1
 
     def polyline_eta(self, lon: np.ndarray, lat: np.ndarray, rpm: np.ndarray) -> np.ndarray:
         """Arrival times [POSIX s] of the polyline (lon, lat) [deg] sailed from the problem's
         departure at each constant `rpm` (legs steered as `route.legs.sail_to` does)."""
-        track = [np.ascontiguousarray(np.unwrap(np.asarray(lon, dtype=float), period=360.0)),
-                 np.ascontiguousarray(lat, dtype=float)]
+        track_lon = np.ascontiguousarray(np.unwrap(np.asarray(lon, dtype=float), period=360.0))
+        track_lat = np.ascontiguousarray(lat, dtype=float)
         eta = np.empty(np.size(rpm))
-        rk.polyline_eta(*track, np.ascontiguousarray(rpm, dtype=float).ravel(),
+        rk.polyline_eta(track_lon, track_lat, np.ascontiguousarray(rpm, dtype=float).ravel(),
                         self.problem.depart_s, *self._weather, self._limits, *self._ship, eta)
         return eta
 
@@ -208,21 +215,24 @@ class FastEvaluator:
                              lat1: np.ndarray) -> np.ndarray:
         """The GA's land verdict (samples on land, 0 = clear) of great-circle segments
         (flattened); needs a land mask."""
-        assert self.land is not None, "FastEvaluator built without a land mask"
+        land = self.land
+        assert land is not None, "FastEvaluator built without a land mask"
         ends = [np.ascontiguousarray(e, dtype=float).ravel() for e in (lon0, lat0, lon1, lat1)]
         out = np.empty(ends[0].size, dtype=np.int64)
-        fine = self.land.fine_coast
+        fine = land.fine_coast
         todo = np.arange(out.size)
         while todo.size:
-            part = [e[todo] for e in ends]
+            x0, y0, x1, y1 = (e[todo] for e in ends)
             got = np.empty(todo.size, dtype=np.int64)
             misses: list[np.ndarray] = []
 
-            def scan(a: int, b: int, part=part, got=got, misses=misses) -> None:
+            def scan(a: int, b: int, x0: np.ndarray = x0, y0: np.ndarray = y0,
+                     x1: np.ndarray = x1, y1: np.ndarray = y1, got: np.ndarray = got,
+                     misses: list[np.ndarray] = misses) -> None:
                 buf = np.empty(MISS_BUFFER, dtype=np.int64)
-                n = rk.ga_land_hits(*(e[a:b] for e in part), self._coarse, self._clear,
-                                    self._coarse_deg, self._raster, self._sea_dist,
-                                    self.land.cell_deg, self.problem.land_spacing_deg,
+                n = rk.ga_land_hits(x0[a:b], y0[a:b], x1[a:b], y1[a:b], self._coarse,
+                                    self._clear, self._coarse_deg, self._raster, self._sea_dist,
+                                    land.cell_deg, self.problem.land_spacing_deg,
                                     fine.keys, fine.fine, buf, got[a:b])
                 misses.append(buf[:n])
 

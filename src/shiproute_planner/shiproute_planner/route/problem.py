@@ -4,11 +4,16 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 from shiproute_core.geodesy import unwrap_near
 
 from ..errors import InvalidVoyageError
 from ..objectives import OBJECTIVES
+
+if TYPE_CHECKING:
+    from ..geo.zones import Zones
+    from .under_keel import UnderKeel
 
 
 @dataclass(frozen=True)
@@ -30,9 +35,9 @@ class RouteLimits:
     imo_checks: tuple[str, ...] = ("surf_riding", "parametric_roll")
     engine_limit: bool = True
     # depth constraint (route.under_keel.UnderKeel); None: depth not checked
-    under_keel: object | None = field(default=None, compare=False)
+    under_keel: UnderKeel | None = field(default=None, compare=False)
     # no-go / avoid zones (geo.zones.Zones): hard ones constrain, penalty ones cost
-    zones: object | None = field(default=None, compare=False)
+    zones: Zones | None = field(default=None, compare=False)
 
 
 @dataclass(frozen=True)

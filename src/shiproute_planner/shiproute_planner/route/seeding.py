@@ -118,7 +118,8 @@ def track_to_genes(problem: RouteProblem, env: Environment, seeds: list[TrackSee
     # the GA's own land verdict when it has one (seeds it will not call land-crossing)
     land_hits = (None if land is None
                  else fast.segment_land_samples if fast is not None and fast.land is land
-                 else lambda *e: land.segment_land_samples(*e, problem.land_spacing_deg))
+                 else lambda x0, y0, x1, y1: land.segment_land_samples(
+                     x0, y0, x1, y1, problem.land_spacing_deg))
     for i in range(n):
         r = rpm_at[rows, idx]
         sog, _, _, _ = sail(node_lon, node_lat, t, r, np.zeros(s_count))

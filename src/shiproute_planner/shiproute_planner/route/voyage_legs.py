@@ -56,6 +56,8 @@ def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMa
     coastal = CoastalPassage(land) if coastal_passage else None
     rest = rest_of_approach(previous_plan, position) if under_way else None
     kept = previous_arrival(previous_plan, b, position) if under_way else None
+    ap_dep: Approach | None
+    ap_arr: Approach | None
     if kept is not None:  # under way to the same port: the arrival approach stays as planned
         ap_dep, ap_arr = None, kept
     else:

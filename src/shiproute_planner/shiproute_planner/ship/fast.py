@@ -22,6 +22,7 @@ from . import fast_kernel as fk
 from .errors import InputRangeError, ShipModelError
 from .fast_inverse import rpm_kernel
 from .hull import ShipConstants
+from .leg_inputs import KernelTables, LegInputs, leg_inputs
 from .performance import LegPerformance
 from .physics import PhysicsModel
 from .seakeeping import natural_roll_period_s, relative_motion_rao2
@@ -117,7 +118,7 @@ class FastModel:
             (-720.0, 720.0), PERIOD_RANGE_S, (0.0, MAX_HS_M), (-720.0, 720.0), PERIOD_RANGE_S,
             (0.0, MAX_CURRENT_M_S),
         ])
-        self._tables = (
+        self._tables: KernelTables = (
             np.ascontiguousarray(r_calm), np.ascontiguousarray(wake),
             np.ascontiguousarray(u_ws), np.ascontiguousarray(u_sw),
             np.ascontiguousarray(m0_ws), np.ascontiguousarray(m0_sw),
@@ -127,15 +128,8 @@ class FastModel:
 
     def evaluate(self, rpm: np.ndarray, heading_deg: np.ndarray, sea: SeaState) -> LegPerformance:
         """Evaluate legs (same contract and inputs as ``PhysicsModel.evaluate``)."""
-        fields = (
-            rpm, heading_deg, sea.wind_u_m_s, sea.wind_v_m_s, sea.wind_wave_hs_m,
-            sea.wind_wave_from_deg, sea.wind_wave_period_s, sea.swell_hs_m, sea.swell_from_deg,
-            sea.swell_period_s, sea.current_u_m_s, sea.current_v_m_s,
-        )
-        arrays = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in fields))
-        shape = arrays[0].shape
-        flat = [np.ascontiguousarray(a).reshape(-1) for a in arrays]
-        n = flat[0].size
+        flat, shape = leg_inputs(rpm, heading_deg, sea)
+        n = flat.drive.size
         out_f = np.empty((11, n))
         out_b = np.empty((5, n), dtype=np.bool_)
         chunks = [(0, n)]
@@ -160,7 +154,7 @@ class FastModel:
             synchronous_roll=b[3], high_wave_group=b[4], hs_m=f[6], wind_speed_m_s=f[7],
         )
 
-    def _check(self, flat: list[np.ndarray], chunks: list[tuple[int, int]]) -> None:
+    def _check(self, flat: LegInputs, chunks: list[tuple[int, int]]) -> None:
         """Range-check the flattened inputs in compiled code; raise like ``check_inputs``."""
         for a, b in chunks:
             field, leg = fk.check_kernel(*flat, self._limits, a, b)
@@ -171,7 +165,7 @@ class FastModel:
                     name, f"value at flat index {leg} is NaN or outside the valid range {lo}..{hi}"
                 )
 
-    def kernel_arrays(self) -> tuple[np.ndarray, tuple[np.ndarray, ...], np.ndarray]:
+    def kernel_arrays(self) -> tuple[np.ndarray, KernelTables, np.ndarray]:
         """(par, tables, limits): the arrays `fast_kernel.evaluate_kernel` takes after the leg
         inputs, and the valid input ranges of `check_kernel`; for compiled callers that run
         the kernel inside their own loops (the GA's population evaluator)."""
@@ -181,24 +175,18 @@ class FastModel:
         self, stw_m_s: np.ndarray, heading_deg: np.ndarray, sea: SeaState
     ) -> np.ndarray:
         """Engine RPM for a speed through water (compiled direct inverse, no iteration on V)."""
-        fields = (
-            stw_m_s, heading_deg, sea.wind_u_m_s, sea.wind_v_m_s, sea.wind_wave_hs_m,
-            sea.wind_wave_from_deg, sea.wind_wave_period_s, sea.swell_hs_m, sea.swell_from_deg,
-            sea.swell_period_s,
-        )
-        arrays = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in fields))
-        check_range("stw_m_s", arrays[0], 0.05, 30.0)
-        check_range("heading_deg", arrays[1], -720.0, 720.0)
+        flat, shape = leg_inputs(stw_m_s, heading_deg, sea, currents=False)
+        check_range("stw_m_s", flat.drive, 0.05, 30.0)
+        check_range("heading_deg", flat.heading_deg, -720.0, 720.0)
         check_sea(sea)
-        flat = [np.ascontiguousarray(a).reshape(-1) for a in arrays]
-        out = np.empty(flat[0].size)
+        out = np.empty(flat.drive.size)
         r_calm, wake, u_ws, u_sw, _, _, caa, _, _ = self._tables
-        bad = rpm_kernel(*flat, self._par, r_calm, wake, u_ws, u_sw, caa, out)
+        bad = rpm_kernel(*flat[:10], self._par, r_calm, wake, u_ws, u_sw, caa, out)
         if bad >= 0:
             raise InputRangeError(
                 "stw_m_s", f"at flat index {bad} the following wind pushes the ship faster"
             )
-        return out.reshape(arrays[0].shape)
+        return out.reshape(shape)
 
 
 _CACHE: dict[ShipSpec, FastModel] = {}

@@ -10,6 +10,7 @@ SOG/COG with the current -> seakeeping probabilities and IMO flags.
 from __future__ import annotations
 
 import numpy as np
+import numpy.typing as npt
 
 from . import engine as eng
 from .currents import over_ground
@@ -68,7 +69,8 @@ class PhysicsModel:
         return added_resistance_unit(self.const.wave_hull, v, spectrum, self.const.rho_kg_m3)
 
     # -- public API --------------------------------------------------------------------
-    def evaluate(self, rpm: np.ndarray, heading_deg: np.ndarray, sea: SeaState) -> LegPerformance:
+    def evaluate(self, rpm: npt.ArrayLike, heading_deg: npt.ArrayLike,
+                 sea: SeaState) -> LegPerformance:
         """Evaluate legs at engine RPM and heading (deg true, going to) in ``sea``."""
         rpm = np.asarray(rpm, dtype=float)
         heading_deg = np.asarray(heading_deg, dtype=float)

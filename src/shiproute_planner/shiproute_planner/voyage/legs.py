@@ -100,18 +100,18 @@ def leg_specs(ports: Sequence[Port], calls: dict[int, PortCall],
     out = []
     for k, (a, b) in enumerate(itertools.pairwise(ports)):
         call = calls.get(k + 1)
-        window = ({} if call is None else
-                  {"earliest_s": call.earliest_s, "latest_s": call.latest_s,
-                   "berth_s": call.berth_s})
+        earliest, latest, berth = ((None, None, 0.0) if call is None
+                                   else (call.earliest_s, call.latest_s, call.berth_s))
         if k in canal_legs:
             canal, rev = canal_legs[k]
             lon, lat = canal_line(canal, rev)
             length = float(np.sum(inverse(lon[:-1], lat[:-1], lon[1:], lat[1:])[1]))
-            out.append(LegSpec(b.name, length, length / (canal.transit_kn * KNOT_M_S), **window))
+            out.append(LegSpec(b.name, length, length / (canal.transit_kn * KNOT_M_S),
+                               earliest, latest, berth))
             continue
         d = sea_distance_m(round(a.lon_deg, 4), round(a.lat_deg, 4), round(b.lon_deg, 4),
                            round(b.lat_deg, 4))
-        out.append(LegSpec(b.name, d, None, **window))
+        out.append(LegSpec(b.name, d, None, earliest, latest, berth))
     return out
 
 

@@ -139,7 +139,8 @@ def plan_schedule(legs: Sequence[LegSpec], depart_s: float, rta_s: float,
     cons = []
     for k in range(n):
         row_a = np.concatenate([tri[k], tri_strict[k], np.zeros(n)])
-        if latest[k] is not None:  # A_k - s_k <= latest
+        late, early = latest[k], earliest[k]
+        if late is not None:  # A_k - s_k <= latest
             row = row_a.copy()
             row[2 * n + k] = -1.0
             off = float(tri_strict[k] @ berth_h)
@@ -147,14 +148,14 @@ def plan_schedule(legs: Sequence[LegSpec], depart_s: float, rta_s: float,
                 off += min(WINDOW_MARGIN_MAX_H, max(WINDOW_MARGIN_MIN_H,
                                                     WINDOW_MARGIN * float(lo[k])))
             cons.append({"type": "ineq", "jac": (lambda x, r=row: -r),
-                         "fun": (lambda x, r=row, c=latest[k] - off: c - r @ x)})
-        if earliest[k] is not None:  # A_k + W_k + s_k >= earliest (waiting allowed)
+                         "fun": (lambda x, r=row, c=late - off: c - r @ x)})
+        if early is not None:  # A_k + W_k + s_k >= earliest (waiting allowed)
             row = row_a.copy()
             row[n + k] += 1.0
             row[2 * n + k] += 1.0
             off = float(tri_strict[k] @ berth_h)
             cons.append({"type": "ineq", "jac": (lambda x, r=row: r),
-                         "fun": (lambda x, r=row, c=earliest[k] - off: r @ x - c)})
+                         "fun": (lambda x, r=row, c=early - off: r @ x - c)})
     x0 = np.concatenate([_start_times(lo, hi, rta_h - berth_h.sum()), np.zeros(2 * n)])
     bounds = ([(float(a), float(b)) for a, b in zip(lo, hi, strict=True)]
               + [(0.0, None)] * n + [(0.0, None)] * n)

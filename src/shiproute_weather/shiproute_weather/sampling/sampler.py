@@ -134,6 +134,10 @@ class ForecastSampler:
     #: what the cycle holds and where each field came from (`record.cycle_record`), or None
     #: when the sampler was packed from elsewhere without one
     record: dict[str, Any] | None
+    #: reference time of the model run [POSIX s] (0.0: not stated), set by whoever packs a cycle
+    reference_time_s: float = 0.0
+    #: source of the climatology a time-bounded sampler falls back to ('' for none)
+    climatology: str = ""
 
     def __init__(self, ds: xr.Dataset, variables: Iterable[str] | None = None,
                  dtype: np.dtype | type = np.float32,

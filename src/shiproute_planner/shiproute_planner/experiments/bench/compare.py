@@ -28,11 +28,12 @@ def _scenario_summary(doc: dict) -> dict:
         entry.update(mean_tfoc_t=row["mean_tfoc_t"], std_tfoc_t=row["std_tfoc_t"],
                      repeat_tfoc_t=row["tfoc_t"], repeat_feasible=row["feasible"])
     feasible = {k: v["tfoc_t"] for k, v in methods.items() if v.get("feasible")}
+    lowest = min(feasible, key=lambda k: feasible[k]) if feasible else None
     return {
         "depart": doc["depart"], "rta": doc["rta"],
         "evaluations_per_metaheuristic": doc["evaluations_per_metaheuristic"],
         "methods": methods,
-        "lowest_feasible_tfoc_method": min(feasible, key=feasible.get) if feasible else None,
+        "lowest_feasible_tfoc_method": lowest,
         "seed_ga_vs_best_two_stage": doc["seed_ga_vs_two_stage"],
         "best_known_tfoc_t": doc["best_known_tfoc_t"],
         "compute_s": doc["compute_s"],

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+import functools
 import json
 import tempfile
 import time
@@ -92,20 +93,18 @@ def run(budget_s: float, warm_budget_s: float, ref_factor: float, seed: int) -> 
                 max_generations=0, with_baseline=False, ship="container_4600teu", land=land,
                 default_bathymetry=True)
     setup_s = time.perf_counter() - t0
-    common = dict(ship="container_4600teu", land=land, seed=seed, default_bathymetry=True)
+    voyage = functools.partial(plan_voyage, "Busan", "Long Beach", DEPART, timedelta(days=13),
+                               ship="container_4600teu", land=land, default_bathymetry=True)
     with tempfile.TemporaryDirectory() as pool_dir:
         t = time.perf_counter()
-        cold = plan_voyage("Busan", "Long Beach", DEPART, timedelta(days=13), forecast=s1,
-                           budget_s=budget_s, seed_pool_dir=pool_dir, **common)
+        cold = voyage(forecast=s1, budget_s=budget_s, seed_pool_dir=pool_dir, seed=seed)
         cold_s = time.perf_counter() - t
     pos = _position_after(cold, 6.0)
     t = time.perf_counter()
-    warm = plan_voyage("Busan", "Long Beach", DEPART, timedelta(days=13), forecast=s2,
-                       budget_s=warm_budget_s, previous_plan=cold, position=pos,
-                       stall_generations=10, with_baseline=False, **common)
+    warm = voyage(forecast=s2, budget_s=warm_budget_s, previous_plan=cold, position=pos,
+                  stall_generations=10, with_baseline=False, seed=seed)
     warm_s = time.perf_counter() - t
-    ref = plan_voyage("Busan", "Long Beach", DEPART, timedelta(days=13), forecast=s1,
-                      budget_s=budget_s * ref_factor, **{**common, "seed": seed + 1})
+    ref = voyage(forecast=s1, budget_s=budget_s * ref_factor, seed=seed + 1)
     feasible = [p.total_fuel_t for p in (cold, ref) if p.feasible]
     reference = min(feasible) if feasible else ref.total_fuel_t
     # evaluation speed on the ocean crossing the GA solved: the last optimised span (after any
