@@ -10,6 +10,7 @@ import numpy as np
 from shiproute_core.geodesy import wrap_lon
 
 from .forecast_source import ForecastSource
+from .risk import RiskSpec
 
 if TYPE_CHECKING:
     from ..ship import LegPerformance, PerformanceModel, SeaState
@@ -43,7 +44,7 @@ class Environment:
     cycle_id: str = ""
     #: `route.risk.RiskSpec` to plan on every ensemble member of the sampler (None: plan on
     #: its one forecast, the members' mean for an ensemble)
-    risk: Any = None
+    risk: RiskSpec | None = None
 
     def sea_state(self, lon_deg: np.ndarray, lat_deg: np.ndarray,
                   time_s: np.ndarray) -> SeaState:

@@ -142,8 +142,7 @@ class FastEvaluator:
         out_b = np.empty((5, mc, pop, m), dtype=np.bool_)
         heading_n, dist_n, dur_n = (np.empty((mc, pop)) for _ in range(3))
         headings, rpm = np.ascontiguousarray(headings), np.ascontiguousarray(rpm)
-        wx = list(self._weather)
-        wx[1] = self._members.kernel_data
+        wx = (self._weather[0], self._members.kernel_data, *self._weather[2:])
 
         def generate(a: int, b: int) -> None:
             mk.generate_member_routes(
