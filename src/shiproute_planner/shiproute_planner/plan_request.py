@@ -17,8 +17,8 @@ from .checks.parameters import require_number
 from .errors import InvalidVoyageError
 from .objectives import PLAN_OBJECTIVES as OBJECTIVES
 from .objectives import Economics
-from .plan_types import RoutePlan
 from .plan_setup import to_posix_s
+from .plan_types import RoutePlan
 from .planning import plan
 from .request import (
     ForecastInput,

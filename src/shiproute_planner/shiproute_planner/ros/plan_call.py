@@ -10,8 +10,8 @@ from typing import Any
 from ..objectives import Economics
 from ..plan_types import RoutePlan
 from ..request import PlanOptions, VoyageRequest
-from ..voyage.port_calls import PortCall
 from ..voyage.node_calls import calls_ahead, node_port_calls
+from ..voyage.port_calls import PortCall
 from ..voyage_params import parse_utc
 from .cycle_packer import hs_field_at
 from .parameters import paths

@@ -6,8 +6,8 @@ and compiled kernels are warmed before timing, as in a running planner."""
 from __future__ import annotations
 
 import argparse
-import json
 import dataclasses
+import json
 import time
 from typing import Any
 

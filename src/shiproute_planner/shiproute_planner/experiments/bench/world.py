@@ -24,8 +24,8 @@ from importlib import resources
 import numpy as np
 from shiproute_core.units import M_PER_NM
 
-from ...errors import PlannerError
 from ... import planning
+from ...errors import PlannerError
 from ...request import PlanOptions, VoyageRequest, voyage_times
 from ...route_check import check_track
 
