@@ -47,129 +47,183 @@ def _bad_cycle(types: dict, k: int) -> tuple:
     return c, s
 
 
+class _Soak:
+    """The ship and the forecast office of one soak run: what this process publishes and
+    asks, and what it counts."""
+
+    def __init__(self, peer: BenchPeer, procs: dict[str, Any], files: list[str],
+                 period_s: float) -> None:
+        from diagnostic_msgs.msg import DiagnosticArray
+        from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+
+        from shiproute_msgs.msg import (
+            ForecastCycle,
+            ForecastField,
+            ForecastSlice,
+            RoutePlan,
+            ShipState,
+        )
+        from shiproute_msgs.srv import LoadForecast
+
+        self.peer, self.procs, self.files, self.period_s = peer, procs, files, period_s
+        node, latched = peer.node, peer.latched
+        self.plans: list[str] = []
+        self.diag: dict[str, str] = {}
+        self.ship_state_type = ShipState
+        self.load_request = LoadForecast.Request
+        node.create_subscription(RoutePlan, topics.PLAN_ROUTE,
+                                 lambda m: self.plans.append(m.cycle_id), latched)
+        node.create_subscription(DiagnosticArray, topics.DIAGNOSTICS, self._on_diag, 10)
+        self.state_pub = node.create_publisher(ShipState, topics.SHIP_STATE, 10)
+        self.cycle_pub = node.create_publisher(ForecastCycle, topics.FORECAST_CYCLE, latched)
+        self.slice_pub = node.create_publisher(ForecastSlice, topics.FORECAST_SLICES, QoSProfile(
+            depth=512, reliability=ReliabilityPolicy.RELIABLE,
+            durability=DurabilityPolicy.TRANSIENT_LOCAL))
+        self.load: Any = node.create_client(LoadForecast, topics.FORECAST_LOAD)
+        self.types = {"ForecastCycle": ForecastCycle, "ForecastSlice": ForecastSlice,
+                      "Field": ForecastField}
+        self.cycles = self.refused_loads = self.bad_sent = self.deaths = 0
+        self.start_rss: dict[str, float] = {}
+        self.end_rss: dict[str, float] = {}
+        self.peak: dict[str, float] = {}
+        self.pending: Any = None
+        self.next_load = self.next_bad = self.next_state = 0.0
+        self.quiet_since = 0.0
+        self.t_start = time.monotonic()
+
+    def _on_diag(self, msg: Any) -> None:
+        for st in msg.status:
+            if st.name == "shiproute_planner":
+                self.diag.update({kv.key: kv.value for kv in st.values})
+
+    def ship_state(self) -> None:
+        """Publish the ship's state every 0.1 s."""
+        if time.monotonic() >= self.next_state:
+            self.state_pub.publish(_state(self.ship_state_type))
+            self.next_state = time.monotonic() + 0.1
+
+    def first_plan(self, timeout_s: float = 120.0) -> None:
+        """Wait for the first plan on the initial cycle."""
+        deadline = time.monotonic() + timeout_s
+        while not self.plans:
+            if time.monotonic() > deadline:
+                raise TimeoutError(f"no first plan within {timeout_s:g} s")
+            self.ship_state()
+            self.peer.spin_once(0.02)
+
+    def measure_start(self, now: float, end: float) -> float:
+        """After the warm-up, once no load ran for QUIET_S: the start memory; the new end
+        (the pause does not count)."""
+        self.quiet_since = self.quiet_since or (now if self.pending is None else 0.0)
+        if self.quiet_since and now - self.quiet_since >= QUIET_S:
+            self.start_rss = {k: rss_mb(p.proc.pid) for k, p in self.procs.items()}
+            end += now - (self.t_start + WARMUP_S)
+        return end
+
+    def send_load(self, now: float, end: float) -> None:
+        """Ask for the next cycle once the last load was answered (none in the last QUIET_S)."""
+        if (self.pending is None and now >= self.next_load and self.load.service_is_ready()
+                and now < end - QUIET_S):
+            req = self.load_request(paths=[self.files[(self.cycles + self.refused_loads + 1) % 2]])
+            self.pending = self.load.call_async(req)
+            self.next_load = now + self.period_s
+
+    def collect_load(self) -> None:
+        """Count the answer to the pending load, when it came."""
+        if self.pending is not None and self.pending.done():
+            ans = self.pending.result()
+            if ans is not None and ans.accepted:
+                self.cycles += 1
+            else:
+                self.refused_loads += 1
+            self.pending = None
+
+    def send_bad(self, now: float) -> None:
+        """Publish a bad cycle every BAD_EVERY_S."""
+        if now >= self.next_bad:
+            c, s = _bad_cycle(self.types, self.bad_sent)
+            self.cycle_pub.publish(c)
+            self.slice_pub.publish(s)
+            self.bad_sent += 1
+            self.next_bad = now + BAD_EVERY_S
+
+    def dead(self) -> bool:
+        """True when a node died (reported, with its last output on stderr)."""
+        dead = [name for name, p in self.procs.items() if not p.running()]
+        for name in dead:
+            print(f"[soak] {name} died:\n{self.procs[name].output[-3000:]}", file=sys.stderr)
+        self.deaths = len(dead) or self.deaths
+        return bool(dead)
+
+    def soak(self, minutes: float) -> None:
+        """Loads every period, bad cycles every BAD_EVERY_S, for `minutes` after the warm-up."""
+        self.t_start = time.monotonic()
+        end = self.t_start + minutes * 60.0
+        self.next_bad = self.t_start + BAD_EVERY_S
+        while time.monotonic() < end:
+            now = time.monotonic()
+            self.ship_state()
+            if not self.start_rss and now - self.t_start >= WARMUP_S:
+                end = self.measure_start(now, end)
+            else:
+                self.send_load(now, end)
+            self.collect_load()
+            self.send_bad(now)
+            if self.dead():
+                break
+            self.peer.spin_once(0.01)
+
+    def settle(self) -> None:
+        """The last load's answer, 2 s more of ship states, then the end and peak memory."""
+        while self.pending is not None and not self.pending.done():
+            self.peer.spin_once(0.05)
+        t_quiet = time.monotonic() + 2.0  # the last load was sent >= QUIET_S before the end
+        while time.monotonic() < t_quiet:
+            self.ship_state()
+            self.peer.spin_once(0.05)
+        self.end_rss = {k: rss_mb(p.proc.pid) for k, p in self.procs.items()}
+        self.peak = {k: peak_rss_mb(p.proc.pid) for k, p in self.procs.items()}
+
+    def figures(self) -> dict:
+        """The run's JSON-able result."""
+        diag = self.diag
+        return {
+            "minutes": round((time.monotonic() - self.t_start) / 60.0, 2),
+            "period_s": self.period_s,
+            "cycles": self.cycles, "loads_refused": self.refused_loads,
+            "cycles_accepted_by_planner": int(diag.get("forecast_cycles_accepted", "0")),
+            "plans": len(self.plans), "plans_failed": int(diag.get("plans_failed", "0")),
+            "bad_cycles_sent": self.bad_sent,
+            "rejected": int(diag.get("forecast_cycles_dropped", "0")),
+            "rejected_last_reason": diag.get("forecast_cycles_last_reason", ""),
+            "ship_states_dropped": int(diag.get("ship_states_dropped", "0")),
+            "node_deaths": self.deaths,
+            **{f"{k}_rss_mb_{w}": round(v[k], 1) for k in ("weather", "planner")
+               for w, v in (("start", self.start_rss), ("end", self.end_rss),
+                            ("peak", self.peak))},
+        }
+
+
 def run(minutes: float, period_s: float, budget_s: float) -> dict:
     """Start the nodes, soak them for `minutes`, return the figures."""
-    from diagnostic_msgs.msg import DiagnosticArray
-    from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
     from shiproute_weather.scenarios.catalogue import scenario_path
-
-    from shiproute_msgs.msg import (
-        ForecastCycle,
-        ForecastField,
-        ForecastSlice,
-        RoutePlan,
-        ShipState,
-    )
-    from shiproute_msgs.srv import LoadForecast
 
     files = [str(scenario_path("storm_march")), str(scenario_path("storm_march_cycle2"))]
     dom = random_domain_id()
     weather, planner = start_nodes(
         dom, [f"forecast_files:=['{files[0]}']"], RTA, budget_s,
         ["accept_older_forecasts:=true", "write_png:=false"])
-    procs = {"weather": weather, "planner": planner}
     peer = BenchPeer("bench_soak", dom)
-    node, latched = peer.node, peer.latched
-    plans: list[str] = []
-    diag: dict[str, str] = {}
-
-    def on_diag(msg: DiagnosticArray) -> None:
-        for st in msg.status:
-            if st.name == "shiproute_planner":
-                diag.update({kv.key: kv.value for kv in st.values})
-
-    node.create_subscription(RoutePlan, topics.PLAN_ROUTE,
-                             lambda m: plans.append(m.cycle_id), latched)
-    node.create_subscription(DiagnosticArray, topics.DIAGNOSTICS, on_diag, 10)
-    state_pub = node.create_publisher(ShipState, topics.SHIP_STATE, 10)
-    cycle_pub = node.create_publisher(ForecastCycle, topics.FORECAST_CYCLE, latched)
-    slice_pub = node.create_publisher(ForecastSlice, topics.FORECAST_SLICES, QoSProfile(
-        depth=512, reliability=ReliabilityPolicy.RELIABLE,
-        durability=DurabilityPolicy.TRANSIENT_LOCAL))
-    load: Any = node.create_client(LoadForecast, topics.FORECAST_LOAD)
-    types = {"ForecastCycle": ForecastCycle, "ForecastSlice": ForecastSlice,
-             "Field": ForecastField}
-
-    cycles = refused_loads = bad_sent = deaths = 0
-    start_rss: dict[str, float] = {}
-    pending = None
-    next_load = next_bad = next_state = 0.0
-    t_start = time.monotonic()
+    soak = _Soak(peer, {"weather": weather, "planner": planner}, files, period_s)
     try:
-        deadline = time.monotonic() + 120.0
-        while not plans:  # the first plan on the initial cycle
-            if time.monotonic() > deadline:
-                raise TimeoutError("no first plan within 120 s")
-            if time.monotonic() >= next_state:
-                state_pub.publish(_state(ShipState))
-                next_state = time.monotonic() + 0.1
-            peer.spin_once(0.02)
-        t_start = time.monotonic()
-        end = t_start + minutes * 60.0
-        next_bad = t_start + BAD_EVERY_S
-        quiet_since = 0.0
-        while time.monotonic() < end:
-            now = time.monotonic()
-            if now >= next_state:
-                state_pub.publish(_state(ShipState))
-                next_state = now + 0.1
-            if not start_rss and now - t_start >= WARMUP_S:  # no loads for QUIET_S, measure
-                quiet_since = quiet_since or (now if pending is None else 0.0)
-                if quiet_since and now - quiet_since >= QUIET_S:
-                    start_rss = {k: rss_mb(p.proc.pid) for k, p in procs.items()}
-                    end += now - (t_start + WARMUP_S)  # the pause does not count
-            elif (pending is None and now >= next_load and load.service_is_ready()
-                  and now < end - QUIET_S):
-                req = LoadForecast.Request(paths=[files[(cycles + refused_loads + 1) % 2]])
-                pending = load.call_async(req)
-                next_load = now + period_s
-            if pending is not None and pending.done():
-                ans = pending.result()
-                if ans is not None and ans.accepted:
-                    cycles += 1
-                else:
-                    refused_loads += 1
-                pending = None
-            if now >= next_bad:
-                c, s = _bad_cycle(types, bad_sent)
-                cycle_pub.publish(c)
-                slice_pub.publish(s)
-                bad_sent += 1
-                next_bad = now + BAD_EVERY_S
-            dead = [name for name, p in procs.items() if not p.running()]
-            if dead:  # reported, with the node's last output on stderr
-                deaths = len(dead)
-                for name in dead:
-                    print(f"[soak] {name} died:\n{procs[name].output[-3000:]}", file=sys.stderr)
-                break
-            peer.spin_once(0.01)
-        while pending is not None and not pending.done():  # the last load's answer
-            peer.spin_once(0.05)
-        t_quiet = time.monotonic() + 2.0  # the last load was sent >= QUIET_S before `end`
-        while time.monotonic() < t_quiet:
-            if time.monotonic() >= next_state:
-                state_pub.publish(_state(ShipState))
-                next_state = time.monotonic() + 0.1
-            peer.spin_once(0.05)
-        end_rss = {k: rss_mb(p.proc.pid) for k, p in procs.items()}
-        peak = {k: peak_rss_mb(p.proc.pid) for k, p in procs.items()}
+        soak.first_plan()
+        soak.soak(minutes)
+        soak.settle()
     finally:
         peer.close()
         planner.stop()
         weather.stop()
-    return {
-        "minutes": round((time.monotonic() - t_start) / 60.0, 2), "period_s": period_s,
-        "cycles": cycles, "loads_refused": refused_loads,
-        "cycles_accepted_by_planner": int(diag.get("forecast_cycles_accepted", "0")),
-        "plans": len(plans), "plans_failed": int(diag.get("plans_failed", "0")),
-        "bad_cycles_sent": bad_sent,
-        "rejected": int(diag.get("forecast_cycles_dropped", "0")),
-        "rejected_last_reason": diag.get("forecast_cycles_last_reason", ""),
-        "ship_states_dropped": int(diag.get("ship_states_dropped", "0")),
-        "node_deaths": deaths,
-        **{f"{k}_rss_mb_{w}": round(v[k], 1) for k in ("weather", "planner")
-           for w, v in (("start", start_rss), ("end", end_rss), ("peak", peak))},
-    }
+    return soak.figures()
 
 
 def _state(ship_state_type) -> object:

@@ -7,9 +7,14 @@ in the March storm scenario on the constant-RPM sea-lane/great-circle baseline t
 
 from __future__ import annotations
 
+import dataclasses
 import os
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from shiproute_planner.request import VoyageRequest
 
 ORIGIN = "Busan"
 DESTINATION = "Long Beach"
@@ -37,21 +42,29 @@ def data_dir() -> Path:
     return Path(root)
 
 
+def _voyage() -> VoyageRequest:
+    """The demo voyage as the planner's request."""
+    from shiproute_planner.request import VoyageRequest, voyage_times
+
+    return VoyageRequest(ORIGIN, DESTINATION, *voyage_times(DEPARTURE, RTA), SHIP)
+
+
 def _voyage_bag(path: Path, log) -> Path:
     """Plan the constant-RPM baseline and simulate the voyage along it (skipped when cached)."""
     if (path / "metadata.yaml").exists():
         return path
     from shiproute_ais_replay.cli import main as bag_main
     from shiproute_planner.io.files import write_plan_files
-    from shiproute_planner.planning import plan_voyage
+    from shiproute_planner.planning import plan
+    from shiproute_planner.request import PlanOptions
     from shiproute_weather.scenarios.catalogue import scenario_dataset
 
     log(f"making the demo voyage bag {path} (once)")
     forecast = scenario_dataset(FIRST_CYCLE)
-    plan = plan_voyage(ORIGIN, DESTINATION, DEPARTURE, RTA, SHIP, forecast,
-                       method="great_circle", budget_s=5.0, with_baseline=False)
+    baseline = plan(_voyage(), PlanOptions(method="great_circle", budget_s=5.0,
+                                           with_baseline=False), forecast)
     plan_dir = path.parent / "demo_voyage_plan"
-    files = write_plan_files(plan, plan_dir, forecast=forecast, png=False)
+    files = write_plan_files(baseline, plan_dir, forecast=forecast, png=False)
     tmp = path.with_name(path.name + ".tmp")
     bag_main(["simulate", str(tmp), "--plan", str(files["json"]), "--forecast", FIRST_CYCLE,
                    "--ship", SHIP, "--rate-hz", str(STATE_RATE_HZ), "--model-step-s", "1800"])
@@ -67,7 +80,8 @@ def _warm_up(log) -> None:
     import numpy as np
     from shiproute_planner.geo.landmask import default_land_mask
     from shiproute_planner.geo.ports import resolve_port
-    from shiproute_planner.planning import plan_voyage
+    from shiproute_planner.planning import plan
+    from shiproute_planner.request import PlanOptions
     from shiproute_weather.sampling.sampler import ForecastSampler
     from shiproute_weather.scenarios.catalogue import scenario_dataset
 
@@ -77,8 +91,9 @@ def _warm_up(log) -> None:
     land.fine_coast.resolve_voyage((a.lon_deg, a.lat_deg), (b.lon_deg, b.lat_deg),
                                    (10.0, 10.0, 10.0, 25.0))
     forecast = ForecastSampler(scenario_dataset(FIRST_CYCLE), dtype=np.float16)
-    plan_voyage(ORIGIN, DESTINATION, DEPARTURE, RTA, SHIP, forecast, budget_s=1.0, land=land,
-                default_bathymetry=True)  # the global depth grid's cache, as the node uses it
+    voyage = dataclasses.replace(_voyage(), default_bathymetry=True)
+    plan(voyage, PlanOptions(budget_s=1.0, land=land),
+         forecast)  # the global depth grid's cache, as the node uses it
 
 
 def prepare(log=print) -> DemoData:

@@ -1,24 +1,34 @@
-"""One voyage to plan as a typed request, built from the text a user gives (CLI arguments, a
-fleet CSV/YAML row) and run through `planning.plan_voyage`: `shiproute plan` and `shiproute
-fleet` build and run their plans here, so the same words mean the same plan in both."""
+"""One voyage to plan from the text a user gives (CLI arguments, a fleet CSV/YAML row), turned
+into the planner's `VoyageRequest` and `PlanOptions` and run through `planning.plan`:
+`shiproute plan` and `shiproute fleet` build and run their plans here, so the same words mean
+the same plan in both."""
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import re
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 from .checks.parameters import require_number
 from .errors import InvalidVoyageError
 from .objectives import PLAN_OBJECTIVES as OBJECTIVES
 from .objectives import Economics
+from .plan_setup import to_posix_s
 from .plan_types import RoutePlan
-from .planning import plan_voyage, to_posix_s
+from .planning import plan
+from .request import (
+    ForecastInput,
+    PlanOptions,
+    ProgressHook,
+    VoyageRequest,
+    with_fields,
+)
 from .voyage.port_calls import PortCall, parse_port_calls
 from .voyage.stage_length import RTA_TOLERANCE_S, check_rta_tolerance_s
-from .voyage_ship import loaded_ship
 
 # "" = the ship file's performance_model entry, else physics; "physics" (alias "fast") is the
 # ship file's physics tabulated for the hot path, "physics-direct" solves it on every leg
@@ -127,6 +137,20 @@ class PlanRequest:
         for name, value in self.numbers().items():
             require_number(name, value)  # the node's parameter ranges: one table
 
+    def voyage_request(self) -> VoyageRequest:
+        """The voyage this request asks for (the planner's typed request)."""
+        return VoyageRequest(
+            self.origin, self.destination, self.depart_s, self.rta_s, self.ship,
+            via=self.via, via_rta_s=self.via_rta_s, port_calls=self.port_calls,
+            rta_tolerance_s=self.rta_tolerance_s, objective=self.objective,
+            economics=self.economics, ship_model=self.model, loading=self.loading)
+
+    def plan_options(self) -> PlanOptions:
+        """How this request is searched: method, budget, seed and stage length."""
+        return PlanOptions(method=self.method, budget_s=self.budget.wall_s,
+                           max_evaluations=self.budget.evaluations, seed=self.seed,
+                           stage_hours=self.stage_hours)
+
     def numbers(self) -> dict[str, object]:
         """The request's numeric settings under the planner's parameter names."""
         budget = ({"budget_evaluations": self.budget.evaluations} if self.budget.evaluations
@@ -168,30 +192,12 @@ def build_request(*, origin: str, destination: str, depart: str, rta: str,
         rta_tolerance_s=duration_s(rta_tolerance))
 
 
-def ship_and_model(ship: str, model: str, loading: str = "") -> tuple[Any, str]:
-    """The (ship, ship_model) arguments of `plan_voyage`: the ship with the model choice that
-    the planner resolves and states (`learned.select.resolve_model`), or the direct physics
-    model of that ship for "physics-direct"."""
-    if model == "physics-direct":
-        from .ship import PhysicsModel, load_ship
-
-        spec = loaded_ship(ship, loading) if loading else load_ship(ship)
-        return PhysicsModel(spec), ""
-    return ship, "physics" if model == "fast" else model
-
-
-def run_request(req: PlanRequest, forecast: Any = None, *, cycle_id: str = "",
-                seed_pool_dir: Any = None, progress: Callable[[Any], None] | None = None,
-                **extra: Any) -> RoutePlan:
+def run_request(req: PlanRequest, forecast: ForecastInput = None, *, cycle_id: str = "",
+                seed_pool_dir: str | Path | None = None,
+                progress: ProgressHook | None = None, **extra: Any) -> RoutePlan:
     """Plan `req` on `forecast` (a ForecastSampler, a canonical Dataset or None for calm
-    water); `extra` passes further `plan_voyage` keywords (land mask, cancel, ...)."""
-    ship, model = ship_and_model(req.ship, req.model, req.loading)
-    return plan_voyage(
-        req.origin, req.destination, req.depart_s, req.rta_s, ship, forecast,
-        ship_model=model, via=req.via, via_rta=req.via_rta_s, objective=req.objective,
-        method=req.method,
-        cycle_id=cycle_id, budget_s=req.budget.wall_s, max_evaluations=req.budget.evaluations,
-        seed=req.seed, stage_hours=req.stage_hours, seed_pool_dir=seed_pool_dir,
-        port_calls=req.port_calls, rta_tolerance_s=req.rta_tolerance_s,
-        progress=progress, loading="" if req.model == "physics-direct" else req.loading,
-        economics=req.economics, **extra)
+    water); `extra` sets further request or option fields (land mask, cancel, ...)."""
+    request, options = with_fields(req.voyage_request(), req.plan_options(), **extra)
+    options = dataclasses.replace(options, cycle_id=cycle_id, seed_pool_dir=seed_pool_dir,
+                                  progress=progress)
+    return plan(request, options, forecast)

@@ -1,103 +1,113 @@
-"""High-level planning API used by the CLI and the ROS node: voyage -> frozen `RoutePlan`.
+"""High-level planning API: a frozen `VoyageRequest` and `PlanOptions` -> frozen `RoutePlan`.
 
-`plan_voyage` resolves ports, splits a multi-port voyage into legs with their own time
-windows, gathers seeds (seed pool, previous plan shifted to the ship's position), runs the
-chosen method per leg within the wall-time budget, computes the constant-RPM baseline with the
-same evaluator, stores the result in the seed pool and joins everything into one plan.
+`plan` resolves ports, splits a multi-port voyage into legs with their own time windows
+(`plan_prepare`), gathers seeds (seed pool, previous plan shifted to the ship's position),
+runs the chosen method per leg within the wall-time budget, computes the constant-RPM
+baseline with the same evaluator, stores the result in the seed pool (`plan_legs`) and joins
+everything into one checked plan that states what it was made with. `plan_voyage` is the same
+call with keyword arguments.
 """
 
 from __future__ import annotations
 
 import dataclasses
-import itertools
 import time
 from collections.abc import Callable, Sequence
-from datetime import UTC, datetime, timedelta
+from datetime import timedelta
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING
 
 import numpy as np
-from shiproute_core.geodesy import inverse
 
-from shiproute_planner.method_context import Progress
-from shiproute_planner.methods import MethodContext, compute_baseline, get_method
-from shiproute_planner.route.approach import (
-    sail_approach,
-)
-from shiproute_planner.route.canals import route_canals, sail_canal
-from shiproute_planner.route.given_approach import load_approaches
-
-from .checks.parameters import require_number
 from .coastal_depth import with_coarse_coast_note
-from .coastal_passages import passage_rules, passages_note
-from .depth_setup import depth_limits, with_depth_report
-from .ensemble_report import MemberLeg, ensemble_block, with_ensemble
-from .errors import InvalidVoyageError, ParameterError, PlanCancelledError
-from .forecast_statement import forecast_statement, prepare_forecast
+from .depth_setup import with_depth_report
+from .ensemble_report import ensemble_block, with_ensemble
+from .forecast_statement import forecast_statement
 from .ga.loop import GAConfig
-from .ga.pool import SeedPool
 from .geo.depth import Bathymetry
-from .geo.landmask import LandMask, default_land_mask
-from .geo.ports import Port, resolve_port
+from .geo.landmask import LandMask
+from .geo.ports import Port
 from .geo.zones import Zones
-from .objectives import Economics, objective_block, objective_terms
+from .method_context import Progress
+from .objectives import Economics, objective_block
 from .plan_assembly import assemble_plan
-from .plan_checks import checked_plan, zone_limits
-from .plan_seeds import leg_seeds, offer_to_pool
-from .plan_setup import (
-    TimeLike,
-    cancel_fn,
-    chosen_model,
-    make_environment,
-    route_limits,
-    rta_warning_of,
-    to_posix_s,
-)
+from .plan_checks import checked_plan
+from .plan_legs import LegRun, sail_legs
+from .plan_prepare import PreparedVoyage, prepare_voyage
+from .plan_setup import TimeLike, to_posix_s
 from .plan_types import RoutePlan
-from .river_passages import river_calls, river_times, with_river_passages
-from .route.evaluation import RouteEvaluation
-from .route.risk import RiskSpec, parse_risk
-from .route.voyage_legs import leg_setup
-from .straits import route_straits, sail_strait
-from .voyage.legs import voyage_schedule
+from .request import (
+    CancelHook,
+    ForecastInput,
+    PlanOptions,
+    ShipInput,
+    VoyageRequest,
+    file_list,
+    voyage_times,
+)
+from .river_passages import with_river_passages
+from .route.risk import RiskSpec
 from .voyage.plan_calls import with_port_calls
 from .voyage.port_calls import PortCall
-from .voyage.schedule import plan_schedule
-from .voyage.stage_length import (
-    OCEAN_STAGE_H,
-    RTA_TOLERANCE_S,
-    check_rta_tolerance_s,
-    scaled_ga_config,
-)
-from .voyage_ship import loaded_ship, loading_block
+from .voyage.stage_length import RTA_TOLERANCE_S
+from .voyage_ship import loading_block
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 
-def _calls_of(via: Sequence[str | Port], via_rta: Sequence[TimeLike | None],
-              depart_s: float) -> list[PortCall | None]:
-    """Port calls of `via` ports whose `via_rta` is a latest arrival (None: no fixed time)."""
-    rtas = list(via_rta) + [None] * (len(via) - len(via_rta))
-    out: list[PortCall | None] = []
-    for p, t in zip(via, rtas, strict=False):
-        name = p.name if isinstance(p, Port) else str(p)
-        latest = None if t is None else to_posix_s(t)
-        if latest is not None and latest <= depart_s:
-            raise InvalidVoyageError(f"via {name}: RTA is not after the departure")
-        out.append(PortCall(name, None, latest, 0.0))
-    return out
-
-
-def _departure(call: PortCall | None, arrival_s: float) -> float:
-    """Departure from a port reached at `arrival_s`: berth after the window opens."""
-    if call is None:
-        return arrival_s
-    start = max(arrival_s, call.earliest_s) if call.earliest_s is not None else arrival_s
-    return start + call.berth_s
-
-
-def _deadline(call: PortCall | None, rta_s: float | None) -> float:
+def deadline_s(call: PortCall | None, rta_s: float | None) -> float:
     """Latest arrival at a leg's end port (the RTA at the destination; inf: none)."""
     limits = [t for t in (rta_s, call.latest_s if call is not None else None) if t is not None]
     return min(limits) if limits else float("inf")
+
+
+def plan(request: VoyageRequest, options: PlanOptions | None = None,
+         forecast: ForecastInput = None) -> RoutePlan:
+    """Plan `request` on `forecast` (a sampler, a canonical Dataset, or None for calm water)
+    with `options` (defaults: the seed GA, 3 s, seed 0); see `plan_voyage` for the meaning of
+    each field. Raises InvalidVoyageError naming a bad input; a cancelled run returns the
+    best plan so far (PlanCancelledError before any route was found)."""
+    t0 = time.perf_counter()
+    options = options or PlanOptions()
+    prep = prepare_voyage(request, options, forecast)
+    run = sail_legs(request, options, prep, t0)
+    return finished_plan(request, options, prep, run, t0)
+
+
+def finished_plan(request: VoyageRequest, options: PlanOptions, prep: PreparedVoyage,
+                  run: LegRun, t0: float) -> RoutePlan:
+    """The legs joined into one plan, with the schedule, model, RTA, depth, route-check,
+    forecast and objective statements."""
+    n = len(run.results)
+    deadlines = [deadline_s(prep.call_at.get(k + 1), prep.rta_s if k == n - 1 else None)
+                 + prep.rta_tolerance_s for k in range(n)]
+    out = assemble_plan(list(prep.ports), run.problems, run.results, run.baselines,
+                        run.sources, run.approaches, prep.env, prep.spec, options.method,
+                        request.objective, prep.depart_s, prep.rta_s, list(prep.leg_rtas),
+                        run.generations, run.evaluations, time.perf_counter() - t0, deadlines)
+    if prep.schedule is not None:
+        out = with_port_calls(out, prep.schedule_legs, prep.schedule, run.arrivals,
+                              list(prep.ports), prep.rta_tolerance_s)
+    if prep.model_notes:
+        from .learned.select import plan_warnings
+
+        model_warnings = (*prep.model_notes, *plan_warnings(prep.env.model, out))
+        out = dataclasses.replace(out, warnings=(*out.warnings, *model_warnings))
+    if prep.rta_warning:
+        out = dataclasses.replace(out, warnings=(*out.warnings, prep.rta_warning))
+    out = checked_plan(with_depth_report(out, prep.limits.under_keel, run.warnings), prep.land,
+                       prep.limits, request.clearance_nm)
+    out = with_coarse_coast_note(with_river_passages(out, list(prep.river_rows)),
+                                 prep.limits.under_keel, prep.land)
+    out = with_ensemble(out, *ensemble_block(out, prep.env, prep.land, run.member_legs,
+                                             prep.risk, prep.rta_tolerance_s))
+    block, said = forecast_statement(prep.env.sampler, out, options.persistence_h)
+    goal = objective_block(prep.terms, out.total_fuel_t, out.total_time_s / 3600.0,
+                           out.total_distance_nm)
+    return dataclasses.replace(out, warnings=(*out.warnings, *said, *prep.terms.notes),
+                               extra={**out.extra, "forecast": block, "objective": goal,
+                                      **loading_block(prep.spec)})
 
 
 def plan_voyage(
@@ -105,8 +115,8 @@ def plan_voyage(
     destination: str | Port,
     depart: TimeLike,
     rta: TimeLike | timedelta,
-    ship: Any,
-    forecast: Any = None,
+    ship: ShipInput,
+    forecast: ForecastInput = None,
     *,
     via: Sequence[str | Port] = (),
     via_rta: Sequence[TimeLike | None] = (),
@@ -119,7 +129,7 @@ def plan_voyage(
     position: tuple[float, float, float] | None = None,
     seed_pool_dir: str | Path | None = None,
     progress: Callable[[Progress], None] | None = None,
-    cancel: Any = None,
+    cancel: CancelHook | None = None,
     limits: dict | None = None,
     land: LandMask | None = None,
     ga_config: GAConfig | None = None,
@@ -132,7 +142,7 @@ def plan_voyage(
     coastal_passage: bool = True,
     cycle_id: str = "",
     persistence_h: float = 24.0,
-    climatology: Any = None,
+    climatology: xr.Dataset | None = None,
     ship_model: str = "",
     bathymetry: Sequence[str | Path] | Bathymetry | None = None,
     default_bathymetry: bool = False,
@@ -148,7 +158,7 @@ def plan_voyage(
     p_hs_max: float | None = None,
     p_late_max: float | None = None,
 ) -> RoutePlan:
-    """Plan a voyage and return a frozen RoutePlan.
+    """Plan a voyage and return a frozen RoutePlan (`plan` with keyword arguments).
 
     `position` = (lat_deg, lon_deg, time POSIX s) of the ship for a re-plan under way: the
     voyage then starts there and `previous_plan` (shifted to it) seeds the GA. `cancel` is a
@@ -168,8 +178,9 @@ def plan_voyage(
     `climatology` (a canonical dataset whose times name the months) or calm water is assumed,
     and the plan states all of it (`forecast_statement`: warnings and `extra["forecast"]`).
     `ship_model` chooses the performance model
-    (`learned.select.resolve_model`: physics, kwon, profile:FILE, learned:FILE; "" = the ship
-    file's `performance_model` entry or physics); the choice is stated in the plan's warnings.
+    (`learned.select.resolve_model`: physics (alias fast), physics-direct (solved on every
+    leg), kwon, profile:FILE, learned:FILE; "" = the ship file's `performance_model` entry or
+    physics); the choice is stated in the plan's warnings.
     `bathymetry` (grid files or a `Bathymetry`) plus, with
     `default_bathymetry` (on in the CLI, the node and `bench world`; off here so a library
     call uses no data it was not given), the packaged ETOPO5 grid make the under-keel
@@ -192,192 +203,23 @@ def plan_voyage(
     without it an ensemble is planned on its members' mean. Either way an ensemble plan
     states its spread over the members (`ensemble_report`).
     """
-    t0 = time.perf_counter()
-    if stage_hours is not None:
-        require_number("stage_hours", stage_hours)
-    rta_tolerance_s = check_rta_tolerance_s(rta_tolerance_s)
-    if risk is None and (p_hs_max is not None or p_late_max is not None):
-        raise ParameterError("p_hs_max / p_late_max bound a risk-aware plan: give risk too")
-    risk_spec = (risk if isinstance(risk, RiskSpec) or risk is None
-                 else parse_risk(risk, p_hs_max, p_late_max))
-    if port_calls:
-        via = [c.port for c in port_calls]
-    land = land or default_land_mask()
-    ship, model_notes = chosen_model(loaded_ship(ship, loading), ship_model)
-    env, spec = make_environment(ship, forecast)
-    terms = objective_terms(objective, dict(getattr(spec, "economics", ()) or ()), economics)
-    if cycle_id:
-        env = dataclasses.replace(env, cycle_id=cycle_id)
-    lim = route_limits(spec, limits)
-    lim, warnings = depth_limits(lim, spec, bathymetry, default_bathymetry, ukc_margin_m)
-    lim, zone_notes = zone_limits(lim, zones)
-    warnings += zone_notes
-    given = load_approaches(approaches_given)
-    ports = [p if isinstance(p, Port) else resolve_port(p, land)
-             for p in (origin, *via, destination)]
-    warnings += [p.note for p in ports if p.note]
-    depart_s = to_posix_s(depart)
-    rta_s = depart_s + rta.total_seconds() if isinstance(rta, timedelta) else to_posix_s(rta)
-    if position is not None:
-        lat, lon, now_s = position
-        if land.is_land(np.array([lon]), np.array([lat]))[0]:
-            raise InvalidVoyageError(f"ship position {lat:.4f},{lon:.4f} is on land")
-        ports[0] = Port("ship position", "", float(lat), float(lon))
-        depart_s = float(now_s)
-    if not rta_s > depart_s:
-        raise InvalidVoyageError("the RTA must be after the departure time")
-    depart_s, rta_s, river_notes, river_rows = river_times(ports[0], ports[-1], depart_s,
-                                                           rta_s)
-    if not rta_s > depart_s:
-        raise InvalidVoyageError("the river passages at the voyage's ends take longer than "
-                                 "the time to the RTA: " + "; ".join(river_notes))
-    calls = list(port_calls) or _calls_of(via, via_rta, depart_s)
-    calls, call_notes, call_rows = river_calls(ports[1:-1], calls)
-    warnings += river_notes + call_notes
-    ports, canal_legs, calls_x, canal_notes = route_canals(ports, spec, calls)
-    warnings += canal_notes
-    strait_legs: dict = {}
-    if coastal_passage:
-        ports, canal_legs, strait_legs, calls_x, strait_notes = route_straits(
-            ports, canal_legs, calls_x, max(spec.condition.draft_fore_m,
-                                            spec.condition.draft_aft_m) if spec else 0.0)
-        warnings += strait_notes
-        warnings.append(passages_note(passage_rules(lim.under_keel)))
-    sched = None
-    if len(ports) > 2:
-        call_at = {k + 1: c for k, c in enumerate(calls_x) if c is not None}
-        sched_legs, sched, notes, rate = voyage_schedule(
-            ports, call_at, canal_legs, depart_s, rta_s, env.model, lim.rpm_min, lim.rpm_max)
-        warnings += notes
-        leg_rtas = [*sched.arrival_s[:-1], rta_s]  # the last leg aims at the RTA itself
-    else:
-        call_at, leg_rtas = {}, [rta_s]
-    env = dataclasses.replace(env, sampler=prepare_forecast(env.sampler, depart_s, rta_s,
-                                                            persistence_h, climatology),
-                              risk=risk_spec)
-    rta_warning, earliest_s = rta_warning_of(ports, depart_s, rta_s, spec)
-    # an RTA beyond reach is searched best effort: over the time the great circle takes at
-    # full speed (a lower bound), lateness being a violation the search minimises; a
-    # schedule (ports, canals, straits) never asks a leg for more than the ship can do
-    search_rtas = [*leg_rtas[:-1], earliest_s] if rta_warning else list(leg_rtas)
-    is_cancelled = cancel_fn(cancel)
-    rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
-    pool = SeedPool(seed_pool_dir) if seed_pool_dir is not None else None
-    month = datetime.fromtimestamp(depart_s, UTC).month
-    fn = get_method(method)
-    dists = np.array([float(inverse(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)[1])
-                      for a, b in itertools.pairwise(ports)])
-    results: list[RouteEvaluation] = []
-    baselines, problems, sources, approaches = [], [], [], []
-    member_legs: list[MemberLeg] = []
-    arrivals: list[float] = []
-    gens = evals = 0
-    leg_depart = depart_s
-    for k, (a, b) in enumerate(itertools.pairwise(ports)):
-        if k in canal_legs:  # a fixed passage: sailed along the canal at its transit speed
-            canal, rev = canal_legs[k]
-            sea_rpm = float(results[-1].legs["rpm"][0, -1]) if results else None
-            lead_in, ev, lead_out, rpm_c, canal_problem = sail_canal(
-                env, canal, rev, leg_depart, lim, (stage_hours or OCEAN_STAGE_H) * 3600.0,
-                sea_rpm)
-            results.append(ev)
-            sources.append("canal")
-            problems.append(canal_problem)
-            if with_baseline:
-                baselines.append(("canal", rpm_c, ev))
-            approaches.append((lead_in, lead_out))
-            leg_depart = float((lead_out or ev).eta_s[0])
-            arrivals.append(leg_depart)
-            leg_depart = _departure(call_at.get(k + 1), leg_depart)
-            continue
-        if k in strait_legs:  # a computed passage between the strait's gates, at sea RPM
-            ev, rpm_s, strait_problem, said = sail_strait(
-                env, strait_legs[k], leg_depart, lim, (stage_hours or OCEAN_STAGE_H) * 3600.0,
-                float(results[-1].legs["rpm"][0, -1]) if results else None)
-            warnings += said
-            results.append(ev)
-            sources.append("strait")
-            problems.append(strait_problem)
-            if with_baseline:
-                baselines.append(("strait", rpm_s, ev))
-            approaches.append((None, None))
-            leg_depart = float(ev.eta_s[0])
-            arrivals.append(leg_depart)
-            leg_depart = _departure(call_at.get(k + 1), leg_depart)
-            continue
-        under_way = k == 0 and position is not None
-        if sched is not None and 0 < k < len(ports) - 2 and not rta_warning:
-            # closed loop: the legs left re-scheduled from where and when this one starts
-            search_rtas[k] = plan_schedule(sched_legs[k:], leg_depart, rta_s, rate).arrival_s[0]
-        leg_rta = max(search_rtas[k], leg_depart + 60.0)
-        leg = leg_setup(a, b, env, lim, land, leg_depart, leg_rta, approach_nm=approach_nm,
-                        approach_rpm=approach_rpm, coastal_passage=coastal_passage,
-                        stage_hours=stage_hours, objective=objective, terms=terms,
-                        under_way=under_way, previous_plan=previous_plan if under_way else None,
-                        position=position if under_way else None, given=given)
-        problem, pre, ap_arr, rpm_ap = leg.problem, leg.pre, leg.ap_arr, leg.rpm_ap
-        warnings += [n for n in leg.notes if n not in warnings]
-        seeds, gene_seeds = leg_seeds(problem, pool, a, b, month,
-                                   previous_plan if k == 0 else None, position)
-        used = time.perf_counter() - t0
-        share = dists[k] / dists[k:].sum()
-        # the search keeps at least half its share even when a cold process spent the
-        # budget on loading (sea-lane graph, coastline polygons, compiled kernels)
-        leg_budget = max((budget_s - used) * share, 0.5 * budget_s * share, 0.0)
-        leg_evals = max(round((max_evaluations - evals) * share), 1) if max_evaluations else 0
-        need = with_baseline or (method == "seed_ga" and not seeds)
-        base = compute_baseline(problem, env, land) if need else None
-        ctx = MethodContext(problem, env, land, rng, leg_budget, seeds, progress, is_cancelled,
-                            k, time.perf_counter(), scaled_ga_config(ga_config, problem.n_stages),
-                            stall_generations=stall_generations,
-                            baseline=base, max_generations=max_generations,
-                            gene_seeds=gene_seeds, max_evaluations=leg_evals)
-        res = fn(ctx)
-        if res.evaluation is None:
-            raise PlanCancelledError("planning was cancelled before a route was found")
-        results.append(res.evaluation)
-        member_legs.append(MemberLeg(problem, res.genes, res.evaluation))
-        sources.append(res.seed_source)
-        problems.append(problem)
-        gens += res.generations
-        evals += res.evaluations
-        if with_baseline and base is not None:
-            baselines.append((base.name, base.rpm, base.evaluation))
-        if pool is not None:
-            offer_to_pool(pool, problem, a, b, month, res.evaluation, res.seed_source, res.genes)
-        leg_depart = float(res.evaluation.eta_s[0])
-        post = sail_approach(env, ap_arr, rpm_ap, leg_depart, lim) if ap_arr else None
-        if post is not None:
-            leg_depart = float(post.eta_s[0])
-        approaches.append((pre, post))
-        arrivals.append(leg_depart)
-        leg_depart = _departure(call_at.get(k + 1), leg_depart)
-    land.fine_coast.save()  # coastal cells this plan resolved: later processes start with them
-    deadlines = [_deadline(call_at.get(k + 1), rta_s if k == len(results) - 1 else None)
-                 + rta_tolerance_s for k in range(len(results))]
-    plan = assemble_plan(ports, problems, results, baselines, sources, approaches, env, spec,
-                     method, objective, depart_s, rta_s, leg_rtas, gens, evals,
-                     time.perf_counter() - t0, deadlines)
-    if sched is not None:
-        plan = with_port_calls(plan, sched_legs, sched, arrivals, ports, rta_tolerance_s)
-    if model_notes:
-        from .learned.select import plan_warnings
-
-        model_warnings = (*model_notes, *plan_warnings(env.model, plan))
-        plan = dataclasses.replace(plan, warnings=(*plan.warnings, *model_warnings))
-    if rta_warning:
-        plan = dataclasses.replace(plan, warnings=(*plan.warnings, rta_warning))
-    plan = checked_plan(with_depth_report(plan, lim.under_keel, warnings), land, lim,
-                        clearance_nm)
-    plan = with_coarse_coast_note(with_river_passages(plan, river_rows + call_rows),
-                                  lim.under_keel, land)
-    plan = with_ensemble(plan, *ensemble_block(plan, env, land, member_legs, risk_spec,
-                                               rta_tolerance_s))
-    block, said = forecast_statement(env.sampler, plan, persistence_h)
-    goal = objective_block(terms, plan.total_fuel_t, plan.total_time_s / 3600.0,
-                           plan.total_distance_nm)
-    return dataclasses.replace(plan, warnings=(*plan.warnings, *said, *terms.notes),
-                               extra={**plan.extra, "forecast": block, "objective": goal,
-                                      **loading_block(spec)})
-
-
+    depart_s, rta_s = voyage_times(depart, rta)
+    request = VoyageRequest(
+        origin, destination, depart_s, rta_s, ship, via=tuple(via),
+        via_rta_s=tuple(None if t is None else to_posix_s(t) for t in via_rta),
+        port_calls=tuple(port_calls), rta_tolerance_s=rta_tolerance_s, objective=objective,
+        economics=economics, ship_model=ship_model, loading=loading,
+        bathymetry=bathymetry if isinstance(bathymetry, Bathymetry) else file_list(bathymetry),
+        default_bathymetry=default_bathymetry, ukc_margin_m=ukc_margin_m,
+        zones=zones if isinstance(zones, Zones) else file_list(zones),
+        clearance_nm=clearance_nm, approaches_given=file_list(approaches_given) or (),
+        approach_nm=approach_nm, approach_rpm=approach_rpm, coastal_passage=coastal_passage)
+    options = PlanOptions(
+        method=method, budget_s=budget_s, seed=seed, stage_hours=stage_hours,
+        ga_config=ga_config, stall_generations=stall_generations,
+        max_generations=max_generations, max_evaluations=max_evaluations,
+        with_baseline=with_baseline, previous_plan=previous_plan, position=position,
+        seed_pool_dir=seed_pool_dir, progress=progress, cancel=cancel, limits=limits,
+        land=land, cycle_id=cycle_id, persistence_h=persistence_h,
+        climatology=climatology, risk=risk, p_hs_max=p_hs_max, p_late_max=p_late_max)
+    return plan(request, options, forecast)

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import dataclasses
 import time
+from collections.abc import Callable
 
 import numpy as np
 from shiproute_core.flags import FLAG_LAND
@@ -22,7 +23,7 @@ from .risk_choice import risk_choice
 from .route.encoding import clip_genes, gene_bounds
 from .route.environment import Environment
 from .route.evaluation import RouteEvaluation
-from .route.fast_eval import fast_evaluator
+from .route.fast_eval import FastEvaluator, fast_evaluator
 from .route.generate import evaluate_genes
 from .route.member_eval import risk_evaluate
 from .route.problem import RouteProblem
@@ -39,18 +40,7 @@ TIMED_SLOPES = (-0.08, -0.04, 0.04, 0.08)
 def seed_ga_method(ctx: MethodContext) -> MethodResult:
     """Seed GA: seeds (pool, previous plan, sea lane, great circle) + GA within the budget."""
     p, env = ctx.problem, ctx.env
-    seeds = list(ctx.seeds)
-    base = ctx.baseline
-    if base is None and not seeds:
-        base = compute_baseline(p, env, ctx.land)
-    tracks = _seed_tracks(ctx, base) if base is not None else []
-    for s in ctx.seeds[:2]:  # given seeds (previous plan, pool): also earlier/later versions
-        for slope in TIMED_SLOPES:
-            ramp = np.linspace(-1.0, 1.0, max(s.rpm.size, 1))
-            tracks.append((f"{s.source}_timed", s.lon_deg, s.lat_deg, s.rpm * (1 + slope * ramp)))
-    for name, lon, lat, rpm in tracks:
-        seeds.append(TrackSeed(name, lon, lat, np.broadcast_to(rpm, lon.size - 1).copy()))
-
+    seeds = all_seeds(ctx)
     fast = fast_evaluator(p, env, ctx.land)
     risk = env.risk if fast is not None and fast.member_count > 1 else None
 
@@ -61,82 +51,165 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
             return risk_evaluate(fast, risk, x)
         return fast.evaluate(x) if fast is not None else evaluate_genes(p, env, ctx.land, x)
 
-    x_seed = (track_to_genes(p, env, seeds, ctx.land, fast=fast) if seeds
+    x_seed, sources = seed_genes(ctx, seeds, fast)
+    x_seed, sources, offsets = best_seeds_first(p, x_seed, sources, evaluate)
+    ga = initial_ga(ctx, x_seed, offsets)
+    # the exact evaluator confirms bests of one forecast only (a risk-aware best is a
+    # measure over members the exact evaluator does not see)
+    best_src, confirmed = run_ga(ctx, ga, evaluate, fast is not None and risk is None, sources)
+    if risk is not None:  # the risk measure chooses, not the members' mean
+        pop = ga.pop
+        assert pop is not None  # the loop ran at least one generation
+        best_x, final = risk_choice(p, env, ctx.land, pop, evaluate)
+        return MethodResult(final, best_src, ga.generation, ga.evaluations, best_x.copy())
+    return final_result(ctx, ga, confirmed, best_src)
+
+
+def all_seeds(ctx: MethodContext) -> list[TrackSeed]:
+    """The given seeds, the baseline's tracks (when there is a baseline) and earlier/later
+    versions of the first two given seeds."""
+    seeds = list(ctx.seeds)
+    base = ctx.baseline
+    if base is None and not seeds:
+        base = compute_baseline(ctx.problem, ctx.env, ctx.land)
+    tracks = _seed_tracks(ctx, base) if base is not None else []
+    for s in ctx.seeds[:2]:  # given seeds (previous plan, pool): also earlier/later versions
+        for slope in TIMED_SLOPES:
+            ramp = np.linspace(-1.0, 1.0, max(s.rpm.size, 1))
+            tracks.append((f"{s.source}_timed", s.lon_deg, s.lat_deg, s.rpm * (1 + slope * ramp)))
+    for name, lon, lat, rpm in tracks:
+        seeds.append(TrackSeed(name, lon, lat, np.broadcast_to(rpm, lon.size - 1).copy()))
+    return seeds
+
+
+def seed_genes(ctx: MethodContext, seeds: list[TrackSeed], fast: FastEvaluator | None
+               ) -> tuple[np.ndarray, list[str]]:
+    """(genes, source names) of the seed tracks and of the ready gene seeds that fit."""
+    p = ctx.problem
+    x_seed = (track_to_genes(p, ctx.env, seeds, ctx.land, fast=fast) if seeds
               else np.empty((0, p.n_var)))
     sources = [s.source for s in seeds]
     for name, genes in ctx.gene_seeds:
         if genes.size == p.n_var and np.all(np.isfinite(genes)):
             x_seed = np.concatenate([x_seed, clip_genes(p, genes[None, :])])
             sources.append(name)
+    return x_seed, sources
+
+
+def best_seeds_first(p: RouteProblem, x_seed: np.ndarray, sources: list[str],
+                     evaluate: Callable[[np.ndarray], RouteEvaluation]
+                     ) -> tuple[np.ndarray, list[str], np.ndarray]:
+    """Seeds ranked best first (the initial population jitters them most), their sources,
+    and their cross-track offsets from the great circle (which island each goes to)."""
+    if len(x_seed) <= 1:
+        return x_seed, sources, np.zeros(len(x_seed))
+    sev = evaluate(x_seed)
+    order = deb_order(sev.violation, sev.objective)
+    offsets = cross_track_rad(sev.lon_deg[order], sev.lat_deg[order],
+                              (p.dep_lon_deg, p.dep_lat_deg), (p.arr_lon_deg, p.arr_lat_deg))
+    return x_seed[order], [sources[i] for i in order], offsets
+
+
+def initial_ga(ctx: MethodContext, x_seed: np.ndarray, offsets: np.ndarray) -> AskTellGA:
+    """Islands by side of the great circle when there are seeds enough, else one GA."""
+    p = ctx.problem
     lo, hi = gene_bounds(p)
     cfg = ctx.ga_config or GAConfig()
-    offsets = np.zeros(len(x_seed))
-    if len(x_seed) > 1:  # best seeds first: the initial population jitters them most
-        sev = evaluate(x_seed)
-        order = deb_order(sev.violation, sev.objective)
-        x_seed, sources = x_seed[order], [sources[i] for i in order]
-        offsets = cross_track_rad(sev.lon_deg[order], sev.lat_deg[order],
-                                  (p.dep_lon_deg, p.dep_lat_deg), (p.arr_lon_deg, p.arr_lat_deg))
-    ga: AskTellGA
     if len(x_seed) >= 2 * ctx.n_islands and ctx.n_islands > 1:
-        ga = IslandGA(lo, hi, p.n_stages, cfg, ctx.rng, x_seed, offsets, ctx.n_islands)
-    else:
-        ga = SeedGA(lo, hi, p.n_stages, cfg, ctx.rng, x_seed)
-    # keep time for the exact re-evaluation and dense land check of the final candidates
+        return IslandGA(lo, hi, p.n_stages, cfg, ctx.rng, x_seed, offsets, ctx.n_islands)
+    return SeedGA(lo, hi, p.n_stages, cfg, ctx.rng, x_seed)
+
+
+def search_deadline_s(ctx: MethodContext) -> float:
+    """Wall time of the GA loop: the budget less the time kept for the exact re-evaluation
+    and dense land check of the final candidates."""
+    return ctx.budget_s - min(EXACT_CHOICE_SHARE * ctx.budget_s, EXACT_CHOICE_RESERVE_S)
+
+
+def merge_due(ctx: MethodContext, ga: IslandGA, merge_s: float) -> bool:
+    """True when the islands are to become one population (their share of the search spent)."""
+    if ga.merged:
+        return False
+    return (time.perf_counter() - ctx.t_start >= merge_s
+            or ga.generation >= ctx.island_share * ctx.max_generations
+            or 0 < ctx.max_evaluations * ctx.island_share <= ga.evaluations)
+
+
+def offspring(ctx: MethodContext, ga: AskTellGA) -> np.ndarray:
+    """The next genes to evaluate: the GA's offspring with local moves round each part's best,
+    cut to what an evaluation budget leaves."""
+    x = ga.ask()
+    if ga.pop is None:
+        return x
+    lo, hi = gene_bounds(ctx.problem)
+    parts = ga.parts() if isinstance(ga, IslandGA) else [(slice(0, len(x)), ga)]
+    for sl, isl in parts:
+        _rpm_scaled_best(x[sl], isl.best[0], ctx.problem.n_stages, lo, hi, ctx.rng)
+    if ctx.max_evaluations:
+        # an evaluation budget is exact once every island has its first population (a
+        # budget smaller than that still evaluates the whole first population)
+        x = x[: max(ctx.max_evaluations - ga.evaluations, 1)]
+    return x
+
+
+def first_best_source(ev: RouteEvaluation, sources: list[str]) -> str:
+    """The source of the best seed of the first population ("none" without seeds)."""
+    n = len(sources)
+    order = np.lexsort((ev.objective[:n], ev.violation[:n] > 0, ev.violation[:n]))
+    return sources[int(order[0])] if sources else "none"
+
+
+def search_over(ctx: MethodContext, ga: AskTellGA, elapsed_s: float, deadline_s: float) -> bool:
+    """True when time, generations, evaluations, stall or a cancel end the search."""
+    return bool(elapsed_s >= deadline_s or ga.generation >= ctx.max_generations
+                or ctx.cancelled() or 0 < ctx.max_evaluations <= ga.evaluations
+                or (ctx.stall_generations and ga.stalled(ctx.stall_generations)))
+
+
+def run_ga(ctx: MethodContext, ga: AskTellGA,
+           evaluate: Callable[[np.ndarray], RouteEvaluation], exact_check: bool,
+           sources: list[str]) -> tuple[str, list[np.ndarray]]:
+    """The ask/tell loop within the budget: (best seed's source, bests the exact evaluator
+    confirmed along the way, the fallback when the final population sits where a boolean
+    criterion flips between the two evaluators)."""
+    p = ctx.problem
     confirmed: list[np.ndarray] = []
-    deadline_s = ctx.budget_s - min(EXACT_CHOICE_SHARE * ctx.budget_s, EXACT_CHOICE_RESERVE_S)
-    best_src = "none"
-    n = p.n_stages
+    deadline_s = search_deadline_s(ctx)
     merge_s = ctx.island_share * deadline_s
+    best_src = "none"
     while True:
-        if isinstance(ga, IslandGA) and not ga.merged and (
-                time.perf_counter() - ctx.t_start >= merge_s
-                or ga.generation >= ctx.island_share * ctx.max_generations
-                or 0 < ctx.max_evaluations * ctx.island_share <= ga.evaluations):
+        if isinstance(ga, IslandGA) and merge_due(ctx, ga, merge_s):
             ga.merge()
-        x = ga.ask()
-        if ga.pop is not None:
-            parts = ga.parts() if isinstance(ga, IslandGA) else [(slice(0, len(x)), ga)]
-            for sl, isl in parts:
-                _rpm_scaled_best(x[sl], isl.best[0], n, lo, hi, ctx.rng)
-        if ctx.max_evaluations and ga.pop is not None:
-            # an evaluation budget is exact once every island has its first population (a
-            # budget smaller than that still evaluates the whole first population)
-            x = x[: max(ctx.max_evaluations - ga.evaluations, 1)]
+        x = offspring(ctx, ga)
         ev = evaluate(x)
         ga.tell(x, ev.violation, ev.objective)
-        # archive of bests the exact evaluator confirms: the fallback when the final
-        # population sits where a boolean criterion flips between the two evaluators
-        if (fast is not None and risk is None and ga.generation % EXACT_CHECK_EVERY == 0
-                and ga.best[1] <= 0
-                and evaluate_genes(p, env, ctx.land, ga.best[0][None, :]).feasible[0]):
+        if (exact_check and ga.generation % EXACT_CHECK_EVERY == 0 and ga.best[1] <= 0
+                and evaluate_genes(p, ctx.env, ctx.land, ga.best[0][None, :]).feasible[0]):
             confirmed.append(ga.best[0].copy())
         if ga.generation == 0:
-            order = np.lexsort((ev.objective[: len(sources)], ev.violation[: len(sources)] > 0,
-                                ev.violation[: len(sources)]))
-            best_src = sources[int(order[0])] if sources else "none"
+            best_src = first_best_source(ev, sources)
         _, v, f = ga.best
         elapsed = time.perf_counter() - ctx.t_start
         if ctx.progress is not None:
             ctx.progress(Progress(ctx.leg_index, ga.generation, ga.evaluations,
                                   f if v <= 0 else float("nan"), v, elapsed))
-        if (elapsed >= deadline_s or ga.generation >= ctx.max_generations or ctx.cancelled()
-                or 0 < ctx.max_evaluations <= ga.evaluations
-                or (ctx.stall_generations and ga.stalled(ctx.stall_generations))):
-            break
+        if search_over(ctx, ga, elapsed, deadline_s):
+            return best_src, confirmed
+
+
+def final_result(ctx: MethodContext, ga: AskTellGA, confirmed: list[np.ndarray],
+                 best_src: str) -> MethodResult:
+    """The exact choice among the final population (and the confirmed bests), never worse
+    than the constant-RPM baseline the GA was seeded with."""
     pop = ga.pop
-    assert pop is not None, "the loop tells the GA one population before it can stop"
+    assert pop is not None  # the loop ran at least one generation
     pool_x = pop if not confirmed else np.concatenate([pop[:24], confirmed[::-1], pop[24:]])
-    if risk is not None and fast is not None:  # the risk measure chooses, not the mean
-        best_x, final = risk_choice(p, env, ctx.land, pop, lambda x: evaluate(x))
-        return MethodResult(final, best_src, ga.generation, ga.evaluations, best_x.copy())
-    best_x, final = exact_choice(p, env, ctx.land, pool_x, top=min(24, len(pop)))
+    best_x, final = exact_choice(ctx.problem, ctx.env, ctx.land, pool_x, top=min(24, len(pop)))
     b = ctx.baseline
     if b is not None and is_better(
         float(b.evaluation.violation[0]), float(b.evaluation.objective[0]),
         float(final.violation[0]), float(final.objective[0]),
     ):
-        # never hand out a plan worse than the constant-RPM baseline the GA was seeded with
         return MethodResult(b.evaluation, "baseline", ga.generation, ga.evaluations, None)
     return MethodResult(final, best_src, ga.generation, ga.evaluations, best_x.copy())
 

@@ -18,8 +18,9 @@ from .voyage_params import parse_utc
 
 
 @dataclass(frozen=True)
-class VoyageRequest:
-    """What a SetVoyage request asks for (empty text / zero RTA = keep the current one)."""
+class VoyageChange:
+    """What a SetVoyage request changes in the node's voyage (empty text / zero RTA = keep the
+    current one); the planning API's own request is `request.VoyageRequest`."""
 
     destination: str
     destination_lat_deg: float
@@ -51,7 +52,7 @@ def _iso(t_s: float) -> str:
     return datetime.fromtimestamp(t_s, UTC).isoformat().replace("+00:00", "Z")
 
 
-def check_voyage_request(req: VoyageRequest, *, origin: str, ship: str, objective: str,
+def check_voyage_request(req: VoyageChange, *, origin: str, ship: str, objective: str,
                          method: str, rta: str, position: tuple[float, float, float] | None,
                          departure_time: str, clock_s: float,
                          ship_model: str = "") -> CheckedVoyage:

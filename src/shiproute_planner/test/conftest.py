@@ -29,6 +29,6 @@ def land_mask():
 
 @pytest.fixture(scope="session")
 def calm_env():
-    from shiproute_planner.planning import make_environment
+    from shiproute_planner.plan_setup import make_environment
 
     return make_environment("container_4600teu", None)

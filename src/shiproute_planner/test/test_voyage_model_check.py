@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 from shiproute_planner.checks.voyage import check_voyage
 from shiproute_planner.learned.errors import ModelFileError
-from shiproute_planner.voyage_request import VoyageRequest, check_voyage_request
+from shiproute_planner.voyage_request import VoyageChange, check_voyage_request
 
 DEPART_S = 1780509600.0  # 2026-06-03T18:00:00Z
 RTA_S = DEPART_S + 13 * 86400
@@ -45,7 +45,7 @@ def test_missing_model_parameter_file_is_refused(land_mask, tmp_path: Path) -> N
 
 
 def test_set_voyage_request_passes_the_node_model(tmp_path: Path) -> None:
-    req = VoyageRequest("Long Beach", 0.0, 0.0, RTA_S, "", "")
+    req = VoyageChange("Long Beach", 0.0, 0.0, RTA_S, "", "")
     with pytest.raises(ModelFileError, match=r"gone\.nc"):
         check_voyage_request(req, origin="Busan", ship="container_4600teu", objective="fuel",
                              method="seed_ga", rta="", position=None,

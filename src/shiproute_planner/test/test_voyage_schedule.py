@@ -134,14 +134,14 @@ def test_set_voyage_port_calls_round_trip_and_refusals():
     from shiproute_planner.errors import PlannerError
     from shiproute_planner.voyage.node_calls import node_port_calls
     from shiproute_planner.voyage.port_calls import PortCall
-    from shiproute_planner.voyage_request import VoyageRequest, check_voyage_request
+    from shiproute_planner.voyage_request import VoyageChange, check_voyage_request
 
     calls = (PortCall("Singapore", T0 + 7 * 86400, T0 + 10 * 86400, 12 * H),
              PortCall("Rotterdam", None, T0 + 27 * 86400, 0.0))
 
     def ask(c):
         return check_voyage_request(
-            VoyageRequest("Gdansk", 0.0, 0.0, T0 + 28 * 86400, "", "", port_calls=c),
+            VoyageChange("Gdansk", 0.0, 0.0, T0 + 28 * 86400, "", "", port_calls=c),
             origin="Shanghai", ship="container_4600teu", objective="fuel", method="seed_ga",
             rta="2026-06-29T00:00:00Z", position=None, departure_time="2026-06-01T00:00:00Z",
             clock_s=0.0)

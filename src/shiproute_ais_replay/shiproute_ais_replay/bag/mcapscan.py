@@ -95,6 +95,8 @@ class McapScanner:
         self._schemas: dict[int, tuple[str, str, str]] = {}
         self._pending: dict[int, dict] = {}
         self._summary_loaded = False
+        self._bad_chunk = False  # the last chunk was unusable or cut short
+        self._partial = 0  # messages given from a chunk cut short
 
     # ------------------------------------------------------------------ records
     def _schema(self, buf: memoryview) -> None:
@@ -184,7 +186,8 @@ class McapScanner:
             yield from self._scan(f, start_ns)
 
     def _scan(self, f: BinaryIO, start_ns: int) -> Iterator[tuple[int, int, memoryview]]:
-        bad_chunk, partial = False, 0  # partial: messages yielded from a chunk cut short
+        """Messages of the records from the file position on, skipping damaged ones."""
+        self._bad_chunk, self._partial = False, 0
         while True:
             pos = f.tell()
             head = f.read(9)
@@ -194,46 +197,64 @@ class McapScanner:
                 return
             op, length = _REC.unpack_from(head, 0)
             if op not in KNOWN_OPS or pos + 9 + length > self.size:
-                if op == OP_CHUNK:
-                    self.stats.chunks_skipped += 1
-                self._truncated(pos, f"record 0x{op:02x} of {length} bytes")
-                if not self._resync(f, pos + 1):
+                if not self._skip_damaged(f, pos, op, length):
                     return
                 continue
             if op in (OP_DATA_END, OP_FOOTER):
                 return
             if op == OP_CHUNK:
-                raw, bad_chunk = self._chunk(f, length, start_ns), False
-                if raw is None:
-                    bad_chunk, partial = True, 0
-                elif raw:
-                    partial = 0
-                    try:  # stream the chunk's messages; framing is checked as we go
-                        for msg in self._records(memoryview(raw)):
-                            if msg[1] >= start_ns:
-                                self.stats.messages_read += 1
-                                partial += 1
-                                yield msg
-                        self.stats.chunks_read += 1
-                    except (ValueError, struct.error, UnicodeDecodeError) as exc:
-                        self.stats.chunks_skipped += 1
-                        self.stats.note(f"chunk ending at byte {f.tell()} cut short: {exc}")
-                        bad_chunk = True
-                continue
-            body = memoryview(f.read(length))
-            if op == OP_MESSAGE_INDEX and bad_chunk:
-                lost = _U32.unpack_from(body, 2)[0] // 16
-                self.stats.messages_skipped += max(0, lost - partial)
-                partial = max(0, partial - lost)
-            elif op == OP_MESSAGE:
-                cid, _, log_ns, _ = _MSG.unpack_from(body, 0)
-                if log_ns >= start_ns:
+                yield from self._chunk_messages(f, length, start_ns)
+            else:
+                yield from self._top_record(op, memoryview(f.read(length)), start_ns)
+
+    def _skip_damaged(self, f: BinaryIO, pos: int, op: int, length: int) -> bool:
+        """Note a damaged record at ``pos`` and resync; False when nothing is left."""
+        if op == OP_CHUNK:
+            self.stats.chunks_skipped += 1
+        self._truncated(pos, f"record 0x{op:02x} of {length} bytes")
+        return self._resync(f, pos + 1)
+
+    def _chunk_messages(self, f: BinaryIO, length: int,
+                        start_ns: int) -> Iterator[tuple[int, int, memoryview]]:
+        """Messages of one chunk record, streamed; framing is checked as we go (a chunk cut
+        short counts the messages it gave, its message index then counts the rest lost)."""
+        raw = self._chunk(f, length, start_ns)
+        self._bad_chunk = False
+        if raw is None:
+            self._bad_chunk, self._partial = True, 0
+            return
+        if not raw:
+            return
+        self._partial = 0
+        try:
+            for msg in self._records(memoryview(raw)):
+                if msg[1] >= start_ns:
                     self.stats.messages_read += 1
-                    yield cid, log_ns, body[22:]
-            elif op == OP_SCHEMA:
-                self._schema(body)
-            elif op == OP_CHANNEL:
-                self._channel(body)
+                    self._partial += 1
+                    yield msg
+            self.stats.chunks_read += 1
+        except (ValueError, struct.error, UnicodeDecodeError) as exc:
+            self.stats.chunks_skipped += 1
+            self.stats.note(f"chunk ending at byte {f.tell()} cut short: {exc}")
+            self._bad_chunk = True
+
+    def _top_record(self, op: int, body: memoryview,
+                    start_ns: int) -> Iterator[tuple[int, int, memoryview]]:
+        """A record outside chunks: a message, a schema, a channel, or the message index
+        that tells how many messages a damaged chunk lost."""
+        if op == OP_MESSAGE_INDEX and self._bad_chunk:
+            lost = _U32.unpack_from(body, 2)[0] // 16
+            self.stats.messages_skipped += max(0, lost - self._partial)
+            self._partial = max(0, self._partial - lost)
+        elif op == OP_MESSAGE:
+            cid, _, log_ns, _ = _MSG.unpack_from(body, 0)
+            if log_ns >= start_ns:
+                self.stats.messages_read += 1
+                yield cid, log_ns, body[22:]
+        elif op == OP_SCHEMA:
+            self._schema(body)
+        elif op == OP_CHANNEL:
+            self._channel(body)
 
     def _chunk(self, f: BinaryIO, length: int, start_ns: int) -> bytes | None:
         """Decompressed, CRC-checked records of one chunk; b"" when the chunk ends before

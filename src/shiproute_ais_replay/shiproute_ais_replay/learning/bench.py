@@ -50,7 +50,8 @@ def run(voyages: int = 5, seed: int = 1, budget_s: float = 3.0) -> dict:
     """Run the benchmark; returns the JSON-able result."""
     from shiproute_planner.learned.reevaluate import reevaluate
     from shiproute_planner.learned.train import TrainConfig, train
-    from shiproute_planner.planning import plan_voyage
+    from shiproute_planner.planning import plan
+    from shiproute_planner.request import PlanOptions, VoyageRequest, voyage_times
     from shiproute_planner.ship import load_ship
     from shiproute_weather.sampling.sampler import ForecastSampler
     from shiproute_weather.scenarios.catalogue import scenario_dataset
@@ -84,8 +85,10 @@ def run(voyages: int = 5, seed: int = 1, budget_s: float = 3.0) -> dict:
         plans = {}
         for name, choice in (("physics", "physics"), ("learned", f"learned:{path}")):
             t0 = time.perf_counter()
-            p = plan_voyage("Busan", "Long Beach", "2026-03-04T00:00Z", "2026-03-17T00:00Z",
-                            ship, sampler, budget_s=budget_s, seed=0, ship_model=choice)
+            voyage = VoyageRequest("Busan", "Long Beach",
+                                   *voyage_times("2026-03-04T00:00Z", "2026-03-17T00:00Z"),
+                                   ship, ship_model=choice)
+            p = plan(voyage, PlanOptions(budget_s=budget_s, seed=0), sampler)
             wall = time.perf_counter() - t0
             o = reevaluate(p, truth, sampler)
             plans[name] = {"planned_fuel_t": p.total_fuel_t,

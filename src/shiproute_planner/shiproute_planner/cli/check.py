@@ -61,7 +61,7 @@ def main(argv: list[str]) -> int:
     from ..depth_setup import depth_limits
     from ..geo.zones import Zones, load_zones
     from ..io.route_read import read_route
-    from ..planning import route_limits
+    from ..plan_setup import route_limits
     from ..route_check import check_track
     from ..ship import load_ship
     from .option_ranges import CHECK_OPTIONS, check_options

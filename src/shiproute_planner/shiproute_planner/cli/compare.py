@@ -14,7 +14,7 @@ import json
 import re
 import sys
 import time
-from datetime import UTC, datetime, timedelta
+from datetime import UTC, datetime
 from pathlib import Path
 
 from ..baselines.metaheuristics import seed_genes
@@ -32,6 +32,7 @@ from ..experiments.compare import (
 from ..experiments.outcome import comparison_table, repeat_table
 from ..experiments.plots import plot_comparison, plot_pareto
 from ..experiments.voyage import build_inputs, default_departure_s, load_forecast
+from ..request import PlanOptions, VoyageRequest
 
 ALL_METHODS = (*GRAPH_ORDER, *META_ORDER)
 
@@ -77,8 +78,8 @@ def run_compare(args: argparse.Namespace) -> dict:
     depart_s = (datetime.fromisoformat(args.depart.replace("Z", "+00:00")).timestamp()
                 if args.depart else default_departure_s(ds))
     rta_s = parse_rta(args.rta, depart_s)
-    inp = build_inputs(args.origin, args.destination, depart_s, timedelta(seconds=rta_s - depart_s),
-                       args.ship, ds)
+    inp = build_inputs(VoyageRequest(args.origin, args.destination, depart_s, rta_s, args.ship),
+                       PlanOptions(stage_hours=12.0), ds)
     methods = [m.strip() for m in args.methods.split(",") if m.strip()]
     unknown = sorted(set(methods) - set(ALL_METHODS))
     if unknown:

@@ -1,21 +1,20 @@
-"""Build the comparison's `BaselineInputs` exactly as `planning.plan_voyage` builds a leg.
+"""Build the comparison's `BaselineInputs` from a `VoyageRequest` exactly as `planning.plan`
+builds a leg.
 
 Ports resolve through the planner's gazetteer and snapping, the ship through
-`planning.make_environment` (the tabulated model), limits through the planner's own rule, so a
+`plan_setup.make_environment` (the tabulated model), limits through the planner's own rule, so a
 comparison row and `shiproute plan --method <name>` judge routes identically.
 """
 
 from __future__ import annotations
 
-from datetime import timedelta
-from typing import Any
-
 import numpy as np
 
 from ..baselines.inputs import BaselineInputs
-from ..geo.landmask import LandMask, default_land_mask
+from ..geo.landmask import default_land_mask
 from ..geo.ports import Port, resolve_port
-from ..planning import TimeLike, make_environment, route_limits, to_posix_s
+from ..plan_setup import make_environment, route_limits, to_posix_s
+from ..request import ForecastInput, PlanOptions, VoyageRequest
 from ..route.voyage_legs import leg_setup
 
 DEFAULT_DEPARTURE_AFTER_REFERENCE_H = 6.0  # the reference case sails 6 h after the 12Z run
@@ -41,27 +40,20 @@ def default_departure_s(ds) -> float:
     return float(t0) + DEFAULT_DEPARTURE_AFTER_REFERENCE_H * 3600.0
 
 
-def build_inputs(
-    origin: str | Port,
-    destination: str | Port,
-    depart: TimeLike,
-    rta: TimeLike | timedelta,
-    ship: Any,
-    forecast: Any = None,
-    *,
-    stage_hours: float = 12.0,
-    land: LandMask | None = None,
-    limits: dict | None = None,
-) -> BaselineInputs:
-    """One-leg voyage as the planner sets it up: the problem between the approaches' sea
-    ends (`route.voyage_legs.leg_setup`; the approaches are common to every method), no seed pool:
-    every method starts cold."""
-    land = land or default_land_mask()
-    env, spec = make_environment(ship, forecast)
-    lim = route_limits(spec, limits)
-    a = origin if isinstance(origin, Port) else resolve_port(origin, land)
-    b = destination if isinstance(destination, Port) else resolve_port(destination, land)
-    depart_s = to_posix_s(depart)
-    rta_s = depart_s + rta.total_seconds() if isinstance(rta, timedelta) else to_posix_s(rta)
-    leg = leg_setup(a, b, env, lim, land, depart_s, rta_s, stage_hours=stage_hours)
+def build_inputs(request: VoyageRequest, options: PlanOptions | None = None,
+                 forecast: ForecastInput = None) -> BaselineInputs:
+    """The first leg of `request` as the planner sets it up: the problem between the
+    approaches' sea ends (`route.voyage_legs.leg_setup`; the approaches are common to every
+    method), at `options.stage_hours` (12 h when None), with `options.land` and
+    `options.limits`; no seed pool: every method starts cold."""
+    options = options or PlanOptions()
+    land = options.land or default_land_mask()
+    env, spec = make_environment(request.ship, forecast)
+    lim = route_limits(spec, dict(options.limits) if options.limits is not None else None)
+    a = request.origin if isinstance(request.origin, Port) else resolve_port(request.origin, land)
+    b = (request.destination if isinstance(request.destination, Port)
+         else resolve_port(request.destination, land))
+    stage_hours = 12.0 if options.stage_hours is None else options.stage_hours
+    leg = leg_setup(a, b, env, lim, land, request.depart_s, request.rta_s,
+                    stage_hours=stage_hours)
     return BaselineInputs(leg.problem, env, land)

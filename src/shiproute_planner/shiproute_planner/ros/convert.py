@@ -26,7 +26,7 @@ from shiproute_msgs.msg import RoutePlan as RoutePlanMsg
 from ..path_frame import track_to_ecef
 from ..plan_types import RoutePlan
 from ..voyage.port_calls import PortCall
-from ..voyage_request import VoyageRequest
+from ..voyage_request import VoyageChange
 from .cycle_packer import SliceFields
 
 EARTH_FRAME = "earth"
@@ -211,9 +211,9 @@ def ship_state_optionals(msg: ShipState) -> dict[str, float]:
     return {name: float(getattr(msg, name)) for name in SHIP_STATE_OPTIONALS}
 
 
-def voyage_request(req: Any) -> VoyageRequest:
+def voyage_request(req: Any) -> VoyageChange:
     """The voyage of a SetVoyage request, not yet checked."""
-    return VoyageRequest(
+    return VoyageChange(
         destination=req.destination, destination_lat_deg=float(req.destination_lat_deg),
         destination_lon_deg=float(req.destination_lon_deg), rta_s=posix_s(req.rta),
         ship=req.ship, objective=req.objective,

@@ -53,7 +53,7 @@ from .startup import load_depth_grids, seed_pool_statement
 
 
 class PlannerNode(Node):
-    """Thin ROS shell around `shiproute_planner.planning.plan_voyage`."""
+    """Thin ROS shell around `shiproute_planner.planning.plan`."""
 
     def __init__(self) -> None:
         super().__init__("shiproute_planner")

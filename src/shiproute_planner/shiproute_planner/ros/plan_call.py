@@ -1,5 +1,5 @@
-"""One plan from the planner node's parameters: where the run starts, the `plan_voyage` call
-and the plan's files."""
+"""One plan from the planner node's parameters: where the run starts, the `VoyageRequest` and
+`PlanOptions` they name, and the plan's files."""
 
 from __future__ import annotations
 
@@ -9,7 +9,9 @@ from typing import Any
 
 from ..objectives import Economics
 from ..plan_types import RoutePlan
+from ..request import PlanOptions, VoyageRequest
 from ..voyage.node_calls import calls_ahead, node_port_calls
+from ..voyage.port_calls import PortCall
 from ..voyage_params import parse_utc
 from .cycle_packer import hs_field_at
 from .member_packer import EnsembleCycle, ensemble_hs_field_at
@@ -40,6 +42,24 @@ def risk_keywords(p: Callable[[str], Any]) -> dict[str, Any]:
             "p_late_max": float(p("p_late_max"))}
 
 
+def node_request(p: Callable[[str], Any], *, origin: str, depart_s: float,
+                 rta_s: float | None, objective: str, calls: tuple[PortCall, ...]
+                 ) -> VoyageRequest:
+    """The voyage the parameters name (`objective` and `rta_s` override them when given)."""
+    return VoyageRequest(
+        origin, str(p("destination")), depart_s,
+        parse_utc(str(p("rta"))) if rta_s is None else rta_s, str(p("ship")),
+        port_calls=calls, rta_tolerance_s=float(p("rta_tolerance_s")),
+        objective=objective or str(p("objective")), economics=economics(p),
+        ship_model=str(p("ship_model")), loading=str(p("loading")),
+        bathymetry=tuple(paths(str(p("bathymetry_files")))) or None,
+        default_bathymetry=bool(p("default_bathymetry")),
+        ukc_margin_m=float(p("ukc_margin_m")),
+        zones=tuple(paths(str(p("zones_files")))) or None,
+        clearance_nm=float(p("clearance_nm")),
+        approaches_given=tuple(paths(str(p("approach_files")))))
+
+
 def plan_from_parameters(p: Callable[[str], Any], forecast: Any, *, cycle_id: str,
                          origin: str, depart_s: float, budget_s: float,
                          previous: RoutePlan | None,
@@ -50,30 +70,18 @@ def plan_from_parameters(p: Callable[[str], Any], forecast: Any, *, cycle_id: st
     """Plan with the voyage, ship, method and data files named by the parameters (`p(name)`
     gives a parameter's value); the run's own inputs come as arguments (`objective` and
     `rta_s` override the parameters for one plan of a time-fuel front)."""
-    from ..planning import plan_voyage
+    from ..planning import plan
 
-    pool = str(p("seed_pool_dir")) or None
-    return plan_voyage(
-        origin, str(p("destination")), depart_s,
-        parse_utc(str(p("rta"))) if rta_s is None else rta_s,
-        str(p("ship")), plan_forecast(forecast), cycle_id=cycle_id,
-        objective=objective or str(p("objective")), method=str(p("method")),
-        budget_s=budget_s, seed=int(p("rng_seed")) + seed_offset,
+    calls = calls_ahead(node_port_calls(str(p("port_calls")), depart_s), previous,
+                        position[2] if position else None)
+    request = node_request(p, origin=origin, depart_s=depart_s, rta_s=rta_s,
+                           objective=objective, calls=tuple(calls))
+    options = PlanOptions(
+        method=str(p("method")), budget_s=budget_s, seed=int(p("rng_seed")) + seed_offset,
         stage_hours=float(p("stage_hours")) or None, previous_plan=previous,
-        port_calls=calls_ahead(node_port_calls(str(p("port_calls")), depart_s),
-                               previous, position[2] if position else None),
-        rta_tolerance_s=float(p("rta_tolerance_s")),
-        position=position, seed_pool_dir=pool, progress=progress,
-        cancel=cancel, ship_model=str(p("ship_model")),
-        bathymetry=paths(str(p("bathymetry_files"))),
-        default_bathymetry=bool(p("default_bathymetry")),
-        ukc_margin_m=float(p("ukc_margin_m")),
-        zones=paths(str(p("zones_files"))),
-        clearance_nm=float(p("clearance_nm")),
-        approaches_given=paths(str(p("approach_files"))),
-        loading=str(p("loading")), economics=economics(p),
-        **risk_keywords(p),
-    )
+        position=position, seed_pool_dir=str(p("seed_pool_dir")) or None, progress=progress,
+        cancel=cancel, cycle_id=cycle_id, **risk_keywords(p))
+    return plan(request, options, plan_forecast(forecast))
 
 
 def front_from_parameters(p: Callable[[str], Any], forecast: Any, *, cycle_id: str,

@@ -32,7 +32,7 @@ EVALUATIONS = 2000
 
 @pytest.mark.slow
 def test_seed_ga_beats_unseeded_metaheuristics_at_equal_budget(storm_sampler, land_mask) -> None:
-    from shiproute_planner.planning import make_environment
+    from shiproute_planner.plan_setup import make_environment
 
     env, spec = make_environment("container_4600teu", storm_sampler)
     a, b = (145.0, 36.0), (185.0, 42.0)

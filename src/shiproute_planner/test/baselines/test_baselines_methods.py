@@ -118,7 +118,7 @@ def test_path_only_methods_hold_one_rpm(open_ocean, island, name) -> None:
 @pytest.fixture(scope="module")
 def storm_leg(storm_sampler, land_mask):
     """Open-water leg through the March storm (150E 40N -> 168E 44N from day 4)."""
-    from shiproute_planner.planning import make_environment
+    from shiproute_planner.plan_setup import make_environment
 
     env, spec = make_environment("container_4600teu", storm_sampler)
     depart = DEPART_S + 4 * 86400

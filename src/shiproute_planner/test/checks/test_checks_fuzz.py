@@ -169,9 +169,9 @@ ships = st.sampled_from(["container_4600teu", "vlcc_270k", "bulk_supramax", "con
        ship=ships, objective=st.sampled_from(["fuel", "eta", "speed", ""]))
 def test_voyage_validator(land_mask, dest: str, lat: float, lon: float, rta: float,
                           depart, ship: str, objective: str) -> None:
-    from shiproute_planner.voyage_request import VoyageRequest, check_voyage_request
+    from shiproute_planner.voyage_request import VoyageChange, check_voyage_request
 
-    req = VoyageRequest(dest, lat, lon, rta, ship, objective)
+    req = VoyageChange(dest, lat, lon, rta, ship, objective)
     try:
         checked = check_voyage_request(
             req, origin="Busan", ship="container_4600teu", objective="fuel", method="seed_ga",

@@ -7,7 +7,7 @@ import pytest
 from shiproute_planner.fleet.errors import VoyageFileError
 from shiproute_planner.fleet.voyages import read_voyages
 from shiproute_planner.plan_request import Budget
-from shiproute_planner.planning import to_posix_s
+from shiproute_planner.plan_setup import to_posix_s
 
 HEADER = "vessel,from,to,depart,rta,ship,via,budget\n"
 

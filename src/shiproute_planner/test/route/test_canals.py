@@ -10,7 +10,7 @@ import pytest
 from shiproute_core.geodesy import inverse
 from shiproute_core.units import M_PER_NM
 from shiproute_planner.geo.ports import lookup_port
-from shiproute_planner.planning import make_environment, route_limits
+from shiproute_planner.plan_setup import make_environment, route_limits
 from shiproute_planner.route.canals import CANALS, route_canals, sail_canal
 from shiproute_planner.ship import load_ship
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from shiproute_core.geodesy import direct, inverse
-from shiproute_planner.planning import make_environment, route_limits, to_posix_s
+from shiproute_planner.plan_setup import make_environment, route_limits, to_posix_s
 from shiproute_planner.route import _fast_kernels as fk
 from shiproute_planner.route.encoding import gene_bounds, join_genes
 from shiproute_planner.route.fast_eval import fast_evaluator

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from shiproute_core.flags import FLAG_LAND, FLAG_RTA
 from shiproute_core.geodesy import inverse
-from shiproute_planner.planning import route_limits
+from shiproute_planner.plan_setup import route_limits
 from shiproute_planner.route.encoding import clip_genes, gene_bounds, join_genes, split_genes
 from shiproute_planner.route.generate import evaluate_genes
 from shiproute_planner.route.problem import RouteProblem

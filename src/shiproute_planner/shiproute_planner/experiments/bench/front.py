@@ -6,6 +6,7 @@ and compiled kernels are warmed before timing, as in a running planner."""
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import time
 from typing import Any
@@ -15,7 +16,8 @@ import numpy as np
 from ...front import plan_front
 from ...geo.landmask import default_land_mask
 from ...plan_request import build_request
-from ...planning import plan_voyage
+from ...planning import plan
+from ...request import PlanOptions
 
 DEPART = "2026-03-03T18:00Z"
 
@@ -31,9 +33,9 @@ def front_bench(points: int = 9, budget_s: float = 9.0, seed: int = 0) -> dict[s
     req = build_request(origin="Busan", destination="Long Beach", depart=DEPART, rta="13d",
                         objective="front", budget=f"{budget_s:g}s", seed=seed,
                         front_points=points)
-    plan_voyage("Busan", "Long Beach", req.depart_s, req.rta_s, "container_4600teu", sampler,
-                budget_s=0.0, max_generations=0, with_baseline=False, land=land,
-                default_bathymetry=True)  # warm-up: sea lanes, coastline, kernels
+    warm_up = PlanOptions(budget_s=0.0, max_generations=0, with_baseline=False, land=land)
+    plan(dataclasses.replace(req.voyage_request(), default_bathymetry=True), warm_up,
+         sampler)  # sea lanes, coastline, kernels
     t = time.perf_counter()
     front = plan_front(req, sampler, land=land, default_bathymetry=True)
     front_s = time.perf_counter() - t

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
-import functools
 import json
 import tempfile
 import time
@@ -22,7 +21,9 @@ from shiproute_core.geodesy import direct, inverse
 
 from ...geo.landmask import default_land_mask
 from ...geo.verify import land_crossings
-from ...planning import make_environment, plan_voyage
+from ...plan_setup import make_environment
+from ...planning import plan
+from ...request import PlanOptions, VoyageRequest, voyage_times
 from ...route.encoding import clip_genes, gene_bounds, join_genes
 from ...route.fast_eval import fast_evaluator
 from ...route.generate import evaluate_genes
@@ -87,24 +88,28 @@ def run(budget_s: float, warm_budget_s: float, ref_factor: float, seed: int) -> 
     s1 = ForecastSampler(scenario_dataset("storm_march"), dtype=np.float16)
     s2 = ForecastSampler(scenario_dataset("storm_march_cycle2"), dtype=np.float16)
     env, _ = make_environment("container_4600teu", s1)
+    depart_s, rta_s = voyage_times(DEPART, timedelta(days=13))
+    voyage = VoyageRequest("Busan", "Long Beach", depart_s, rta_s, "container_4600teu",
+                           default_bathymetry=True)
     # warm the process like a running planner node: sea-lane graph, coastline polygons near
     # the ports, compiled kernels (no seed pool involved, so the timed plan stays cold)
-    plan_voyage("Busan", "Long Beach", DEPART, timedelta(days=13), forecast=s1, budget_s=0.0,
-                max_generations=0, with_baseline=False, ship="container_4600teu", land=land,
-                default_bathymetry=True)
+    plan(voyage, PlanOptions(budget_s=0.0, max_generations=0, with_baseline=False,
+                             land=land), s1)
     setup_s = time.perf_counter() - t0
-    voyage = functools.partial(plan_voyage, "Busan", "Long Beach", DEPART, timedelta(days=13),
-                               ship="container_4600teu", land=land, default_bathymetry=True)
+    common = PlanOptions(land=land, seed=seed)
     with tempfile.TemporaryDirectory() as pool_dir:
         t = time.perf_counter()
-        cold = voyage(forecast=s1, budget_s=budget_s, seed_pool_dir=pool_dir, seed=seed)
+        cold = plan(voyage, dataclasses.replace(common, budget_s=budget_s,
+                                                seed_pool_dir=pool_dir), s1)
         cold_s = time.perf_counter() - t
     pos = _position_after(cold, 6.0)
     t = time.perf_counter()
-    warm = voyage(forecast=s2, budget_s=warm_budget_s, previous_plan=cold, position=pos,
-                  stall_generations=10, with_baseline=False, seed=seed)
+    warm = plan(voyage, dataclasses.replace(
+        common, budget_s=warm_budget_s, previous_plan=cold, position=pos,
+        stall_generations=10, with_baseline=False), s2)
     warm_s = time.perf_counter() - t
-    ref = voyage(forecast=s1, budget_s=budget_s * ref_factor, seed=seed + 1)
+    ref = plan(voyage, dataclasses.replace(common, budget_s=budget_s * ref_factor,
+                                           seed=seed + 1), s1)
     feasible = [p.total_fuel_t for p in (cold, ref) if p.feasible]
     reference = min(feasible) if feasible else ref.total_fuel_t
     # evaluation speed on the ocean crossing the GA solved: the last optimised span (after any
@@ -152,7 +157,7 @@ def run(budget_s: float, warm_budget_s: float, ref_factor: float, seed: int) -> 
 
 def _limits_of(plan, env, depth: bool = True):
     """The plan's route limits, with the UKC constraint the planner adds by default."""
-    from ...planning import route_limits
+    from ...plan_setup import route_limits
 
     spec = getattr(env.model, "ship", None)
     limits = route_limits(spec)

@@ -24,8 +24,9 @@ from importlib import resources
 import numpy as np
 from shiproute_core.units import M_PER_NM
 
+from ... import planning
 from ...errors import PlannerError
-from ...planning import plan_voyage
+from ...request import PlanOptions, VoyageRequest, voyage_times
 from ...route_check import check_track
 
 
@@ -57,9 +58,11 @@ def run(budget_s: float, only: list[str]) -> dict:
         row: dict = {"lane": lane["name"], "passes": lane["passes"]}
         t = time.perf_counter()
         try:
-            plan = plan_voyage(lane["from"], lane["to"], lane["depart"],
-                               timedelta(days=float(lane["rta_days"])), lane["ship"], None,
-                               budget_s=budget_s, default_bathymetry=True)
+            depart_s, rta_s = voyage_times(lane["depart"],
+                                           timedelta(days=float(lane["rta_days"])))
+            voyage = VoyageRequest(lane["from"], lane["to"], depart_s, rta_s, lane["ship"],
+                                   default_bathymetry=True)
+            plan = planning.plan(voyage, PlanOptions(budget_s=budget_s), None)
         except PlannerError as exc:
             row.update(error=str(exc), plan_s=round(time.perf_counter() - t, 2))
             rows.append(row)

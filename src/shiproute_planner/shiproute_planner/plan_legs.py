@@ -1,0 +1,205 @@
+"""A prepared voyage sailed leg by leg: canals and straits on their fixed passages, every
+other leg optimised by the chosen method within its share of the budget, each leg starting
+when the one before it ends (after the port call's window and berth time)."""
+
+from __future__ import annotations
+
+import itertools
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from datetime import UTC, datetime
+from typing import Any
+
+import numpy as np
+from shiproute_core.geodesy import inverse
+
+from .ensemble_report import MemberLeg
+from .errors import PlanCancelledError
+from .ga.pool import SeedPool
+from .method_context import MethodContext, MethodFn, compute_baseline
+from .methods import get_method
+from .plan_prepare import PreparedVoyage
+from .plan_seeds import leg_seeds, offer_to_pool
+from .plan_setup import cancel_fn
+from .request import PlanOptions, VoyageRequest
+from .route.approach import sail_approach
+from .route.canals import sail_canal
+from .route.voyage_legs import leg_setup
+from .straits import sail_strait
+from .voyage.port_calls import PortCall
+from .voyage.schedule import plan_schedule
+from .voyage.stage_length import OCEAN_STAGE_H, scaled_ga_config
+
+
+def departure_after(call: PortCall | None, arrival_s: float) -> float:
+    """Departure from a port reached at `arrival_s`: berth after the window opens."""
+    if call is None:
+        return arrival_s
+    start = max(arrival_s, call.earliest_s) if call.earliest_s is not None else arrival_s
+    return start + call.berth_s
+
+
+@dataclass
+class LegRun:
+    """The legs planned so far (grows as the voyage is sailed)."""
+
+    depart_s: float  # when the next leg starts
+    search_rtas: list[float]
+    warnings: list[str]
+    results: list[Any] = field(default_factory=list)  # one-row RouteEvaluation per leg
+    baselines: list[tuple[str, float, Any]] = field(default_factory=list)
+    problems: list[Any] = field(default_factory=list)
+    sources: list[str] = field(default_factory=list)
+    approaches: list[tuple[Any, Any]] = field(default_factory=list)
+    arrivals: list[float] = field(default_factory=list)
+    member_legs: list[MemberLeg] = field(default_factory=list)  # optimised legs (ensembles)
+    generations: int = 0
+    evaluations: int = 0
+
+    def sea_rpm(self) -> float | None:
+        """RPM at the end of the last leg (a fixed passage goes on at it)."""
+        return float(self.results[-1].legs["rpm"][0, -1]) if self.results else None
+
+    def add(self, evaluation: Any, source: str, problem: Any, approaches: tuple[Any, Any],
+            baseline: tuple[str, float, Any] | None) -> None:
+        """Record one leg's route (and its baseline, when one is kept)."""
+        self.results.append(evaluation)
+        self.sources.append(source)
+        self.problems.append(problem)
+        self.approaches.append(approaches)
+        if baseline is not None:
+            self.baselines.append(baseline)
+
+    def arrive(self, arrival_s: float, call: PortCall | None) -> None:
+        """The leg ends at `arrival_s`; the next one leaves after the port call."""
+        self.arrivals.append(arrival_s)
+        self.depart_s = departure_after(call, arrival_s)
+
+
+@dataclass(frozen=True)
+class Search:
+    """The voyage-wide search state every optimised leg shares."""
+
+    method: MethodFn
+    rng: np.random.Generator
+    pool: SeedPool | None
+    month: int
+    cancelled: Callable[[], bool]
+    distances_m: np.ndarray  # great circle per leg
+    t0: float  # perf_counter at the start of the plan
+
+
+def search_of(prep: PreparedVoyage, options: PlanOptions, t0: float) -> Search:
+    """The method, random generator, seed pool and leg distances of a plan."""
+    seed = options.seed
+    rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
+    pool = SeedPool(options.seed_pool_dir) if options.seed_pool_dir is not None else None
+    month = datetime.fromtimestamp(prep.depart_s, UTC).month
+    dists = np.array([float(inverse(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)[1])
+                      for a, b in itertools.pairwise(prep.ports)])
+    return Search(get_method(options.method), rng, pool, month, cancel_fn(options.cancel),
+                  dists, t0)
+
+
+def sail_canal_leg(prep: PreparedVoyage, run: LegRun, k: int, options: PlanOptions) -> None:
+    """A canal: sailed along its line at its transit speed."""
+    canal, rev = prep.canal_legs[k]
+    lead_in, ev, lead_out, rpm_c, problem = sail_canal(
+        prep.env, canal, rev, run.depart_s, prep.limits,
+        (options.stage_hours or OCEAN_STAGE_H) * 3600.0, run.sea_rpm())
+    run.add(ev, "canal", problem, (lead_in, lead_out),
+            ("canal", rpm_c, ev) if options.with_baseline else None)
+    run.arrive(float((lead_out or ev).eta_s[0]), prep.call_at.get(k + 1))
+
+
+def sail_strait_leg(prep: PreparedVoyage, run: LegRun, k: int, options: PlanOptions) -> None:
+    """A strait: the computed passage between its gates, at the sea RPM."""
+    ev, rpm_s, problem, said = sail_strait(
+        prep.env, prep.strait_legs[k], run.depart_s, prep.limits,
+        (options.stage_hours or OCEAN_STAGE_H) * 3600.0, run.sea_rpm())
+    run.warnings += said
+    run.add(ev, "strait", problem, (None, None),
+            ("strait", rpm_s, ev) if options.with_baseline else None)
+    run.arrive(float(ev.eta_s[0]), prep.call_at.get(k + 1))
+
+
+def leg_target_s(prep: PreparedVoyage, run: LegRun, k: int) -> float:
+    """What leg `k` aims at; between port calls the legs left are re-scheduled from where
+    and when this one starts (closed loop)."""
+    if prep.schedule is not None and 0 < k < len(prep.ports) - 2 and not prep.rta_warning:
+        run.search_rtas[k] = plan_schedule(prep.schedule_legs[k:], run.depart_s, prep.rta_s,
+                                           prep.fuel_rate).arrival_s[0]
+    return max(run.search_rtas[k], run.depart_s + 60.0)
+
+
+def leg_budget(options: PlanOptions, search: Search, run: LegRun, k: int) -> tuple[float, int]:
+    """(wall time [s], route evaluations) of leg `k`: its share by distance of what is left;
+    the search keeps at least half its share even when a cold process spent the budget on
+    loading (sea-lane graph, coastline polygons, compiled kernels)."""
+    used = time.perf_counter() - search.t0
+    share = search.distances_m[k] / search.distances_m[k:].sum()
+    budget = options.budget_s
+    wall_s = max((budget - used) * share, 0.5 * budget * share, 0.0)
+    total = options.max_evaluations
+    evals = max(round((total - run.evaluations) * share), 1) if total else 0
+    return wall_s, evals
+
+
+def plan_leg(prep: PreparedVoyage, run: LegRun, k: int, request: VoyageRequest,
+             options: PlanOptions, search: Search) -> None:
+    """An open-sea leg a -> b: approaches, then the method between their sea ends."""
+    a, b = prep.ports[k], prep.ports[k + 1]
+    under_way = k == 0 and options.position is not None
+    leg = leg_setup(a, b, prep.env, prep.limits, prep.land, run.depart_s,
+                    leg_target_s(prep, run, k), approach_nm=request.approach_nm,
+                    approach_rpm=request.approach_rpm, coastal_passage=request.coastal_passage,
+                    stage_hours=options.stage_hours, objective=request.objective,
+                    terms=prep.terms, under_way=under_way,
+                    previous_plan=options.previous_plan if under_way else None,
+                    position=options.position if under_way else None, given=prep.given)
+    problem = leg.problem
+    run.warnings += [n for n in leg.notes if n not in run.warnings]
+    seeds, gene_seeds = leg_seeds(problem, search.pool, a, b, search.month,
+                                  options.previous_plan if k == 0 else None, options.position)
+    wall_s, evals = leg_budget(options, search, run, k)
+    need = options.with_baseline or (options.method == "seed_ga" and not seeds)
+    base = compute_baseline(problem, prep.env, prep.land) if need else None
+    ctx = MethodContext(problem, prep.env, prep.land, search.rng, wall_s, seeds,
+                        options.progress, search.cancelled, k, time.perf_counter(),
+                        scaled_ga_config(options.ga_config, problem.n_stages),
+                        stall_generations=options.stall_generations, baseline=base,
+                        max_generations=options.max_generations, gene_seeds=gene_seeds,
+                        max_evaluations=evals)
+    res = search.method(ctx)
+    if res.evaluation is None:
+        raise PlanCancelledError("planning was cancelled before a route was found")
+    run.member_legs.append(MemberLeg(problem, res.genes, res.evaluation))
+    run.generations += res.generations
+    run.evaluations += res.evaluations
+    if search.pool is not None:
+        offer_to_pool(search.pool, problem, a, b, search.month, res.evaluation,
+                      res.seed_source, res.genes)
+    end_s = float(res.evaluation.eta_s[0])
+    post = (sail_approach(prep.env, leg.ap_arr, leg.rpm_ap, end_s, prep.limits)
+            if leg.ap_arr else None)
+    kept = (base.name, base.rpm, base.evaluation) if options.with_baseline and base else None
+    run.add(res.evaluation, res.seed_source, problem, (leg.pre, post), kept)
+    run.arrive(float(post.eta_s[0]) if post is not None else end_s, prep.call_at.get(k + 1))
+
+
+def sail_legs(request: VoyageRequest, options: PlanOptions, prep: PreparedVoyage,
+              t0: float) -> LegRun:
+    """Every leg of the prepared voyage, in order."""
+    search = search_of(prep, options, t0)
+    run = LegRun(prep.depart_s, list(prep.search_rtas), list(prep.warnings))
+    for k in range(len(prep.ports) - 1):
+        if k in prep.canal_legs:
+            sail_canal_leg(prep, run, k, options)
+        elif k in prep.strait_legs:
+            sail_strait_leg(prep, run, k, options)
+        else:
+            plan_leg(prep, run, k, request, options, search)
+    prep.land.fine_coast.save()  # coastal cells this plan resolved: later processes use them
+    return run
+
