@@ -31,6 +31,9 @@ BUSAN = (35.08, 129.112)
 WARMUP_S = 30.0
 QUIET_S = 8.0  # no load for this long before start and end are measured
 BAD_EVERY_S = 30.0
+#: the first plan includes the planner's start-up (compiled kernels, land and depth data): on a
+#: machine shared by several sessions it took over 120 s
+FIRST_PLAN_S = 300.0
 
 
 def _bad_cycle(types: dict, k: int) -> tuple:
@@ -96,10 +99,10 @@ def run(minutes: float, period_s: float, budget_s: float) -> dict:
     next_load = next_bad = next_state = 0.0
     t_start = time.monotonic()
     try:
-        deadline = time.monotonic() + 120.0
+        deadline = time.monotonic() + FIRST_PLAN_S
         while not plans:  # the first plan on the initial cycle
             if time.monotonic() > deadline:
-                raise TimeoutError("no first plan within 120 s")
+                raise TimeoutError(f"no first plan within {FIRST_PLAN_S:.0f} s")
             if time.monotonic() >= next_state:
                 state_pub.publish(_state(ShipState))
                 next_state = time.monotonic() + 0.1
