@@ -16,10 +16,11 @@ from __future__ import annotations
 
 import argparse
 import array
-import json
 import sys
 import time
 from typing import Any
+
+from shiproute_core.bench_report import print_figures
 
 from shiproute_bringup.bench_nodes import BenchPeer, peak_rss_mb, rss_mb, start_nodes
 from shiproute_bringup.rosproc import random_domain_id
@@ -194,10 +195,6 @@ def main(argv: list[str] | None = None) -> int:
     if not (args.minutes > 0 and args.period > 0 and args.budget > 0):
         p.error("--minutes, --period and --budget must be positive")
     result = run(args.minutes, args.period, args.budget)
-    if args.json:
-        print(json.dumps(result))
-    else:
-        for key, value in result.items():
-            print(f"{key:>28}: {value}")
+    print_figures(result, args.json)
     return 0
 

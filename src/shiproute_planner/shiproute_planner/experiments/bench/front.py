@@ -6,11 +6,11 @@ and compiled kernels are warmed before timing, as in a running planner."""
 from __future__ import annotations
 
 import argparse
-import json
 import time
 from typing import Any
 
 import numpy as np
+from shiproute_core.bench_report import print_figures
 
 from ...front import plan_front
 from ...geo.landmask import default_land_mask
@@ -59,9 +59,5 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--seed", type=int, default=0)
     args = ap.parse_args(argv)
     result = front_bench(args.points, args.budget, args.seed)
-    if args.json:
-        print(json.dumps(result))
-    else:
-        for k, v in result.items():
-            print(f"{k:24s} {v}")
+    print_figures(result, args.json)
     return 0
