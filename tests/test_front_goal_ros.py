@@ -12,7 +12,7 @@ import pytest
 from ros_nodes import weather_and_planner
 from test_bad_input_ros import BUDGET_S, RTA, Peer
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src/shiproute_planner/test"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src/shiproute_planner/test/ship"))
 
 pytestmark = [pytest.mark.ros]
 
