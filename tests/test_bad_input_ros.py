@@ -16,7 +16,7 @@ import time
 from typing import Any
 
 import pytest
-import rosproc
+from ros_nodes import weather_and_planner
 
 pytestmark = [pytest.mark.ros]
 
@@ -208,18 +208,8 @@ PACIFIC = (10.0, 5.0, 11, 115.0, 5.0, 27)  # 10..60 N, 115..245 E every 5 deg
 
 @pytest.fixture(scope="module")
 def nodes(tmp_path_factory: pytest.TempPathFactory):
-    from shiproute_weather.scenarios.catalogue import scenario_path
-
-    work = tmp_path_factory.mktemp("bad_input")
-    forecast = work / "calm_june.nc"
-    forecast.symlink_to(scenario_path("calm_june"))
-    dom = rosproc.random_domain_id()
-    with rosproc.ros_context(dom) as ctx, rosproc.RosProcess.script(
-            "shiproute_weather_node", "--ros-args", "-p", f"forecast_files:=['{forecast}']",
-            domain_id=dom, name="weather") as weather, rosproc.RosProcess.script(
-            "shiproute_planner_node", "--ros-args", "-p", "origin:=Busan",
-            "-p", "destination:=Long Beach", "-p", f"rta:={RTA}", "-p", f"budget_s:={BUDGET_S}",
-            "-p", "write_png:=false", domain_id=dom, name="planner") as planner:
+    with weather_and_planner(tmp_path_factory.mktemp("bad_input"), RTA, BUDGET_S) as (
+            ctx, weather, planner, forecast):
         peer = Peer(ctx)
         try:
             peer.spin_until(lambda: peer.plans, 120, "first plan")

@@ -9,7 +9,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-import rosproc
+from ros_nodes import weather_and_planner
 from test_bad_input_ros import BUDGET_S, RTA, Peer
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "src/shiproute_planner/test/ship"))
@@ -19,18 +19,8 @@ pytestmark = [pytest.mark.ros]
 
 @pytest.fixture(scope="module")
 def peer(tmp_path_factory: pytest.TempPathFactory):
-    from shiproute_weather.scenarios.catalogue import scenario_path
-
     work = tmp_path_factory.mktemp("front_goal")
-    forecast = work / "calm_june.nc"
-    forecast.symlink_to(scenario_path("calm_june"))
-    dom = rosproc.random_domain_id()
-    with rosproc.ros_context(dom) as ctx, rosproc.RosProcess.script(
-            "shiproute_weather_node", "--ros-args", "-p", f"forecast_files:=['{forecast}']",
-            domain_id=dom, name="weather"), rosproc.RosProcess.script(
-            "shiproute_planner_node", "--ros-args", "-p", "origin:=Busan",
-            "-p", "destination:=Long Beach", "-p", f"rta:={RTA}", "-p", f"budget_s:={BUDGET_S}",
-            "-p", "write_png:=false", domain_id=dom, name="planner") as planner:
+    with weather_and_planner(work, RTA, BUDGET_S) as (ctx, _weather, planner, _forecast):
         p = Peer(ctx)
         try:
             p.spin_until(lambda: p.plans, 180, "first plan")

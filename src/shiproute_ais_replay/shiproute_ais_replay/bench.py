@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import json
 import os
 import random
 import subprocess
@@ -16,6 +15,8 @@ import tempfile
 import time
 from pathlib import Path
 from typing import Any
+
+from shiproute_core.bench_report import print_figures
 
 from shiproute_core import topics
 
@@ -249,11 +250,7 @@ def main(argv: list[str] | None = None) -> int:
     }
     result["meets_targets"] = (result["msgs_per_s"] >= TARGET_MSGS_PER_S
                                and result["peak_rss_mb"] <= TARGET_RSS_MB)
-    if args.json:
-        print(json.dumps(result))
-    else:
-        for k, v in result.items():
-            print(f"{k:>18}: {v}")
+    print_figures(result, args.json)
     return 0
 
 

@@ -24,6 +24,8 @@ import threading
 import time
 from typing import Any
 
+from shiproute_core.bench_report import print_figures
+
 from shiproute_core import topics
 
 TARGETS = {"page_load_s": 2.0, "plan_to_page_s": 1.0, "display_rss_mb": 150.0}
@@ -325,10 +327,6 @@ def main(argv: list[str] | None = None) -> int:
     if args.plans < 1 or args.clients < 0:
         p.error("--plans must be >= 1 and --clients >= 0")
     res = run(args.plans, args.clients, args.screenshot)
-    if args.json:
-        print(json.dumps(res))
-    else:
-        for k, v in res.items():
-            print(f"{k:22} {v}")
+    print_figures(res, args.json)
     sys.stdout.flush()
     return 0

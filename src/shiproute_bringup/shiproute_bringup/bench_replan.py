@@ -14,12 +14,13 @@ per-cycle reception and planning times) on stderr.
 from __future__ import annotations
 
 import argparse
-import json
 import shutil
 import statistics
 import tempfile
 import time
 from pathlib import Path
+
+from shiproute_core.bench_report import print_figures
 
 from shiproute_bringup.bench_nodes import BenchPeer, peak_rss_mb, rss_mb, start_nodes
 from shiproute_bringup.rosproc import RosProcess, random_domain_id
@@ -138,9 +139,5 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--log", action="store_true", help="print the nodes' logs on stderr")
     args = p.parse_args(argv)
     result = run(args.budget, args.repeats, args.log)
-    if args.json:
-        print(json.dumps(result))
-    else:
-        for key, value in result.items():
-            print(f"{key:>20}: {value}")
+    print_figures(result, args.json)
     return 0

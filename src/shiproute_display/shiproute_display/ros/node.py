@@ -10,16 +10,16 @@ from __future__ import annotations
 import math
 import sys
 import threading
-import time
 from typing import Any
 
 import rclpy
 from rcl_interfaces.msg import ParameterDescriptor, SetParametersResult
 from rclpy.clock import Clock, ClockType
-from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
+from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from sensor_msgs.msg import NavSatFix
+from shiproute_core.spin import spin_until_shutdown
 from std_msgs.msg import Float64
 
 from foxglove_msgs.msg import GeoJSON
@@ -296,14 +296,7 @@ def main(args: list[str] | None = None) -> int:
         forget_profile(profile)
     executor = SingleThreadedExecutor()
     executor.add_node(node)
-    try:
-        executor.spin()
-    except (KeyboardInterrupt, ExternalShutdownException):
-        pass
-    finally:
-        node.destroy_node()
-        rclpy.try_shutdown()
-        time.sleep(0)
+    spin_until_shutdown(executor, (node,))
     return 0
 
 

@@ -22,6 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import BathymetryError
+from . import depth_cache
 
 # Debian package ferret-datasets: ETOPO5 (NOAA NGDC 1988, 5 arc-minute, public domain)
 ETOPO5_PATH = Path("/usr/share/ferret-vis/data/etopo5.cdf")
@@ -159,12 +160,34 @@ def _regular_step(values: np.ndarray, path: Path, kind: str) -> float:
 
 @functools.lru_cache(maxsize=8)
 def load_depth_grid(path_text: str) -> DepthGrid:
-    """Read one bathymetry NetCDF file into a `DepthGrid` (cached per path)."""
-    import xarray as xr
+    """Read one bathymetry NetCDF file into a `DepthGrid` (cached per path); a coarse grid
+    prepared before is memory-mapped from the data directory instead (see `geo.depth_cache`)."""
+    from .datadir import data_dir
 
     path = Path(path_text)
     if not path.is_file():
         raise BathymetryError(f"bathymetry file {path} does not exist")
+    prepared = depth_cache.open_prepared(data_dir(), prepared_key(path))
+    if prepared is not None:
+        depth, meta = prepared
+        return DepthGrid(str(meta["name"]), depth, float(meta["lat0_deg"]),
+                         float(meta["dlat_deg"]), float(meta["lon0_deg"]),
+                         float(meta["dlon_deg"]), bool(meta["periodic"]))
+    grid = _read_grid(path)
+    _prepare(grid)
+    if not np.isfinite(grid.depth_m).any():
+        raise BathymetryError(f"bathymetry file {path}: it holds no sea depths")
+    if grid.is_coarse:  # seconds of filtering: kept, and mapped from the file from now on
+        depth_cache.write_prepared(data_dir(), prepared_key(path), grid.depth_m, {
+            "name": grid.name, "lat0_deg": grid.lat0_deg, "dlat_deg": grid.dlat_deg,
+            "lon0_deg": grid.lon0_deg, "dlon_deg": grid.dlon_deg, "periodic": grid.periodic})
+    return grid
+
+
+def _read_grid(path: Path) -> DepthGrid:
+    """The depth variable of a NetCDF file as a `DepthGrid` (not yet prepared)."""
+    import xarray as xr
+
     try:
         ds = xr.open_dataset(path, decode_times=False)
     except (OSError, ValueError) as exc:
@@ -193,34 +216,23 @@ def load_depth_grid(path_text: str) -> DepthGrid:
         n = round(360.0 / dlon)
         lon, depth = lon[:n], depth[:, :n]
     lon0 = float((lon[0] + 180.0) % 360.0 - 180.0)
-    grid = DepthGrid(path.name, np.ascontiguousarray(depth, dtype=np.float32),
+    return DepthGrid(path.name, np.ascontiguousarray(depth, dtype=np.float32),
                      float(lat[0]), dlat, lon0, dlon, bool(periodic))
-    _prepare(grid, path)
-    if not np.isfinite(grid.depth_m).any():
-        raise BathymetryError(f"bathymetry file {path}: {var.name!r} holds no sea depths")
-    return grid
 
 
-PREPARED_VERSION = 2
+#: version of the preparation below; a change makes every prepared grid be prepared again
+PREPARED_VERSION = 3
 
 
-def _prepare(grid: DepthGrid, path: Path) -> None:
-    """Dry and coastal cells as the grid's resolution allows (see the module docstring), in
-    place; the result of a coarse grid (seconds of filtering for ETOPO5) is cached in the
-    data directory per file (name, size, modification time)."""
-    from .datadir import data_dir
-
+def prepared_key(path: Path) -> str:
+    """Cache key of a grid file's prepared depths: name, size, modification time, version."""
     st = path.stat()
-    key = f"{path.name}_{st.st_size}_{int(st.st_mtime)}_v{PREPARED_VERSION}"
-    cache = data_dir() / f"depth_{key}.npy"
-    if grid.is_coarse and cache.is_file():
-        try:
-            ready = np.load(cache)
-            if ready.shape == grid.depth_m.shape:
-                grid.depth_m[:] = ready
-                return
-        except (OSError, ValueError):
-            pass  # rebuilt below
+    return f"{path.name}_{st.st_size}_{int(st.st_mtime)}_v{PREPARED_VERSION}"
+
+
+def _prepare(grid: DepthGrid) -> None:
+    """Dry and coastal cells as the grid's resolution allows (see the module docstring), in
+    place."""
     if grid.is_coarse:  # a compilation's shelf fill values are "shallow, not known"
         from .fill_values import shelf_fill_values
 
@@ -242,15 +254,6 @@ def _prepare(grid: DepthGrid, path: Path) -> None:
         grid.depth_m[:] = np.where(near | ~np.isfinite(median), np.nan, median)
     else:
         grid.depth_m[dry] = 0.0
-    if grid.is_coarse:
-        import os
-
-        tmp = cache.with_suffix(f".{os.getpid()}.tmp.npy")
-        try:
-            np.save(tmp, grid.depth_m)
-            os.replace(tmp, cache)
-        except OSError:
-            tmp.unlink(missing_ok=True)
 
 
 def default_depth_files() -> list[Path]:

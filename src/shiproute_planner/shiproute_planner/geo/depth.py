@@ -10,6 +10,7 @@ import numpy as np
 from scipy import ndimage
 
 from . import _depth_kernels as dk
+from . import depth_cache
 from .bathymetry import DepthGrid, default_depth_files, load_depth_grid
 
 BLOCK_DEG = 0.25  # pre-check raster: minimum known depth per 0.25-deg block
@@ -24,7 +25,10 @@ class Bathymetry:
         self.grids = tuple(sorted(grids, key=lambda g: g.cell_deg))
         sizes = [g.depth_m.size for g in self.grids]
         offsets = np.concatenate([[0], np.cumsum(sizes)[:-1]])
-        self._data = np.concatenate([g.depth_m.ravel() for g in self.grids]).astype(np.float32)
+        # one grid (the default): its own array, memory-mapped when prepared before (no copy)
+        self._data = (self.grids[0].depth_m.reshape(-1) if len(self.grids) == 1 else
+                      np.concatenate([g.depth_m.ravel() for g in self.grids]
+                                     ).astype(np.float32))
         self._table = np.array([[g.lat0_deg, g.dlat_deg, g.lon0_deg, g.dlon_deg,
                                  g.depth_m.shape[0], g.depth_m.shape[1], float(g.periodic),
                                  float(off)] for g, off in zip(self.grids, offsets, strict=True)],
@@ -83,6 +87,8 @@ def _coarse_min(grids: Sequence[DepthGrid], block_deg: float) -> np.ndarray:
         d = np.where(np.isnan(g.depth_m), np.inf, g.depth_m)
         small = np.minimum.reduceat(np.minimum.reduceat(d, r0, axis=0), c0, axis=1)
         np.minimum.at(coarse, (bi[r0][:, None], bj[c0][None, :]), small.astype(np.float32))
+        del d
+        depth_cache.drop_resident_pages(g.depth_m)  # the scan read all of a mapped grid
     return ndimage.minimum_filter(coarse, size=3, mode=("nearest", "wrap"))
 
 

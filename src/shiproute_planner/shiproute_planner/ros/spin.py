@@ -3,22 +3,11 @@ for its forecast intake node, so slices are packed in arrival order on one threa
 
 from __future__ import annotations
 
-import contextlib
 import threading
 from typing import Any
 
-import rclpy
-from rclpy.executors import (
-    ExternalShutdownException,
-    MultiThreadedExecutor,
-    SingleThreadedExecutor,
-)
-
-
-def _spin_quietly(executor: SingleThreadedExecutor) -> None:
-    """Spin until the context shuts down (Ctrl-C and SIGTERM end the main executor)."""
-    with contextlib.suppress(KeyboardInterrupt, ExternalShutdownException):
-        executor.spin()
+from rclpy.executors import MultiThreadedExecutor, SingleThreadedExecutor
+from shiproute_core.spin import spin_quietly, spin_until_shutdown
 
 
 def spin_with_intake(node: Any, intake_node: Any, num_threads: int = 4) -> None:
@@ -28,17 +17,6 @@ def spin_with_intake(node: Any, intake_node: Any, num_threads: int = 4) -> None:
     executor.add_node(node)
     intake = SingleThreadedExecutor()
     intake.add_node(intake_node)
-    threading.Thread(target=_spin_quietly, args=(intake,), name="forecast intake",
+    threading.Thread(target=spin_quietly, args=(intake,), name="forecast intake",
                      daemon=True).start()
-    try:
-        executor.spin()
-    except (KeyboardInterrupt, ExternalShutdownException):
-        pass
-    finally:
-        node.shutdown()
-        intake.shutdown()
-        executor.shutdown()
-        intake_node.destroy_node()
-        node.destroy_node()
-        if rclpy.ok():
-            rclpy.try_shutdown()
+    spin_until_shutdown(executor, (intake_node, node), stop=(node.shutdown, intake.shutdown))

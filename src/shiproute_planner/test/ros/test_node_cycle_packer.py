@@ -5,11 +5,9 @@ rejected, the slice-buffer DDS profile."""
 from __future__ import annotations
 
 import functools
-import os
 
 import numpy as np
 import pytest
-from shiproute_core.topics import FORECAST_SLICES
 from shiproute_planner.errors import ForecastCycleError
 from shiproute_planner.ros.cycle_assembler import CycleAssembler
 from shiproute_planner.ros.cycle_packer import KEEP_BEHIND_S, CyclePacker, SliceFields, hs_field_at
@@ -152,25 +150,3 @@ def test_hs_field_for_the_plot_is_the_forecast_at_that_time():
     # grid nodes sample to the node value (NaN where the wave model has land), half-rounded
     assert np.array_equal(np.isnan(got), np.isnan(ref))
     assert np.nanmax(np.abs(got - ref)) <= 2.0**-11 * np.nanmax(ref)
-
-
-def test_dds_profile_frees_slice_buffers_unless_fast_dds_is_configured(monkeypatch, tmp_path):
-    from shiproute_planner.ros.dds_profile import forget_profile, use_dynamic_slice_buffers
-
-    for name in ("FASTDDS_DEFAULT_PROFILES_FILE", "FASTRTPS_DEFAULT_PROFILES_FILE",
-                 "RMW_FASTRTPS_USE_QOS_FROM_XML"):
-        monkeypatch.delenv(name, raising=False)
-    path = use_dynamic_slice_buffers(FORECAST_SLICES)
-    assert path is not None and os.environ["FASTDDS_DEFAULT_PROFILES_FILE"] == str(path)
-    text = path.read_text()
-    import xml.etree.ElementTree as ET
-
-    ET.fromstring(text.encode())  # well-formed (Fast DDS rejects the whole file otherwise)
-    assert f'<data_reader profile_name="{FORECAST_SLICES}">' in text
-    assert "<historyMemoryPolicy>DYNAMIC</historyMemoryPolicy>" in text
-    forget_profile(path)
-    assert not path.exists() and "FASTDDS_DEFAULT_PROFILES_FILE" not in os.environ
-    own = tmp_path / "own.xml"
-    monkeypatch.setenv("FASTDDS_DEFAULT_PROFILES_FILE", str(own))
-    assert use_dynamic_slice_buffers("/x") is None
-    assert os.environ["FASTDDS_DEFAULT_PROFILES_FILE"] == str(own)

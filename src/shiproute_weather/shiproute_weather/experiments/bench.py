@@ -13,6 +13,7 @@ import subprocess
 import sys
 import time
 
+from shiproute_core.bench_report import print_figures
 from shiproute_core.topics import FORECAST_CYCLE, FORECAST_SLICES
 
 _SUBSCRIBER = r"""
@@ -95,11 +96,7 @@ def main(argv: list[str] | None = None) -> int:
         if ens.returncode != 0:
             raise RuntimeError(f"ensemble budget benchmark failed: {ens.stderr[-2000:]}")
         result.update(json.loads(ens.stdout.strip().splitlines()[-1]))
-    if args.json:
-        print(json.dumps(result))
-    else:
-        for k, v in result.items():
-            print(f"{k}: {v}")
+    print_figures(result, args.json)
     return 0
 
 

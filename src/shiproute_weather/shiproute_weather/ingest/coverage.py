@@ -14,13 +14,16 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from datetime import UTC, datetime
+from typing import TYPE_CHECKING
 
 import numpy as np
-import xarray as xr
 from shiproute_core.units import S_PER_DAY, S_PER_HOUR
 
 from ..errors import ForecastCoverageError
 from ..sampling.sampler import ForecastSampler
+
+if TYPE_CHECKING:  # xarray is needed only with a climatology (~40 MB of imports otherwise)
+    import xarray as xr
 
 #: default persistence beyond the forecast's ends [h]: a day, after which a held field says
 #: little more than climatology

@@ -21,10 +21,11 @@ import rclpy
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from rcl_interfaces.msg import ParameterDescriptor, SetParametersResult
 from rclpy.callback_groups import MutuallyExclusiveCallbackGroup, ReentrantCallbackGroup
-from rclpy.executors import ExternalShutdownException, MultiThreadedExecutor
+from rclpy.executors import MultiThreadedExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+from shiproute_core.spin import spin_until_shutdown
 from shiproute_core.topics import DIAGNOSTICS, FORECAST_CYCLE, FORECAST_LOAD, FORECAST_SLICES
 
 from shiproute_msgs.msg import ForecastCycle, ForecastSlice
@@ -333,15 +334,7 @@ def main(argv: list[str] | None = None) -> int:
     node = WeatherNode()
     executor = MultiThreadedExecutor(num_threads=3)
     executor.add_node(node)
-    try:
-        executor.spin()
-    except (KeyboardInterrupt, ExternalShutdownException):
-        pass
-    finally:
-        node.stop()
-        executor.shutdown()
-        node.destroy_node()
-        rclpy.try_shutdown()
+    spin_until_shutdown(executor, (node,), stop=(node.stop,))
     return 0
 
 

@@ -14,13 +14,13 @@ process's peak RSS and the 16-bit packed wire size of the whole cycle
 from __future__ import annotations
 
 import argparse
-import json
 import resource
 import time
 from datetime import timedelta
 from pathlib import Path
 
 import numpy as np
+from shiproute_core.bench_report import print_figures
 
 DEPART = "2026-03-03T18:00Z"
 SCENARIO = "storm_march_ensemble"
@@ -103,9 +103,5 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--seed", type=int, default=0)
     args = ap.parse_args(argv)
     result = run(args.budget, args.risk, args.p_hs_max, args.p_late_max, args.seed)
-    if args.json:
-        print(json.dumps(result))
-    else:
-        for k, v in result.items():
-            print(f"{k:28s} {v}")
+    print_figures(result, args.json)
     return 0

@@ -12,13 +12,14 @@ extrapolation needs.
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import statistics
 import sys
 import tempfile
 import time
 from datetime import UTC, datetime, timedelta
+
+from shiproute_core.bench_report import print_figures
 
 # (from, to, RTA days): North Pacific passages inside the bundled scenarios' grid
 PASSAGES = (
@@ -155,11 +156,7 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--forecast", default="storm_march")
     args = ap.parse_args(argv)
     res = run(args.voyages, args.budget, args.forecast)
-    if args.json:
-        print(json.dumps(res))
-    else:
-        for k, v in res.items():
-            print(f"{k:32s} {v}")
+    print_figures(res, args.json)
     return 0 if res["identical_plans"] and res["failed"] == 0 else 1
 
 

@@ -7,11 +7,11 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
-import json
 import time
 from typing import Any
 
 import numpy as np
+from shiproute_core.bench_report import print_figures
 
 from ...front import plan_front
 from ...geo.landmask import default_land_mask
@@ -61,9 +61,5 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--seed", type=int, default=0)
     args = ap.parse_args(argv)
     result = front_bench(args.points, args.budget, args.seed)
-    if args.json:
-        print(json.dumps(result))
-    else:
-        for k, v in result.items():
-            print(f"{k:24s} {v}")
+    print_figures(result, args.json)
     return 0

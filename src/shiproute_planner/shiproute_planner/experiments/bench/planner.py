@@ -11,12 +11,12 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
-import json
 import tempfile
 import time
 from datetime import timedelta
 
 import numpy as np
+from shiproute_core.bench_report import print_figures
 from shiproute_core.geodesy import direct, inverse
 
 from ...geo.landmask import default_land_mask
@@ -178,9 +178,5 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--seed", type=int, default=0)
     args = ap.parse_args(argv)
     result = run(args.budget, args.warm_budget, args.ref_factor, args.seed)
-    if args.json:
-        print(json.dumps(result))
-    else:
-        for k, v in result.items():
-            print(f"{k:24s} {v}")
+    print_figures(result, args.json)
     return 0

@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import time
 
 import numpy as np
+from shiproute_core.bench_report import print_figures
 from shiproute_core.units import M_S_PER_KNOT
 
 from ...ship import PhysicsModel, SeaState, fast_model, load_ship
@@ -121,9 +121,5 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--seed", type=int, default=1)
     args = ap.parse_args(argv)
     result = run(args.ship, args.legs, args.check_legs, args.seed)
-    if args.json:
-        print(json.dumps(result))
-    else:
-        for k, v in result.items():
-            print(f"{k}: {v}")
+    print_figures(result, args.json)
     return 0

@@ -10,8 +10,9 @@ over the same time.
 from __future__ import annotations
 
 import argparse
-import json
 import time
+
+from shiproute_core.bench_report import print_figures
 
 MULTIPORT = ("Shanghai", ("Ningbo", "Xiamen", "Yantian", "Singapore", "Felixstowe",
                           "Rotterdam"), "Gdansk", "2026-06-01T00:00Z", "28d")
@@ -78,9 +79,5 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--seed", type=int, default=0)
     args = ap.parse_args(argv)
     result = figures(args.seed)
-    if args.json:
-        print(json.dumps(result))
-    else:
-        for k, v in result.items():
-            print(f"{k:24s} {v}")
+    print_figures(result, args.json)
     return 0

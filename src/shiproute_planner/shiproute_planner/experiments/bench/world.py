@@ -22,6 +22,7 @@ from datetime import timedelta
 from importlib import resources
 
 import numpy as np
+from shiproute_core.bench_report import print_figures
 from shiproute_core.units import M_PER_NM
 
 from ... import planning
@@ -116,12 +117,8 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--lane", action="append", default=[], help="only these lanes")
     args = ap.parse_args(argv)
     result = run(args.budget, args.lane)
-    if args.json:
-        print(json.dumps(result))
-    else:
-        for k, v in result.items():
-            if k != "per_lane":
-                print(f"{k:22s} {v}")
+    print_figures(result, args.json, leave_out=("per_lane",))
+    if not args.json:
         for r in result["per_lane"]:
             print(json.dumps(r))
     return 0
