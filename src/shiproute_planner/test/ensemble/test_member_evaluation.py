@@ -9,7 +9,8 @@ from datetime import timedelta
 import numpy as np
 import pytest
 from shiproute_core.geodesy import inverse
-from shiproute_planner.planning import make_environment, plan_voyage, route_limits, to_posix_s
+from shiproute_planner.plan_setup import make_environment, route_limits, to_posix_s
+from shiproute_planner.planning import plan_voyage
 from shiproute_planner.route.encoding import gene_bounds, join_genes
 from shiproute_planner.route.fast_eval import fast_evaluator
 from shiproute_planner.route.generate import evaluate_genes
