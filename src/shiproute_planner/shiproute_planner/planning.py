@@ -17,7 +17,6 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-from shiproute_core.geodesy import inverse
 
 from shiproute_planner.method_context import Progress
 from shiproute_planner.methods import MethodContext, compute_baseline, get_method
@@ -51,6 +50,7 @@ from .plan_setup import (
     rta_warning_of,
     to_posix_s,
 )
+from .plan_timing import PlanClock
 from .plan_types import RoutePlan
 from .route.voyage_legs import leg_setup
 from .straits import route_straits, sail_strait
@@ -58,6 +58,7 @@ from .voyage.legs import voyage_schedule
 from .voyage.plan_calls import with_port_calls
 from .voyage.port_calls import PortCall
 from .voyage.schedule import plan_schedule
+from .voyage.spans import budget_share, span_plan
 from .voyage.stage_length import (
     OCEAN_STAGE_H,
     RTA_TOLERANCE_S,
@@ -145,10 +146,11 @@ def plan_voyage(
     `position` = (lat_deg, lon_deg, time POSIX s) of the ship for a re-plan under way: the
     voyage then starts there and `previous_plan` (shifted to it) seeds the GA. `cancel` is a
     callable returning True or an object with `is_set()` (threading.Event); a cancelled run
-    returns the best plan so far. `budget_s` is the wall time of the whole call (the search
-    keeps at least half of it, so a cold process may overrun by the loading time); with
+    returns the best plan so far. `budget_s` is the wall time of the whole call: each
+    optimised span's search gets what set-up left, shared by genes (`voyage.spans`), and a
+    plan over its budget says where the time went (`plan_timing`); with
     `max_generations` or `max_evaluations` (route evaluations of the whole voyage, shared
-    between legs by distance; 0 = none) and an ample (or infinite) `budget_s` a run is
+    between spans like the time; 0 = none) and an ample (or infinite) `budget_s` a run is
     reproducible for a given `seed`.
     The first and last `approach_nm` at each port follow the sea lane at `approach_rpm`
     (default: the calm-water RPM of the mean speed that meets the RTA), and with
@@ -174,12 +176,13 @@ def plan_voyage(
     `loading`: the loading condition (a condition of the ship file, or drafts 'T_F,T_A' in
     m; '' = the file's default). `objective` co2 / cost take the fuel type and prices from
     `economics`, else the ship file, else stated defaults (`objectives`).
-    `stage_hours` None derives each leg's stage from its window (`voyage.stage_length`).
+    `stage_hours` None derives each user's leg's stage from its window and sea lane
+    (`voyage.stage_length`), one length for all its spans between straits and canals.
     `port_calls` (or `via` with `via_rta` as latest arrivals) make a multi-port voyage whose
     leg times are scheduled together for the least fuel (`voyage.schedule`); a plan is on
     time when it arrives within `rta_tolerance_s` of each deadline.
     """
-    t0 = time.perf_counter()
+    clock = PlanClock()
     if stage_hours is not None:
         require_number("stage_hours", stage_hours)
     rta_tolerance_s = check_rta_tolerance_s(rta_tolerance_s)
@@ -210,6 +213,7 @@ def plan_voyage(
     if not rta_s > depart_s:
         raise InvalidVoyageError("the RTA must be after the departure time")
     calls = list(port_calls) or _calls_of(via, via_rta, depart_s)
+    user_ports = list(ports)  # the user's ports: stage length and budget follow their legs
     ports, canal_legs, calls_x, canal_notes = route_canals(ports, spec, calls)
     warnings += canal_notes
     strait_legs: dict = {}
@@ -232,13 +236,14 @@ def plan_voyage(
     # full speed (a lower bound), lateness being a violation the search minimises; a
     # schedule (ports, canals, straits) never asks a leg for more than the ship can do
     search_rtas = [*leg_rtas[:-1], earliest_s] if rta_warning else list(leg_rtas)
+    spans = span_plan(user_ports, ports, set(canal_legs) | set(strait_legs), search_rtas,
+                      depart_s, stage_hours)
     is_cancelled = cancel_fn(cancel)
     rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
     pool = SeedPool(seed_pool_dir) if seed_pool_dir is not None else None
     month = datetime.fromtimestamp(depart_s, UTC).month
     fn = get_method(method)
-    dists = np.array([float(inverse(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)[1])
-                      for a, b in itertools.pairwise(ports)])
+    clock.lap("set-up")
     results, baselines, problems, sources, approaches = [], [], [], [], []
     arrivals: list[float] = []
     gens = evals = 0
@@ -250,6 +255,7 @@ def plan_voyage(
             lead_in, ev, lead_out, rpm_c, canal_problem = sail_canal(
                 env, canal, rev, leg_depart, lim, (stage_hours or OCEAN_STAGE_H) * 3600.0,
                 sea_rpm)
+            clock.lap("passages")
             results.append(ev)
             sources.append("canal")
             problems.append(canal_problem)
@@ -264,6 +270,7 @@ def plan_voyage(
             ev, rpm_s, strait_problem, said = sail_strait(
                 env, strait_legs[k], leg_depart, lim, (stage_hours or OCEAN_STAGE_H) * 3600.0,
                 float(results[-1].legs["rpm"][0, -1]) if results else None)
+            clock.lap("passages")
             warnings += said
             results.append(ev)
             sources.append("strait")
@@ -282,27 +289,27 @@ def plan_voyage(
         leg_rta = max(search_rtas[k], leg_depart + 60.0)
         leg = leg_setup(a, b, env, lim, land, leg_depart, leg_rta, approach_nm=approach_nm,
                         approach_rpm=approach_rpm, coastal_passage=coastal_passage,
-                        stage_hours=stage_hours, objective=objective, terms=terms,
+                        stage_hours=spans.stage_hours[k], objective=objective, terms=terms,
                         under_way=under_way, previous_plan=previous_plan if under_way else None,
                         position=position if under_way else None, given=given)
         problem, pre, ap_arr, rpm_ap = leg.problem, leg.pre, leg.ap_arr, leg.rpm_ap
         warnings += [n for n in leg.notes if n not in warnings]
         seeds, gene_seeds = leg_seeds(problem, pool, a, b, month,
                                    previous_plan if k == 0 else None, position)
-        used = time.perf_counter() - t0
-        share = dists[k] / dists[k:].sum()
-        # the search keeps at least half its share even when a cold process spent the
-        # budget on loading (sea-lane graph, coastline polygons, compiled kernels)
-        leg_budget = max((budget_s - used) * share, 0.5 * budget_s * share, 0.0)
-        leg_evals = max(round((max_evaluations - evals) * share), 1) if max_evaluations else 0
+        clock.lap("passages")
         need = with_baseline or (method == "seed_ga" and not seeds)
         base = compute_baseline(problem, env, land) if need else None
+        clock.lap("baselines")
+        share = budget_share(spans, k, problem.n_var, search_rtas)
+        leg_budget = max(clock.left_s(budget_s) * share, 0.0)
+        leg_evals = max(round((max_evaluations - evals) * share), 1) if max_evaluations else 0
         ctx = MethodContext(problem, env, land, rng, leg_budget, seeds, progress, is_cancelled,
                             k, time.perf_counter(), scaled_ga_config(ga_config, problem.n_stages),
                             stall_generations=stall_generations,
                             baseline=base, max_generations=max_generations,
                             gene_seeds=gene_seeds, max_evaluations=leg_evals)
         res = fn(ctx)
+        clock.lap("search")
         if res.evaluation is None:
             raise PlanCancelledError("planning was cancelled before a route was found")
         results.append(res.evaluation)
@@ -321,12 +328,13 @@ def plan_voyage(
         approaches.append((pre, post))
         arrivals.append(leg_depart)
         leg_depart = _departure(call_at.get(k + 1), leg_depart)
+        clock.lap("passages")
     land.fine_coast.save()  # coastal cells this plan resolved: later processes start with them
     deadlines = [_deadline(call_at.get(k + 1), rta_s if k == len(results) - 1 else None)
                  + rta_tolerance_s for k in range(len(results))]
     plan = assemble_plan(ports, problems, results, baselines, sources, approaches, env, spec,
                      method, objective, depart_s, rta_s, leg_rtas, gens, evals,
-                     time.perf_counter() - t0, deadlines)
+                     clock.elapsed_s(), deadlines)
     if sched is not None:
         plan = with_port_calls(plan, sched_legs, sched, arrivals, ports, rta_tolerance_s)
     if model_notes:
@@ -341,8 +349,10 @@ def plan_voyage(
     block, said = forecast_statement(env.sampler, plan, persistence_h)
     goal = objective_block(terms, plan.total_fuel_t, plan.total_time_s / 3600.0,
                            plan.total_distance_nm)
-    return dataclasses.replace(plan, warnings=(*plan.warnings, *said, *terms.notes),
+    clock.lap("checks")
+    late = clock.overrun_warning(budget_s)
+    return dataclasses.replace(plan, warnings=(*plan.warnings, *said, *terms.notes,
+                                               *([late] if late else [])),
                                extra={**plan.extra, "forecast": block, "objective": goal,
+                                      "timing_s": clock.block(budget_s),
                                       **loading_block(spec)})
-
-
