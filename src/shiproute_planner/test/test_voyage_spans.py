@@ -34,10 +34,12 @@ def test_budget_follows_genes_and_starves_no_span() -> None:
     assert plan.genes_estimate(0, 36 * H) == 5
     assert plan.genes_estimate(1, 4 * H) == 0  # the strait passage is sailed, not searched
     assert plan.genes_estimate(2, 276 * H) == 45
-    first = budget_share(plan, 0, 5, arrivals)
-    # an even share of two spans is 1/2; genes alone would give 5/50: the floor is 1/4
-    assert first == pytest.approx(MIN_SHARE_OF_EVEN / 2)
+    assert budget_share(plan, 0, 5, arrivals) == pytest.approx(5 / 50)  # by genes
     assert budget_share(plan, 2, 45, arrivals) == 1.0  # the last span gets all that is left
+    # a 1-stage span (3 genes) before a 47-stage one (95 genes): genes would give it 3 %,
+    # it keeps a fifth of an even share of two spans (10 %)
+    assert budget_share(plan, 0, 3, [36 * H, 40 * H, 616 * H]) == pytest.approx(
+        MIN_SHARE_OF_EVEN / 2)
     # two comparable spans split by genes
     even = SpanPlan((0, 0), (12.0, 12.0), (True, True))
     assert budget_share(even, 0, 21, [120 * H, 360 * H]) == pytest.approx(21 / (21 + 39))

@@ -19,7 +19,7 @@ from typing import Any
 
 from .stage_length import default_stage_hours
 
-MIN_SHARE_OF_EVEN = 0.5  # no optimised span gets less than half an even share of the budget
+MIN_SHARE_OF_EVEN = 0.2  # no optimised span gets less than a fifth of an even share
 
 
 @dataclass(frozen=True)
@@ -84,8 +84,8 @@ def span_plan(user_ports: Sequence[Any], ports: Sequence[Any], fixed: set[int],
 def budget_share(plan: SpanPlan, k: int, genes_k: int, arrivals_s: Sequence[float]) -> float:
     """Share of the budget left that span `k` (with `genes_k` genes, now set up) gets: its
     genes over those of the optimised spans left (the later ones estimated from their
-    scheduled windows), and never less than half an even share (a short span still gets
-    its seeds evaluated and a few generations)."""
+    scheduled windows), and never less than a fifth of an even share (a short span still
+    gets its seeds evaluated and a few generations)."""
     later = [plan.genes_estimate(j, arrivals_s[j] - arrivals_s[j - 1])
              for j in range(k + 1, len(plan.optimised))]
     total = genes_k + sum(later)
