@@ -291,7 +291,8 @@ def plan_voyage(
                         approach_rpm=approach_rpm, coastal_passage=coastal_passage,
                         stage_hours=spans.stage_hours[k], objective=objective, terms=terms,
                         under_way=under_way, previous_plan=previous_plan if under_way else None,
-                        position=position if under_way else None, given=given)
+                        position=position if under_way else None, given=given,
+                        target_stages=spans.target_stages[k])
         problem, pre, ap_arr, rpm_ap = leg.problem, leg.pre, leg.ap_arr, leg.rpm_ap
         warnings += [n for n in leg.notes if n not in warnings]
         seeds, gene_seeds = leg_seeds(problem, pool, a, b, month,

@@ -29,7 +29,7 @@ def test_spans_belong_to_the_users_legs() -> None:
 def test_budget_follows_genes_and_starves_no_span() -> None:
     # Busan -> Tsugaru (36 h), the strait (fixed), Tsugaru -> Long Beach (276 h), 12 h stages:
     # 2 stages (5 genes) before the strait, 22 (45 genes) after it
-    plan = SpanPlan((0, 0, 0), (12.0, 12.0, 12.0), (True, False, True))
+    plan = SpanPlan((0, 0, 0), (12.0, 12.0, 12.0), (True, False, True), (4, 4, 10))
     arrivals = [36 * H, 40 * H, 316 * H]
     assert plan.genes_estimate(0, 36 * H) == 5
     assert plan.genes_estimate(1, 4 * H) == 0  # the strait passage is sailed, not searched
@@ -41,16 +41,18 @@ def test_budget_follows_genes_and_starves_no_span() -> None:
     assert budget_share(plan, 0, 3, [36 * H, 40 * H, 616 * H]) == pytest.approx(
         MIN_SHARE_OF_EVEN / 2)
     # two comparable spans split by genes
-    even = SpanPlan((0, 0), (12.0, 12.0), (True, True))
+    even = SpanPlan((0, 0), (12.0, 12.0), (True, True), (12, 12))
     assert budget_share(even, 0, 21, [120 * H, 360 * H]) == pytest.approx(21 / (21 + 39))
 
 
-def test_one_stage_length_for_a_users_leg_split_by_a_strait(land_mask) -> None:
-    """Busan -> Long Beach in 13 days passes the Tsugaru Strait: both spans sail the ocean
-    crossing's 12-hour stage (the reference formulation), not 2.8 h before the strait."""
+def test_a_users_legs_stages_are_shared_among_its_spans(land_mask) -> None:
+    """Busan -> Long Beach in 13 days passes the Tsugaru Strait: the 36-hour span before it
+    aims at 4 stages (the floor; 12 x 36 / 312 h is 1.4), not 12 of 2.8 h; the ocean span
+    after it keeps the reference formulation's 12-hour stages."""
     from shiproute_planner.geo.ports import resolve_port
     from shiproute_planner.straits import route_straits
     from shiproute_planner.voyage.spans import span_plan
+    from shiproute_planner.voyage.stage_length import MIN_SPAN_STAGES, leg_stage_hours
 
     a, b = resolve_port("Busan", land_mask), resolve_port("Long Beach", land_mask)
     ports, _, straits, _, _ = route_straits([a, b], {}, [])
@@ -58,7 +60,9 @@ def test_one_stage_length_for_a_users_leg_split_by_a_strait(land_mask) -> None:
     arrivals = [1.5 * 86400, 1.7 * 86400, 13 * 86400]
     plan = span_plan([a, b], ports, set(straits), arrivals, 0.0, None)
     assert plan.user_leg == (0, 0, 0) and plan.optimised == (True, False, True)
-    assert plan.stage_hours == (OCEAN_STAGE_H,) * 3
+    assert plan.target_stages[0] == MIN_SPAN_STAGES
+    assert leg_stage_hours(36 * H, 0, plan.target_stages[0]) == pytest.approx(36 / 5)
+    assert leg_stage_hours(271 * H, 0, plan.target_stages[2]) == OCEAN_STAGE_H
     # the user's override holds for every span
     assert span_plan([a, b], ports, set(straits), arrivals, 0.0, 2.0).stage_hours == (2.0,) * 3
 

@@ -2,13 +2,12 @@
 search budget.
 
 Straits and canals split a user's leg (Busan -> Long Beach) into spans between fixed passages
-(Busan -> Tsugaru Strait, Tsugaru Strait -> Long Beach). The stage length is a property of the
-user's passage, derived once from its whole window (`stage_length`): deriving it per span
-gave a 36-hour span before a strait 12 stages of 2.8 h, and the ocean span after it lost the
-search time those genes took.
-The search budget is shared among the spans by their number of genes (two per stage: heading
-and RPM), the GA's work growing with them; fixed passages (straits, canals) have none.
-"""
+(Busan -> Tsugaru Strait, Tsugaru Strait -> Long Beach). The stages a short passage is given
+(`stage_length.TARGET_STAGES`) belong to the user's leg and are shared among its spans by
+time: deriving them per span gave a 36-hour span before a strait 12 stages of 2.8 h, and the
+ocean span after it lost the search time those genes took. The search budget is shared among
+the spans by their number of genes (two per stage: heading and RPM), the GA's work growing
+with them; fixed passages (straits, canals) have none."""
 
 from __future__ import annotations
 
@@ -17,26 +16,28 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from .stage_length import default_stage_hours
+from .stage_length import MIN_SPAN_STAGES, TARGET_STAGES, default_stage_hours
 
 MIN_SHARE_OF_EVEN = 0.2  # no optimised span gets less than a fifth of an even share
 
 
 @dataclass(frozen=True)
 class SpanPlan:
-    """Per span ports[k] -> ports[k+1]: the user's leg it belongs to, its stage length [h]
-    (None: derived by the leg set-up from its own window, the user's leg being this one span)
-    and whether it is optimised (not a fixed strait or canal passage)."""
+    """Per span ports[k] -> ports[k+1]: the user's leg it belongs to, the user's stage length
+    [h] (None: derived by the leg set-up), the stages the set-up aims at at least, and whether
+    it is optimised (not a fixed strait or canal passage)."""
 
     user_leg: tuple[int, ...]
     stage_hours: tuple[float | None, ...]
     optimised: tuple[bool, ...]
+    target_stages: tuple[int, ...] = ()
 
     def genes_estimate(self, k: int, window_s: float) -> int:
         """Genes (headings and RPMs) span `k` will have over a window of `window_s` seconds."""
         if not self.optimised[k]:
             return 0
-        stage_h = self.stage_hours[k] or default_stage_hours(window_s)
+        target = self.target_stages[k] if self.target_stages else TARGET_STAGES
+        stage_h = self.stage_hours[k] or default_stage_hours(window_s, target)
         return 2 * max(1, math.ceil(max(window_s, 0.0) / (stage_h * 3600.0)) - 1) + 1
 
 
@@ -54,31 +55,27 @@ def user_legs(user_ports: Sequence[Any], ports: Sequence[Any]) -> tuple[int, ...
 def span_plan(user_ports: Sequence[Any], ports: Sequence[Any], fixed: set[int],
               arrivals_s: Sequence[float], depart_s: float,
               stage_hours: float | None) -> SpanPlan:
-    """Stage length per span: the user's override, else one length per user's leg from its
-    scheduled window (`arrivals_s[k]`: planned arrival at the end of span k), 12 h for a
-    crossing and ~TARGET_STAGES stages for a short passage. The lane-turn rule
-    (`leg_stage_hours`) is for legs that run through straits and canals; on a leg split by
-    them those are fixed passages, and the turns of its spans' lanes counted near coasts
-    (Cape Erimo beside the Tsugaru Strait, the Californian coast) gave Busan -> Long Beach
-    8.7-hour stages and 23 t more fuel. A leg that is a single span derives its own in the
-    leg set-up (the window there excludes the coastal approaches, the turn rule applies)."""
+    """Stage length per span: the user's override, else derived by each span's set-up
+    (`leg_stage_hours`: 12 h for a crossing, shorter for a short window or a lane round
+    capes) aiming at the user's leg's TARGET_STAGES shared among its spans by time
+    (`arrivals_s[k]`: planned arrival at the end of span k), at least MIN_SPAN_STAGES: the
+    36-hour span of Busan -> Long Beach before the Tsugaru Strait gets 4 stages, not 12 of
+    2.8 h (the ocean span after it keeps 12-hour stages). A leg of one span aims at
+    TARGET_STAGES as before."""
     legs = user_legs(user_ports, ports)
     optimised = tuple(k not in fixed for k in range(len(legs)))
-    if stage_hours is not None:
-        return SpanPlan(legs, (float(stage_hours),) * len(legs), optimised)
-    hours: list[float | None] = []
+    hours = (float(stage_hours),) * len(legs) if stage_hours is not None else (None,) * len(legs)
+    starts = [depart_s, *arrivals_s[:-1]]
+    targets = []
     for k, leg in enumerate(legs):
         members = [j for j, u in enumerate(legs) if u == leg]
         if len(members) == 1:
-            hours.append(None)
+            targets.append(TARGET_STAGES)
             continue
-        first, last = members[0], members[-1]
-        if k != first:
-            hours.append(hours[first])
-            continue
-        start_s = depart_s if first == 0 else arrivals_s[first - 1]
-        hours.append(default_stage_hours(arrivals_s[last] - start_s))
-    return SpanPlan(legs, tuple(hours), optimised)
+        whole = arrivals_s[members[-1]] - starts[members[0]]
+        part = (arrivals_s[k] - starts[k]) / whole if whole > 0 else 1.0
+        targets.append(max(MIN_SPAN_STAGES, round(TARGET_STAGES * part)))
+    return SpanPlan(legs, hours, optimised, tuple(targets))
 
 
 def budget_share(plan: SpanPlan, k: int, genes_k: int, arrivals_s: Sequence[float]) -> float:
