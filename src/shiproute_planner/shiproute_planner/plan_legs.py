@@ -4,7 +4,6 @@ when the one before it ends (after the port call's window and berth time)."""
 
 from __future__ import annotations
 
-import itertools
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -12,7 +11,6 @@ from datetime import UTC, datetime
 from typing import Any
 
 import numpy as np
-from shiproute_core.geodesy import inverse
 
 from .ensemble_report import MemberLeg
 from .errors import PlanCancelledError
@@ -22,6 +20,7 @@ from .methods import get_method
 from .plan_prepare import PreparedVoyage
 from .plan_seeds import leg_seeds, offer_to_pool
 from .plan_setup import cancel_fn
+from .plan_timing import PlanClock
 from .request import PlanOptions, VoyageRequest
 from .route.approach import sail_approach
 from .route.canals import sail_canal
@@ -29,6 +28,7 @@ from .route.voyage_legs import leg_setup
 from .straits import sail_strait
 from .voyage.port_calls import PortCall
 from .voyage.schedule import plan_schedule
+from .voyage.spans import budget_share
 from .voyage.stage_length import OCEAN_STAGE_H, scaled_ga_config
 
 
@@ -86,20 +86,17 @@ class Search:
     pool: SeedPool | None
     month: int
     cancelled: Callable[[], bool]
-    distances_m: np.ndarray  # great circle per leg
-    t0: float  # perf_counter at the start of the plan
+    clock: PlanClock  # the plan's wall clock, lapped per phase
 
 
-def search_of(prep: PreparedVoyage, options: PlanOptions, t0: float) -> Search:
-    """The method, random generator, seed pool and leg distances of a plan."""
+def search_of(prep: PreparedVoyage, options: PlanOptions, clock: PlanClock) -> Search:
+    """The method, random generator, seed pool and clock of a plan."""
     seed = options.seed
     rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
     pool = SeedPool(options.seed_pool_dir) if options.seed_pool_dir is not None else None
     month = datetime.fromtimestamp(prep.depart_s, UTC).month
-    dists = np.array([float(inverse(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)[1])
-                      for a, b in itertools.pairwise(prep.ports)])
     return Search(get_method(options.method), rng, pool, month, cancel_fn(options.cancel),
-                  dists, t0)
+                  clock)
 
 
 def sail_canal_leg(prep: PreparedVoyage, run: LegRun, k: int, options: PlanOptions) -> None:
@@ -133,14 +130,13 @@ def leg_target_s(prep: PreparedVoyage, run: LegRun, k: int) -> float:
     return max(run.search_rtas[k], run.depart_s + 60.0)
 
 
-def leg_budget(options: PlanOptions, search: Search, run: LegRun, k: int) -> tuple[float, int]:
-    """(wall time [s], route evaluations) of leg `k`: its share by distance of what is left;
-    the search keeps at least half its share even when a cold process spent the budget on
-    loading (sea-lane graph, coastline polygons, compiled kernels)."""
-    used = time.perf_counter() - search.t0
-    share = search.distances_m[k] / search.distances_m[k:].sum()
-    budget = options.budget_s
-    wall_s = max((budget - used) * share, 0.5 * budget * share, 0.0)
+def leg_budget(prep: PreparedVoyage, options: PlanOptions, search: Search, run: LegRun,
+               k: int, genes_k: int) -> tuple[float, int]:
+    """(wall time [s], route evaluations) of span `k` with `genes_k` genes: its share by
+    genes (`voyage.spans`) of what set-up and the spans before it left of the budget."""
+    assert prep.spans is not None
+    share = budget_share(prep.spans, k, genes_k, run.search_rtas)
+    wall_s = max(search.clock.left_s(options.budget_s) * share, 0.0)
     total = options.max_evaluations
     evals = max(round((total - run.evaluations) * share), 1) if total else 0
     return wall_s, evals
@@ -151,20 +147,25 @@ def plan_leg(prep: PreparedVoyage, run: LegRun, k: int, request: VoyageRequest,
     """An open-sea leg a -> b: approaches, then the method between their sea ends."""
     a, b = prep.ports[k], prep.ports[k + 1]
     under_way = k == 0 and options.position is not None
+    spans = prep.spans
+    assert spans is not None  # prepare_voyage always plans the spans
     leg = leg_setup(a, b, prep.env, prep.limits, prep.land, run.depart_s,
                     leg_target_s(prep, run, k), approach_nm=request.approach_nm,
                     approach_rpm=request.approach_rpm, coastal_passage=request.coastal_passage,
-                    stage_hours=options.stage_hours, objective=request.objective,
+                    stage_hours=spans.stage_hours[k], objective=request.objective,
                     terms=prep.terms, under_way=under_way,
                     previous_plan=options.previous_plan if under_way else None,
-                    position=options.position if under_way else None, given=prep.given)
+                    position=options.position if under_way else None, given=prep.given,
+                    target_stages=spans.target_stages[k])
     problem = leg.problem
     run.warnings += [n for n in leg.notes if n not in run.warnings]
     seeds, gene_seeds = leg_seeds(problem, search.pool, a, b, search.month,
                                   options.previous_plan if k == 0 else None, options.position)
-    wall_s, evals = leg_budget(options, search, run, k)
+    search.clock.lap("passages")
     need = options.with_baseline or (options.method == "seed_ga" and not seeds)
     base = compute_baseline(problem, prep.env, prep.land) if need else None
+    search.clock.lap("baselines")
+    wall_s, evals = leg_budget(prep, options, search, run, k, problem.n_var)
     ctx = MethodContext(problem, prep.env, prep.land, search.rng, wall_s, seeds,
                         options.progress, search.cancelled, k, time.perf_counter(),
                         scaled_ga_config(options.ga_config, problem.n_stages),
@@ -172,6 +173,7 @@ def plan_leg(prep: PreparedVoyage, run: LegRun, k: int, request: VoyageRequest,
                         max_generations=options.max_generations, gene_seeds=gene_seeds,
                         max_evaluations=evals)
     res = search.method(ctx)
+    search.clock.lap("search")
     if res.evaluation is None:
         raise PlanCancelledError("planning was cancelled before a route was found")
     run.member_legs.append(MemberLeg(problem, res.genes, res.evaluation))
@@ -186,18 +188,21 @@ def plan_leg(prep: PreparedVoyage, run: LegRun, k: int, request: VoyageRequest,
     kept = (base.name, base.rpm, base.evaluation) if options.with_baseline and base else None
     run.add(res.evaluation, res.seed_source, problem, (leg.pre, post), kept)
     run.arrive(float(post.eta_s[0]) if post is not None else end_s, prep.call_at.get(k + 1))
+    search.clock.lap("passages")
 
 
 def sail_legs(request: VoyageRequest, options: PlanOptions, prep: PreparedVoyage,
-              t0: float) -> LegRun:
+              clock: PlanClock) -> LegRun:
     """Every leg of the prepared voyage, in order."""
-    search = search_of(prep, options, t0)
+    search = search_of(prep, options, clock)
     run = LegRun(prep.depart_s, list(prep.search_rtas), list(prep.warnings))
     for k in range(len(prep.ports) - 1):
         if k in prep.canal_legs:
             sail_canal_leg(prep, run, k, options)
+            clock.lap("passages")
         elif k in prep.strait_legs:
             sail_strait_leg(prep, run, k, options)
+            clock.lap("passages")
         else:
             plan_leg(prep, run, k, request, options, search)
     prep.land.fine_coast.save()  # coastal cells this plan resolved: later processes use them

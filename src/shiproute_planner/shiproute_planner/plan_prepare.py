@@ -33,6 +33,7 @@ from .ship.spec import ShipSpec
 from .straits import route_straits
 from .voyage.legs import voyage_schedule
 from .voyage.port_calls import PortCall
+from .voyage.spans import SpanPlan, span_plan
 from .voyage.stage_length import check_rta_tolerance_s
 from .voyage_ship import loaded_ship
 
@@ -64,6 +65,7 @@ class PreparedVoyage:
     warnings: tuple[str, ...]
     river_rows: tuple[Any, ...] = ()  # river passages at the ends and port calls (plan extra)
     risk: RiskSpec | None = None  # the ensemble risk measure (None: the members' mean)
+    spans: SpanPlan | None = None  # user's leg, stage length and target stages per span
 
 
 def ship_choice(ship: ShipInput, ship_model: str, loading: str) -> tuple[ShipInput, str, str]:
@@ -157,6 +159,7 @@ def prepare_voyage(request: VoyageRequest, options: PlanOptions,
                                  "the time to the RTA: " + "; ".join(river_notes))
     calls, call_notes, call_rows = river_calls(ports[1:-1], calls_of(request, depart_s))
     warnings += river_notes + call_notes
+    user_ports = list(ports)  # the user's ports: stage length and budget follow their legs
     ports, canal_legs, calls, canal_notes = route_canals(ports, spec, calls)
     warnings += canal_notes
     strait_legs: dict = {}
@@ -183,8 +186,11 @@ def prepare_voyage(request: VoyageRequest, options: PlanOptions,
     # full speed (a lower bound), lateness being a violation the search minimises; a
     # schedule (ports, canals, straits) never asks a leg for more than the ship can do
     search_rtas = [*leg_rtas[:-1], earliest_s] if rta_warning else list(leg_rtas)
+    spans = span_plan(user_ports, ports, set(canal_legs) | set(strait_legs), search_rtas,
+                      depart_s, options.stage_hours)
     return PreparedVoyage(
         land, env, spec, lim, terms, tuple(given), tuple(ports), depart_s, rta_s, tolerance_s,
         call_at, canal_legs, strait_legs, sched, sched_legs, rate,
         tuple(float(t) for t in leg_rtas), tuple(float(t) for t in search_rtas), rta_warning,
-        tuple(model_notes), tuple(warnings), tuple(river_rows + call_rows), risk)
+        tuple(model_notes), tuple(warnings), tuple(river_rows + call_rows), risk,
+        spans)

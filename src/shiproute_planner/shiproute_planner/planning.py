@@ -11,7 +11,6 @@ call with keyword arguments.
 from __future__ import annotations
 
 import dataclasses
-import time
 from collections.abc import Callable, Sequence
 from datetime import timedelta
 from pathlib import Path
@@ -35,6 +34,7 @@ from .plan_checks import checked_plan
 from .plan_legs import LegRun, sail_legs
 from .plan_prepare import PreparedVoyage, prepare_voyage
 from .plan_setup import TimeLike, to_posix_s
+from .plan_timing import PlanClock
 from .plan_types import RoutePlan
 from .request import (
     CancelHook,
@@ -68,15 +68,16 @@ def plan(request: VoyageRequest, options: PlanOptions | None = None,
     with `options` (defaults: the seed GA, 3 s, seed 0); see `plan_voyage` for the meaning of
     each field. Raises InvalidVoyageError naming a bad input; a cancelled run returns the
     best plan so far (PlanCancelledError before any route was found)."""
-    t0 = time.perf_counter()
+    clock = PlanClock()
     options = options or PlanOptions()
     prep = prepare_voyage(request, options, forecast)
-    run = sail_legs(request, options, prep, t0)
-    return finished_plan(request, options, prep, run, t0)
+    clock.lap("set-up")
+    run = sail_legs(request, options, prep, clock)
+    return finished_plan(request, options, prep, run, clock)
 
 
 def finished_plan(request: VoyageRequest, options: PlanOptions, prep: PreparedVoyage,
-                  run: LegRun, t0: float) -> RoutePlan:
+                  run: LegRun, clock: PlanClock) -> RoutePlan:
     """The legs joined into one plan, with the schedule, model, RTA, depth, route-check,
     forecast and objective statements."""
     n = len(run.results)
@@ -85,7 +86,7 @@ def finished_plan(request: VoyageRequest, options: PlanOptions, prep: PreparedVo
     out = assemble_plan(list(prep.ports), run.problems, run.results, run.baselines,
                         run.sources, run.approaches, prep.env, prep.spec, options.method,
                         request.objective, prep.depart_s, prep.rta_s, list(prep.leg_rtas),
-                        run.generations, run.evaluations, time.perf_counter() - t0, deadlines)
+                        run.generations, run.evaluations, clock.elapsed_s(), deadlines)
     if prep.schedule is not None:
         out = with_port_calls(out, prep.schedule_legs, prep.schedule, run.arrivals,
                               list(prep.ports), prep.rta_tolerance_s)
@@ -105,8 +106,12 @@ def finished_plan(request: VoyageRequest, options: PlanOptions, prep: PreparedVo
     block, said = forecast_statement(prep.env.sampler, out, options.persistence_h)
     goal = objective_block(prep.terms, out.total_fuel_t, out.total_time_s / 3600.0,
                            out.total_distance_nm)
-    return dataclasses.replace(out, warnings=(*out.warnings, *said, *prep.terms.notes),
+    clock.lap("checks")
+    late = clock.overrun_warning(options.budget_s)
+    return dataclasses.replace(out, warnings=(*out.warnings, *said, *prep.terms.notes,
+                                              *([late] if late else [])),
                                extra={**out.extra, "forecast": block, "objective": goal,
+                                      "timing_s": clock.block(options.budget_s),
                                       **loading_block(prep.spec)})
 
 
@@ -163,10 +168,11 @@ def plan_voyage(
     `position` = (lat_deg, lon_deg, time POSIX s) of the ship for a re-plan under way: the
     voyage then starts there and `previous_plan` (shifted to it) seeds the GA. `cancel` is a
     callable returning True or an object with `is_set()` (threading.Event); a cancelled run
-    returns the best plan so far. `budget_s` is the wall time of the whole call (the search
-    keeps at least half of it, so a cold process may overrun by the loading time); with
+    returns the best plan so far. `budget_s` is the wall time of the whole call: each
+    optimised span's search gets what set-up left, shared by genes (`voyage.spans`), and a
+    plan over its budget says where the time went (`plan_timing`); with
     `max_generations` or `max_evaluations` (route evaluations of the whole voyage, shared
-    between legs by distance; 0 = none) and an ample (or infinite) `budget_s` a run is
+    between spans like the time; 0 = none) and an ample (or infinite) `budget_s` a run is
     reproducible for a given `seed`.
     The first and last `approach_nm` at each port follow the sea lane at `approach_rpm`
     (default: the calm-water RPM of the mean speed that meets the RTA), and with
@@ -193,7 +199,8 @@ def plan_voyage(
     `loading`: the loading condition (a condition of the ship file, or drafts 'T_F,T_A' in
     m; '' = the file's default). `objective` co2 / cost take the fuel type and prices from
     `economics`, else the ship file, else stated defaults (`objectives`).
-    `stage_hours` None derives each leg's stage from its window (`voyage.stage_length`).
+    `stage_hours` None derives each user's leg's stage from its window and sea lane
+    (`voyage.stage_length`), shared among its spans between straits and canals.
     `port_calls` (or `via` with `via_rta` as latest arrivals) make a multi-port voyage whose
     leg times are scheduled together for the least fuel (`voyage.schedule`); a plan is on
     time when it arrives within `rta_tolerance_s` of each deadline.

@@ -20,7 +20,7 @@ from ..objectives import ObjectiveTerms
 from ..plan_types import RoutePlan
 from ..straits import is_gate
 from ..voyage.legs import sea_distance_m, turns_to_round
-from ..voyage.stage_length import leg_stage_hours
+from ..voyage.stage_length import TARGET_STAGES, leg_stage_hours
 from .approach import Approach, CoastalPassage, approach_length_m, lane_approaches, sail_approach
 from .environment import Environment
 from .evaluation import RouteEvaluation
@@ -47,7 +47,7 @@ def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMa
               terms: ObjectiveTerms | None = None, under_way: bool = False,
               previous_plan: RoutePlan | None = None,
               position: tuple[float, float, float] | None = None,
-              given: Sequence[Approach] = ()) -> LegSetup:
+              given: Sequence[Approach] = (), target_stages: int = TARGET_STAGES) -> LegSetup:
     """Approaches of a leg a -> b and the problem between their sea ends (see `plan_voyage`;
     shared with the method comparison so every method solves the same problem). Under way
     the ship finishes the coastal passage it is in, if any, from where it is. `given`
@@ -93,7 +93,7 @@ def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMa
     rta_leg = max(rta_leg, t_leg + 60.0)
     stage_h = stage_hours or leg_stage_hours(
         rta_leg - t_leg, turns_to_round(land, float(d_lon), float(d_lat), float(a_lon),
-                                        float(a_lat)))
+                                        float(a_lat)), target_stages)
     span_s = search_window_s(terms, env.model,
                              float(inverse(d_lon, d_lat, a_lon, a_lat)[1]), rta_leg - t_leg)
     n_stages = (max(1, math.ceil(span_s / (stage_h * 3600.0)) - 1)

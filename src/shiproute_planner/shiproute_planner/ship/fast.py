@@ -108,7 +108,7 @@ class FastModel:
             fk.P_TOL: ship.seakeeping.roll_resonance_tolerance,
             fk.P_THR_SLAM: st.threshold_m[0], fk.P_THR_WET: st.threshold_m[1],
             fk.P_THR_PROP: st.threshold_m[2], fk.P_CALM_K: float(v_ref) / ref_n, fk.P_VTOP: v_top,
-            fk.P_SURF_KN: 1.8 * np.sqrt(ship.hull.lpp_m),
+            fk.P_SURF_KN: 1.8 * np.sqrt(ship.hull.lpp_m), fk.P_POWER_K: 1.0,
         }
         for k, val in values.items():
             par[k] = float(val)

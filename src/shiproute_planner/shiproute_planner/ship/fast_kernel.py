@@ -18,8 +18,11 @@ from shiproute_core.units import M_S_PER_KNOT
 (P_RHO, P_D, P_T, P_ETA_R, P_ETA_S, P_JMAX, P_WMAX, P_KT0, P_KT1, P_KT2, P_KT3, P_KQ0, P_KQ1,
  P_KQ2, P_KQ3, P_AF, P_MCR, P_RPM_MCR, P_RPM_MIN, P_RPM_MAX, P_OVERLOAD, P_TORQUE, P_DV, P_NV,
  P_WDV, P_WNV, P_T0, P_DT, P_NT, P_SDV, P_SNV, P_NC, P_LPP, P_MIN_HS, P_TROLL, P_TOL,
- P_THR_SLAM, P_THR_WET, P_THR_PROP, P_CALM_K, P_VTOP, P_SURF_KN) = range(42)
-N_PAR = 42
+ P_THR_SLAM, P_THR_WET, P_THR_PROP, P_CALM_K, P_VTOP, P_SURF_KN, P_POWER_K) = range(43)
+N_PAR = 43
+# P_POWER_K: share of the shaft power the weather adds at a given RPM that the model burns:
+# 1 for the physics (the propeller, loaded, takes more torque), 0 for Kwon's method (the engine
+# keeps its calm-water output while the ship slows), fitted for other tabulated models
 G = 9.80665
 RHO_AIR = 1.225
 PEAK_ITTC = 1.0 / 0.772
@@ -174,6 +177,18 @@ def _solve(n, par, r_calm, wake, u_ws, u_sw, a_ws, a_sw, it_ws, ft_ws, it_sw, ft
 
 
 @njit(cache=True)
+def _brake_power_kw(n, v, par, wake):
+    """Brake power [kW] at shaft speed n (rps) and ship speed v (m/s): propeller torque."""
+    d = par[P_D]
+    ic, fc = grid_cell(0.0, par[P_DV], int(par[P_NV]), v)
+    w = wake[ic] * (1.0 - fc) + wake[ic + 1] * fc
+    j = v * (1.0 - w) / (n * d)
+    kq = par[P_KQ0] + j * (par[P_KQ1] + j * (par[P_KQ2] + j * par[P_KQ3]))
+    pb = 2.0 * math.pi * n * kq * par[P_RHO] * n * n * d * d * d * d * d / par[P_ETA_R]
+    return pb / par[P_ETA_S] * 1e-3
+
+
+@njit(cache=True)
 def _imo(par, v, hs, t_mean, cos_rel, peak, out):
     """OR the MSC.1/Circ.1228 flags of one wave system into out[0:4]."""
     if hs < par[P_MIN_HS]:
@@ -224,7 +239,6 @@ def evaluate_kernel(rpm, hdg, wu, wv, ws_hs, ws_from, ws_t, sw_hs, sw_from, sw_t
                     par, r_calm, wake, u_ws, u_sw, m0_ws, m0_sw, caa, sfoc_x, sfoc_y,
                     out_f, out_b, start, stop):
     """Fill columns start..stop of out_f (11, N) and out_b (5, N); see ``fast.FastModel``."""
-    d = par[P_D]
     m0 = np.zeros(3)
     flags = np.zeros(4, dtype=np.bool_)
     nc = int(par[P_NC])
@@ -244,13 +258,12 @@ def evaluate_kernel(rpm, hdg, wu, wv, ws_hs, ws_from, ws_t, sw_hs, sw_from, sw_t
         it_sw, ft_sw = grid_cell(par[P_T0], par[P_DT], int(par[P_NT]), sw_t[k])
         v = _solve(n, par, r_calm, wake, u_ws, u_sw, a_ws, a_sw, it_ws, ft_ws, it_sw, ft_sw,
                    w_fwd, w_side, caa)
-        ic, fc = grid_cell(0.0, par[P_DV], int(par[P_NV]), v)
-        w = wake[ic] * (1.0 - fc) + wake[ic + 1] * fc
-        j = v * (1.0 - w) / (n * d)
-        kq = par[P_KQ0] + j * (par[P_KQ1] + j * (par[P_KQ2] + j * par[P_KQ3]))
-        pb = 2.0 * math.pi * n * kq * par[P_RHO] * n * n * d * d * d * d * d / par[P_ETA_R]
-        pb /= par[P_ETA_S]
-        pb *= 1e-3
+        pb = _brake_power_kw(n, v, par, wake)
+        if par[P_POWER_K] != 1.0:  # the weather's extra power, burnt only in part (Kwon: 0)
+            v_calm = _solve(n, par, r_calm, wake, u_ws, u_sw, 0.0, 0.0, it_ws, ft_ws, it_sw,
+                            ft_sw, 0.0, 0.0, caa)
+            pb_calm = _brake_power_kw(n, v_calm, par, wake)
+            pb = pb_calm + par[P_POWER_K] * (pb - pb_calm)
         load = pb / par[P_MCR]
         torque_ratio = load * par[P_RPM_MCR] / max(rpm[k], 1e-9)
         east = v * sh + cu[k]

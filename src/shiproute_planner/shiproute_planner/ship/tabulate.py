@@ -125,6 +125,9 @@ def tabulated_model(ship: ShipSpec, model: Any, label: str, seed: int = 0) -> Fa
     out = copy.copy(calm)
     out._tables = (r_new, wake, u_ws * k_wave, u_sw * k_wave, m0_ws, m0_sw, caa * k_wind,
                    sfoc_x, sfoc_new)
+    out._par = par.copy()  # the base model's vector is shared by every copy: never edit it
+    out._par[fk.P_POWER_K] = power_share(out, rpm[sailing], hdg[sailing], sea.take(sailing),
+                                         np.asarray(perf.fuel_t_per_h, float)[sailing])
     got = out.evaluate(rpm, hdg, sea)
     calm_rpm = np.linspace(ship.engine.rpm_min, ship.engine.rpm_max, 25)
     calm_ref = model.evaluate(calm_rpm, np.zeros(25), SeaState.calm(25))
@@ -133,6 +136,7 @@ def tabulated_model(ship: ShipSpec, model: Any, label: str, seed: int = 0) -> Fa
     out.calibration = {  # type: ignore[attr-defined]
         "model": label,
         "wave_added_resistance_factor": float(k_wave),
+        "weather_power_share": float(out._par[fk.P_POWER_K]),
         "wind_resistance_factor": float(k_wind),
         "calm_fuel_max_diff_pct": _max_pct(calm_got.fuel_t_per_h, calm_ref.fuel_t_per_h),
         "calm_speed_max_diff_pct": _max_pct(calm_got.stw_m_s, calm_ref.stw_m_s),
@@ -146,6 +150,23 @@ def tabulated_model(ship: ShipSpec, model: Any, label: str, seed: int = 0) -> Fa
         "weather_samples": int(sailing.size),
     }
     return out
+
+
+def power_share(fm: FastModel, rpm: np.ndarray, hdg: np.ndarray, sea: SeaState,
+                fuel_t_per_h: np.ndarray) -> float:
+    """The share of the weather's extra shaft power the model burns (fast_kernel.P_POWER_K):
+    the tables' fuel is nearly linear in it, so it is the least-squares fit (relative errors)
+    of the model's fuel between the tables' fuel at share 0 (Kwon's premise: calm-water
+    output held) and at share 1 (the propeller's torque in the loaded condition)."""
+    par = fm.kernel_arrays()[0]
+    fuel = []
+    for share in (0.0, 1.0):
+        par[fk.P_POWER_K] = share
+        fuel.append(np.asarray(fm.evaluate(rpm, hdg, sea).fuel_t_per_h, float))
+    f0, f1 = fuel[0] / fuel_t_per_h, fuel[1] / fuel_t_per_h
+    den = float(np.sum((f1 - f0) ** 2))
+    share = float(np.sum((1.0 - f0) * (f1 - f0)) / den) if den > 0.0 else 1.0
+    return float(np.clip(share, 0.0, 2.0))
 
 
 def _max_pct(a: Any, b: Any) -> float:

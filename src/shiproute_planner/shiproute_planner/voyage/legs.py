@@ -20,16 +20,22 @@ from .schedule import FuelRate, LegSpec, fuel_rate_of
 KNOT_M_S = M_PER_NM / 3600.0
 
 
+CAPE_CLIP_SHARE = 0.02  # a great circle this little on land clips a cape: 12 h stages round it
+
+
 def turns_to_round(land: Any, lon0: float, lat0: float, lon1: float, lat1: float) -> int:
     """Capes and straits a leg must round: the sea lane's turns when the great circle between
-    the leg's ends crosses land, else 0 (the open sea needs no extra stages)."""
+    the leg's ends runs over land for more than CAPE_CLIP_SHARE of its length, else 0 (the
+    open sea needs no extra stages; the Tsugaru Strait -> Long Beach circle clips Cape Erimo
+    for ~0.1 % of its way, and counting its lane's 7 turns gave the crossing 7.3-hour
+    stages and 3 % more fuel at equal evaluations)."""
     from shiproute_core.geodesy import great_circle_points
 
     d = float(inverse(lon0, lat0, lon1, lat1)[1])
     n = int(min(2000, max(8, d / 5000.0)))  # a sample every ~5 km
     lon, lat = great_circle_points(lon0, lat0, lon1, lat1, n)
     inner = slice(1, -1)  # the ends are the approaches' sea ends (or ports)
-    if not np.any(land.is_land(np.asarray(lon)[inner], np.asarray(lat)[inner])):
+    if np.mean(land.is_land(np.asarray(lon)[inner], np.asarray(lat)[inner])) <= CAPE_CLIP_SHARE:
         return 0
     return lane_turns(round(lon0, 4), round(lat0, 4), round(lon1, 4), round(lat1, 4))
 

@@ -19,6 +19,7 @@ from ..ga.loop import GAConfig
 
 OCEAN_STAGE_H = 12.0  # the reference formulation's stage for an ocean crossing
 TARGET_STAGES = 12  # stages a short passage's optimised part is given at least
+MIN_SPAN_STAGES = 4  # stages of a span of a leg split by a strait or canal, at least
 STAGES_PER_TURN = 5  # stages per cape or strait of a leg's sea lane
 MIN_STAGE_H = 0.1  # 6 minutes: below this a stage is shorter than the ship's turning
 MAX_STAGE_H = 24.0  # the parameter table's bound (checks.parameters): longer stages miss storms
@@ -26,20 +27,20 @@ REFERENCE_STAGES = 24  # the GA's default move sizes were tuned on ~24-stage cro
 RTA_TOLERANCE_S = 300.0  # default: arriving within 5 minutes of the RTA is on time
 
 
-def default_stage_hours(window_s: float) -> float:
+def default_stage_hours(window_s: float, target: int = TARGET_STAGES) -> float:
     """Stage duration [h] for an optimised part of `window_s` seconds: 12 h for a crossing,
-    shorter (down to 6 min) so a short passage still gets ~TARGET_STAGES stages."""
-    hours = max(window_s, 0.0) / 3600.0 / (TARGET_STAGES + 1)
+    shorter (down to 6 min) so a short passage still gets ~`target` stages."""
+    hours = max(window_s, 0.0) / 3600.0 / (target + 1)
     return float(min(OCEAN_STAGE_H, max(MIN_STAGE_H, hours)))
 
 
-def leg_stage_hours(window_s: float, lane_turns: int) -> float:
+def leg_stage_hours(window_s: float, lane_turns: int, target: int = TARGET_STAGES) -> float:
     """Stage duration [h] of a leg whose sea lane rounds `lane_turns` capes and straits: the
     voyage's default, shortened to STAGES_PER_TURN stages per turn (a 12-hour stage cannot
     follow the lane through the Strait of Gibraltar and up the Channel)."""
-    stages = max(TARGET_STAGES, STAGES_PER_TURN * lane_turns)
+    stages = max(target, STAGES_PER_TURN * lane_turns)
     hours = max(window_s, 0.0) / 3600.0 / (stages + 1)
-    return float(min(default_stage_hours(window_s), max(MIN_STAGE_H, hours)))
+    return float(min(default_stage_hours(window_s, target), max(MIN_STAGE_H, hours)))
 
 
 def check_stage_hours(stage_hours: float | None) -> float | None:

@@ -4,7 +4,8 @@ Forecasts are sampled from half-precision storage, as in the planner node. Repor
 time (empty seed pool), warm re-plan time (previous plan shifted 6 h along,
 forecast switched to storm_march_cycle2), fuel of the plan, of the constant-RPM baseline and
 of a 20x-budget reference run, route evaluations per second, land crossings on a dense exact
-check and ETA - RTA. Forecast sampler, ship tables and land mask are built before timing.
+check and ETA - RTA, and whether the cold plan kept its budget (with the phases' times).
+Forecast sampler, ship tables and land mask are built before timing.
 """
 
 from __future__ import annotations
@@ -22,6 +23,7 @@ from shiproute_core.geodesy import direct, inverse
 from ...geo.landmask import default_land_mask
 from ...geo.verify import land_crossings
 from ...plan_setup import make_environment
+from ...plan_timing import tolerated_overrun_s
 from ...planning import plan
 from ...request import PlanOptions, VoyageRequest, voyage_times
 from ...route.encoding import clip_genes, gene_bounds, join_genes
@@ -127,6 +129,9 @@ def run(budget_s: float, warm_budget_s: float, ref_factor: float, seed: int) -> 
     return {
         "setup_s": round(setup_s, 3),
         "cold_plan_s": round(cold_s, 3),
+        # within the budget and the overrun a plan tolerates before it warns (plan_timing)
+        "plan_within_budget": cold_s <= budget_s + tolerated_overrun_s(budget_s),
+        "cold_timing_s": cold.extra.get("timing_s", {}),
         "warm_plan_s": round(warm_s, 3),
         "tfoc_t": round(cold.total_fuel_t, 2),
         "feasible": cold.feasible,

@@ -1,0 +1,82 @@
+"""Where a plan's wall time went, and the plan's word on its budget.
+
+`plan_voyage` runs set-up (ship model, depth grid, canals, straits, schedule), then per span
+the passages (coastal approaches, strait passages, canals), the constant-RPM baseline and the
+search, then the checks of the finished plan (route check at full resolution, forecast
+statement). The search of each span gets what the others left of `budget_s`
+(`voyage.spans.budget_share`); a plan that still overran says by how much and which phase
+took the time, so a budget that cannot be kept is never kept silently.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+PHASES = ("set-up", "passages", "baselines", "search", "checks")
+# a plan may end this much after its budget before it says so: the search stops at its
+# deadline only between generations (one generation of the storm voyage takes ~0.03-0.1 s
+# on an idle core) and the final checks are estimated, not known, beforehand
+OVERRUN_TOLERANCE_S = 0.25
+OVERRUN_TOLERANCE_SHARE = 0.10
+# the checks of the finished plan (route check on the polygons, forecast statement) take
+# ~0.05-0.2 s on an ocean voyage; the search stops early enough to leave them this
+CHECKS_RESERVE_S = 0.15
+CHECKS_RESERVE_SHARE = 0.05
+
+
+def checks_reserve_s(budget_s: float) -> float:
+    """Wall time kept from the search for the checks of the finished plan."""
+    return min(CHECKS_RESERVE_S, CHECKS_RESERVE_SHARE * budget_s)
+
+
+def tolerated_overrun_s(budget_s: float) -> float:
+    """How far past `budget_s` a plan may end without a warning."""
+    return max(OVERRUN_TOLERANCE_S, OVERRUN_TOLERANCE_SHARE * budget_s)
+
+
+@dataclass
+class PlanClock:
+    """Wall time per phase of one plan [s]: `lap(phase)` books the time since the last lap
+    (or the start) to `phase`, so sequential code is timed without being re-indented."""
+
+    t0: float = field(default_factory=lambda: time.perf_counter())
+    spent_s: dict[str, float] = field(default_factory=lambda: dict.fromkeys(PHASES, 0.0))
+    mark: float = field(default=0.0)
+
+    def __post_init__(self) -> None:
+        self.mark = self.t0
+
+    def elapsed_s(self) -> float:
+        """Seconds since the plan started."""
+        return time.perf_counter() - self.t0
+
+    def lap(self, phase: str) -> float:
+        """Book the time since the last lap to `phase`; returns the seconds booked."""
+        now = time.perf_counter()
+        spent, self.mark = now - self.mark, now
+        self.spent_s[phase] = self.spent_s.get(phase, 0.0) + spent
+        return spent
+
+    def left_s(self, budget_s: float) -> float:
+        """Budget left for the searches still to run, keeping the checks' reserve."""
+        return budget_s - self.elapsed_s() - checks_reserve_s(budget_s)
+
+    def block(self, budget_s: float) -> dict[str, float]:
+        """The plan's `extra["timing_s"]`: budget, total and each phase [s]."""
+        out = {"budget": float(budget_s), "total": round(self.elapsed_s(), 3)}
+        out.update({k: round(v, 3) for k, v in self.spent_s.items()})
+        return out
+
+    def overrun_warning(self, budget_s: float) -> str:
+        """A warning when the plan ended later than its budget allows, naming the phase
+        outside the search that took most time ('' when within it or unbounded)."""
+        total = self.elapsed_s()
+        if not budget_s < float("inf") or total <= budget_s + tolerated_overrun_s(budget_s):
+            return ""
+        others = {k: v for k, v in self.spent_s.items() if k != "search"}
+        worst = max(others, key=lambda k: others[k]) if others else "set-up"
+        return (f"budget: planning took {total:.2f} s against its budget of {budget_s:g} s; "
+                f"the search had {self.spent_s.get('search', 0.0):.2f} s, {worst} took "
+                f"{others.get(worst, 0.0):.2f} s (" + ", ".join(
+                    f"{k} {v:.2f} s" for k, v in others.items()) + ")")
