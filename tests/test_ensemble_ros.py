@@ -114,9 +114,13 @@ def test_two_member_cycle_from_weather_node_to_planner_intake(tmp_path: Path) ->
             def counted() -> dict[str, str] | None:
                 d = peer.diag.get("shiproute_planner", {})
                 reason = d.get("forecast_cycles_last_reason", "")
-                return d if "partial-2026030318" in reason else None
+                in_force = d.get("forecast_cycle_in_force", "")
+                # the newer complete cycle comes into force once the planner takes it up
+                return d if ("partial-2026030318" in reason
+                             and in_force == "complete-2026030400") else None
 
-            d = spin_until(peer.executor, counted, 30, "incomplete cycle counted")
+            d = spin_until(peer.executor, counted, 90,
+                           "incomplete cycle counted, the newer complete one in force")
             assert int(d["forecast_cycles_dropped"]) >= 1
             assert "members [1] of 2 lack slices" in d["forecast_cycles_last_reason"]
             assert int(d["forecast_slices_dropped"]) >= 3
