@@ -42,6 +42,23 @@ def _samples(lon: np.ndarray, lat: np.ndarray) -> tuple[np.ndarray, np.ndarray, 
             start[leg] + dist[leg] * frac)
 
 
+def maybe_near_land(land, lon: np.ndarray, lat: np.ndarray, radius_m: float) -> np.ndarray:
+    """False where the land mask's raster proves no land or coast lies within `radius_m`
+    (its chessboard distance to the nearest non-sea cell, less one cell for where in the
+    cells the point and the land lie, at the narrower side of a cell); True elsewhere."""
+    cells = getattr(land, "sea_distance_cells", None)
+    cell_deg = float(getattr(land, "cell_deg", 0.0))
+    if cells is None or cell_deg <= 0.0:
+        return np.ones(lon.size, dtype=bool)
+    n_lat, n_lon = cells.shape
+    i = np.clip(((lat + 90.0) / cell_deg).astype(np.int64), 0, n_lat - 1)
+    j = np.clip((((lon + 180.0) % 360.0) / cell_deg).astype(np.int64), 0, n_lon - 1)
+    d = cells[i, j].astype(float)
+    narrow_m = cell_deg * M_PER_DEG_LAT * np.maximum(np.cos(np.radians(np.abs(lat) + cell_deg)),
+                                                     1e-6)
+    return (d - 1.0) * narrow_m <= radius_m
+
+
 def near_land(is_land, lon: np.ndarray, lat: np.ndarray, radius_m: float) -> np.ndarray:
     """True where land lies within ~`radius_m` of a point (12 bearings x 3 radii, plus the
     point itself)."""
@@ -55,10 +72,11 @@ def near_land(is_land, lon: np.ndarray, lat: np.ndarray, radius_m: float) -> np.
 
 
 def coarse_coastal_legs(lon: np.ndarray, lat: np.ndarray, bathymetry, is_land,
-                        skip_legs: frozenset[int] = frozenset()) -> tuple[list[int], float,
-                                                                          float]:
+                        skip_legs: frozenset[int] = frozenset(),
+                        land=None) -> tuple[list[int], float, float]:
     """(legs, NM of track, trust distance [NM]) of a polyline that run within the coarse
-    grids' trust distance of land where no fine grid covers the water."""
+    grids' trust distance of land where no fine grid covers the water (`land`, a LandMask,
+    lets its raster rule out open sea before the probes)."""
     coarse = [g.cell_deg for g in bathymetry.grids if g.is_coarse]
     if not coarse or lon.size < 2:
         return [], 0.0, 0.0
@@ -70,6 +88,8 @@ def coarse_coastal_legs(lon: np.ndarray, lat: np.ndarray, bathymetry, is_land,
     keep &= ~np.isin(leg, np.fromiter(skip_legs, dtype=np.int64, count=len(skip_legs)))
     keep &= coarse_only(bathymetry, (p_lon + 180.0) % 360.0 - 180.0, p_lat)
     idx = np.flatnonzero(keep)
+    if land is not None and idx.size:
+        idx = idx[maybe_near_land(land, p_lon[idx], p_lat[idx], trust_m)]
     if idx.size == 0:
         return [], 0.0, trust_m / M_PER_NM
     hit = idx[near_land(is_land, p_lon[idx], p_lat[idx], trust_m)]
@@ -86,7 +106,7 @@ def with_coarse_coast_note(plan: RoutePlan, under_keel, land) -> RoutePlan:
     lon, lat, _ = plan.track()
     skip = frozenset(k for a, b in plan.extra.get("fixed_passages", ()) for k in range(a, b))
     legs, nm, trust_nm = coarse_coastal_legs(lon, lat, under_keel.bathymetry, land.is_land,
-                                             skip)
+                                             skip, land)
     if not legs:
         return plan
     coarse = max((g for g in under_keel.bathymetry.grids if g.is_coarse),

@@ -67,3 +67,21 @@ def test_fixed_passages_are_left_to_their_authority():
     legs, _, _ = coarse_coastal_legs(*_track(4.0), Bathymetry([COARSE]), _land_west_of_zero,
                                      skip_legs=frozenset({0}))
     assert legs == [1]
+
+
+def test_raster_prefilter_finds_the_same_coastal_legs_as_probing_every_sample() -> None:
+    """The land mask's raster only skips samples with no land within reach: on tracks along
+    and off a real coast (Portugal, GSHHG) the legs found equal those of probing every sample."""
+    from shiproute_planner.geo.landmask import default_land_mask
+
+    land = default_land_mask()
+    lat = np.linspace(37.2, 41.8, 12)
+    grid = DepthGrid("coarse 5'", np.full((80, 80), 50.0, dtype=np.float32), 36.0, 5.0 / 60.0,
+                     -14.0, 5.0 / 60.0, False)
+    for lon0 in (-9.05, -9.2, -9.4, -10.5):  # hugging the coast ... well offshore
+        lon = np.full(lat.size, lon0) + 0.05 * np.sin(np.arange(lat.size))
+        probed = coarse_coastal_legs(lon, lat, Bathymetry([grid]), land.is_land)
+        filtered = coarse_coastal_legs(lon, lat, Bathymetry([grid]), land.is_land, land=land)
+        assert filtered == probed
+    assert coarse_coastal_legs(np.full(3, -9.3), np.array([38.0, 39.0, 40.0]),
+                               Bathymetry([grid]), land.is_land, land=land)[0]
