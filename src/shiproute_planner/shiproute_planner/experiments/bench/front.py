@@ -34,7 +34,8 @@ def front_bench(points: int = 9, budget_s: float = 9.0, seed: int = 0) -> dict[s
                         objective="front", budget=f"{budget_s:g}s", seed=seed,
                         front_points=points)
     warm_up = PlanOptions(budget_s=0.0, max_generations=0, with_baseline=False, land=land)
-    plan(dataclasses.replace(req.voyage_request(), default_bathymetry=True), warm_up,
+    plan(dataclasses.replace(req.voyage_request(), default_bathymetry=True, objective="fuel"),
+         warm_up,
          sampler)  # sea lanes, coastline, kernels
     t = time.perf_counter()
     front = plan_front(req, sampler, land=land, default_bathymetry=True)
