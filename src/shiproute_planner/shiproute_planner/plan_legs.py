@@ -8,7 +8,6 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from datetime import UTC, datetime
-from typing import Any
 
 import numpy as np
 
@@ -24,12 +23,16 @@ from .plan_timing import PlanClock
 from .request import PlanOptions, VoyageRequest
 from .route.approach import sail_approach
 from .route.canals import sail_canal
+from .route.evaluation import RouteEvaluation
+from .route.problem import RouteProblem
 from .route.voyage_legs import leg_setup
 from .straits import sail_strait
 from .voyage.port_calls import PortCall
 from .voyage.schedule import plan_schedule
 from .voyage.spans import budget_share
 from .voyage.stage_length import OCEAN_STAGE_H, scaled_ga_config
+
+Leg = RouteEvaluation | None  # an approach or lead-in/out sailed, or none
 
 
 def departure_after(call: PortCall | None, arrival_s: float) -> float:
@@ -47,11 +50,11 @@ class LegRun:
     depart_s: float  # when the next leg starts
     search_rtas: list[float]
     warnings: list[str]
-    results: list[Any] = field(default_factory=list)  # one-row RouteEvaluation per leg
-    baselines: list[tuple[str, float, Any]] = field(default_factory=list)
-    problems: list[Any] = field(default_factory=list)
+    results: list[RouteEvaluation] = field(default_factory=list)  # one row per leg
+    baselines: list[tuple[str, float, RouteEvaluation]] = field(default_factory=list)
+    problems: list[RouteProblem] = field(default_factory=list)
     sources: list[str] = field(default_factory=list)
-    approaches: list[tuple[Any, Any]] = field(default_factory=list)
+    approaches: list[tuple[Leg, Leg]] = field(default_factory=list)  # (in, out) of a leg
     arrivals: list[float] = field(default_factory=list)
     member_legs: list[MemberLeg] = field(default_factory=list)  # optimised legs (ensembles)
     generations: int = 0
@@ -61,8 +64,9 @@ class LegRun:
         """RPM at the end of the last leg (a fixed passage goes on at it)."""
         return float(self.results[-1].legs["rpm"][0, -1]) if self.results else None
 
-    def add(self, evaluation: Any, source: str, problem: Any, approaches: tuple[Any, Any],
-            baseline: tuple[str, float, Any] | None) -> None:
+    def add(self, evaluation: RouteEvaluation, source: str, problem: RouteProblem,
+            approaches: tuple[Leg, Leg],
+            baseline: tuple[str, float, RouteEvaluation] | None) -> None:
         """Record one leg's route (and its baseline, when one is kept)."""
         self.results.append(evaluation)
         self.sources.append(source)
@@ -124,7 +128,8 @@ def sail_strait_leg(prep: PreparedVoyage, run: LegRun, k: int, options: PlanOpti
 def leg_target_s(prep: PreparedVoyage, run: LegRun, k: int) -> float:
     """What leg `k` aims at; between port calls the legs left are re-scheduled from where
     and when this one starts (closed loop)."""
-    if prep.schedule is not None and 0 < k < len(prep.ports) - 2 and not prep.rta_warning:
+    if (prep.schedule is not None and prep.fuel_rate is not None
+            and 0 < k < len(prep.ports) - 2 and not prep.rta_warning):
         run.search_rtas[k] = plan_schedule(prep.schedule_legs[k:], run.depart_s, prep.rta_s,
                                            prep.fuel_rate).arrival_s[0]
     return max(run.search_rtas[k], run.depart_s + 60.0)

@@ -24,7 +24,7 @@ from .plan_checks import zone_limits
 from .plan_setup import chosen_model, make_environment, route_limits, rta_warning_of
 from .request import ForecastInput, PlanOptions, ShipInput, VoyageRequest
 from .river_passages import river_calls, river_times
-from .route.canals import route_canals
+from .route.canals import Canal, route_canals
 from .route.environment import Environment
 from .route.given_approach import Approach, load_approaches
 from .route.problem import RouteLimits
@@ -33,6 +33,7 @@ from .ship.spec import ShipSpec
 from .straits import route_straits
 from .voyage.legs import voyage_schedule
 from .voyage.port_calls import PortCall
+from .voyage.schedule import FuelRate, LegSpec, Schedule
 from .voyage.spans import SpanPlan, span_plan
 from .voyage.stage_length import check_rta_tolerance_s
 from .voyage_ship import loaded_ship
@@ -44,7 +45,7 @@ class PreparedVoyage:
 
     land: LandMask
     env: Environment
-    spec: Any  # ShipSpec, or None for a bare performance model
+    spec: ShipSpec | None  # None for a bare performance model
     limits: RouteLimits
     terms: ObjectiveTerms
     given: tuple[Approach, ...]
@@ -53,17 +54,17 @@ class PreparedVoyage:
     rta_s: float
     rta_tolerance_s: float
     call_at: dict[int, PortCall]  # port index -> its call
-    canal_legs: dict[int, Any]
+    canal_legs: dict[int, tuple[Canal, bool]]  # leg -> (canal, sailed in reverse)
     strait_legs: dict[int, Any]
-    schedule: Any  # voyage.schedule.Schedule of a multi-port voyage, else None
-    schedule_legs: list[Any]
-    fuel_rate: Any
+    schedule: Schedule | None  # of a multi-port voyage
+    schedule_legs: list[LegSpec]
+    fuel_rate: FuelRate | None
     leg_rtas: tuple[float, ...]  # the schedule's arrival per leg, the RTA for the last
     search_rtas: tuple[float, ...]  # what each leg aims at (earliest arrival when late)
     rta_warning: str
     model_notes: tuple[str, ...]
     warnings: tuple[str, ...]
-    river_rows: tuple[Any, ...] = ()  # river passages at the ends and port calls (plan extra)
+    river_rows: tuple[dict[str, Any], ...] = ()  # river passages (the plan's extra)
     risk: RiskSpec | None = None  # the ensemble risk measure (None: the members' mean)
     spans: SpanPlan | None = None  # user's leg, stage length and target stages per span
 
@@ -170,7 +171,7 @@ def prepare_voyage(request: VoyageRequest, options: PlanOptions,
         warnings += strait_notes
         warnings.append(passages_note(passage_rules(lim.under_keel)))
     sched, rate = None, None
-    sched_legs: list[Any] = []
+    sched_legs: list[LegSpec] = []
     call_at: dict[int, PortCall] = {}
     leg_rtas = [rta_s]
     if len(ports) > 2:
