@@ -13,6 +13,7 @@ import numpy as np
 
 from ..errors import OutputError
 from ..plan_types import RoutePlan
+from .plots import save_figure
 
 HS_VAR = "sea_surface_wave_significant_height"
 DEFAULT_LEVEL_M = 6.0
@@ -97,10 +98,4 @@ def write_ensemble_png(plan: RoutePlan, path: str | Path, forecast: Any = None) 
     _fan(fig.add_axes((0.08, 0.06, 0.84, 0.32)), plan, block)
     if forecast is not None and HS_VAR in forecast:
         _storms(fig.add_axes((0.08, 0.46, 0.84, 0.5)), plan, forecast, lon)
-    try:
-        fig.savefig(path, dpi=90)
-    except OSError as exc:
-        raise OutputError(f"cannot write plot {path}: {exc}") from exc
-    finally:
-        plt.close(fig)
-    return Path(path)
+    return save_figure(fig, path)

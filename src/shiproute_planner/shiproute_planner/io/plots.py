@@ -81,8 +81,15 @@ def write_png(plan: RoutePlan, path: str | Path, forecast: Any = None,
         a.set_xlabel("time since departure [h]")
         a.set_title(label, fontsize=9)
         a.grid(alpha=0.3)
+    return save_figure(fig, path)
+
+
+def save_figure(fig: Any, path: str | Path, dpi: int = 90) -> Path:
+    """Write `fig` as PNG to `path` and close it (OutputError naming the path on failure)."""
+    import matplotlib.pyplot as plt
+
     try:
-        fig.savefig(path, dpi=90)
+        fig.savefig(path, dpi=dpi)
     except OSError as exc:
         raise OutputError(f"cannot write plot {path}: {exc}") from exc
     finally:

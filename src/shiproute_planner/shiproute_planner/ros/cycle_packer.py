@@ -54,6 +54,18 @@ class SliceFields:
     member_label: str = ""  # the member's label
 
 
+
+def canonical_variables(first: SliceFields) -> list[str]:
+    """The canonical fields a cycle's first slice carries, in canonical order (a slice
+    without any is refused naming the cycle and what it had)."""
+    present = {name for name, _ in first.fields}
+    variables = [n for n in CANONICAL_ORDER if n in present]
+    if not variables:
+        raise ForecastCycleError(f"forecast cycle {first.cycle_id!r}: slice {first.index} "
+                                 f"has no canonical field (got {sorted(present)})")
+    return variables
+
+
 class CyclePacker:
     """Collects the slices of one cycle into a `ForecastSampler` (a `CycleAssembler` sink).
 
@@ -64,11 +76,7 @@ class CyclePacker:
                  dtype: Any = np.float16) -> None:
         self.cycle_id, self.count, self.grid = first.cycle_id, first.count, first.grid
         self.reference_time_s = first.reference_time_s
-        present = {name for name, _ in first.fields}
-        self.variables = [n for n in CANONICAL_ORDER if n in present]
-        if not self.variables:
-            raise ForecastCycleError(f"forecast cycle {first.cycle_id!r}: slice {first.index} "
-                                     f"has no canonical field (got {sorted(present)})")
+        self.variables = canonical_variables(first)
         self._names = [name for name, _ in first.fields]
         self._keep_from_s = keep_from_s
         g = self.grid

@@ -16,13 +16,13 @@ from datetime import UTC, datetime
 from typing import Any
 
 import numpy as np
-from shiproute_weather.contract.canonical import CANONICAL_ORDER, annotate
+from shiproute_weather.contract.canonical import annotate
 from shiproute_weather.contract.members import MEMBER_DIM, MEMBER_LABEL
 from shiproute_weather.wire.packing import PackedField, unpack_field
 
 from ..checks.forecast_wire import MAX_CYCLE_STORAGE_BYTES
 from ..errors import ForecastCycleError
-from .cycle_packer import HS_VAR, SliceFields
+from .cycle_packer import HS_VAR, SliceFields, canonical_variables
 
 
 class EnsembleCycle:
@@ -55,11 +55,7 @@ class MemberCyclePacker:
             raise ForecastCycleError(f"{where}: {self.count} slices cannot hold "
                                      f"{self.members} members of equal length")
         self.times = self.count // self.members
-        present = {name for name, _ in first.fields}
-        self.variables = [n for n in CANONICAL_ORDER if n in present]
-        if not self.variables:
-            raise ForecastCycleError(f"{where}: slice {first.index} has no canonical field "
-                                     f"(got {sorted(present)})")
+        self.variables = canonical_variables(first)
         self._names = [name for name, _ in first.fields]
         g = self.grid
         need = self.count * g.n_lat * g.n_lon * len(self.variables) * 4
