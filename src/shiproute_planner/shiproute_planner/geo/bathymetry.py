@@ -10,11 +10,13 @@ Cells at or above the datum are land or drying: a fine grid (<= 1 arc-minute) re
 0 m of water; a coarse grid reports them and the cells next to them as unknown, because its
 coastal cells average sea and land over several kilometres and the coastline, not the grid,
 decides there, and reports the median of each 3 x 3 neighbourhood (a shoal must cover most
-of it, ~15 km at 5 arc-minutes, to count: single-cell values are as often errors).
+of it, ~15 km at 5 arc-minutes, to count: single-cell values are as often errors). Cells of a
+coarse grid near GSHHG land are unknown too (`geo.coarse_coast`: smear, not shoals).
 """
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 from dataclasses import dataclass
 from pathlib import Path
@@ -22,7 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import BathymetryError
-from . import depth_cache
+from . import coarse_coast, depth_cache
 
 # Debian package ferret-datasets: ETOPO5 (NOAA NGDC 1988, 5 arc-minute, public domain)
 ETOPO5_PATH = Path("/usr/share/ferret-vis/data/etopo5.cdf")
@@ -48,6 +50,9 @@ class DepthGrid:
     lon0_deg: float  # centre of column 0, in -180..180
     dlon_deg: float
     periodic: bool  # the columns wrap round the globe
+    #: coarse grids: uint8 mask, 1 where the cell is within `coarse_coast.COAST_CELLS` of
+    #: GSHHG land (its depth is NaN: not trusted); None for fine grids
+    coast_cells: np.ndarray | None = None
 
     @property
     def cell_deg(self) -> float:
@@ -167,18 +172,22 @@ def load_depth_grid(path_text: str) -> DepthGrid:
     path = Path(path_text)
     if not path.is_file():
         raise BathymetryError(f"bathymetry file {path} does not exist")
-    prepared = depth_cache.open_prepared(data_dir(), prepared_key(path))
-    if prepared is not None:
+    key = prepared_key(path)
+    prepared = depth_cache.open_prepared(data_dir(), key)
+    mask = None if prepared is None else coarse_coast.open_mask(data_dir(), key,
+                                                                 prepared[0].shape)
+    if prepared is not None and mask is not None:
         depth, meta = prepared
         return DepthGrid(str(meta["name"]), depth, float(meta["lat0_deg"]),
                          float(meta["dlat_deg"]), float(meta["lon0_deg"]),
-                         float(meta["dlon_deg"]), bool(meta["periodic"]))
+                         float(meta["dlon_deg"]), bool(meta["periodic"]), mask)
     grid = _read_grid(path)
-    _prepare(grid)
+    grid = _prepare(grid)
     if not np.isfinite(grid.depth_m).any():
         raise BathymetryError(f"bathymetry file {path}: it holds no sea depths")
-    if grid.is_coarse:  # seconds of filtering: kept, and mapped from the file from now on
-        depth_cache.write_prepared(data_dir(), prepared_key(path), grid.depth_m, {
+    if grid.is_coarse and grid.coast_cells is not None:  # seconds: kept, mapped from now on
+        coarse_coast.write_mask(data_dir(), key, grid.coast_cells)
+        depth_cache.write_prepared(data_dir(), key, grid.depth_m, {
             "name": grid.name, "lat0_deg": grid.lat0_deg, "dlat_deg": grid.dlat_deg,
             "lon0_deg": grid.lon0_deg, "dlon_deg": grid.dlon_deg, "periodic": grid.periodic})
     return grid
@@ -221,18 +230,20 @@ def _read_grid(path: Path) -> DepthGrid:
 
 
 #: version of the preparation below; a change makes every prepared grid be prepared again
-PREPARED_VERSION = 3
+PREPARED_VERSION = 4
 
 
 def prepared_key(path: Path) -> str:
-    """Cache key of a grid file's prepared depths: name, size, modification time, version."""
+    """Cache key of a grid file's prepared depths: name, size, modification time, version and
+    the coastal reach."""
     st = path.stat()
-    return f"{path.name}_{st.st_size}_{int(st.st_mtime)}_v{PREPARED_VERSION}"
+    return (f"{path.name}_{st.st_size}_{int(st.st_mtime)}_v{PREPARED_VERSION}"
+            f"_coast{coarse_coast.COAST_CELLS}")
 
 
-def _prepare(grid: DepthGrid) -> None:
+def _prepare(grid: DepthGrid) -> DepthGrid:
     """Dry and coastal cells as the grid's resolution allows (see the module docstring), in
-    place."""
+    place; a coarse grid comes back with its coastal-cell mask (`geo.coarse_coast`)."""
     if grid.is_coarse:  # a compilation's shelf fill values are "shallow, not known"
         from .fill_values import shelf_fill_values
 
@@ -245,15 +256,20 @@ def _prepare(grid: DepthGrid) -> None:
         if grid.periodic:  # the seam columns see each other
             near[:, 0] |= dry[:, -1]
             near[:, -1] |= dry[:, 0]
+        coast = coarse_coast.coastal_cells(grid.depth_m.shape, grid.lat0_deg, grid.dlat_deg,
+                                           grid.lon0_deg, grid.dlon_deg, grid.periodic)
         # each coarse cell reads the median of its 3 x 3 neighbourhood: single cells of
         # 5-arc-minute compilations are as often errors as shoals (shoals that small need a
         # finer grid anyway), banks several cells wide stay shallow
         known = np.where(np.isnan(grid.depth_m) | near, np.inf, grid.depth_m)
         median = ndimage.median_filter(known, size=3, mode="wrap" if grid.periodic
                                        else "nearest")
-        grid.depth_m[:] = np.where(near | ~np.isfinite(median), np.nan, median)
-    else:
-        grid.depth_m[dry] = 0.0
+        # cells near GSHHG land give no depth; they still vote in their neighbours' median,
+        # which keeps a shoal that reaches offshore at least as shallow as before
+        grid.depth_m[:] = np.where(near | coast | ~np.isfinite(median), np.nan, median)
+        return dataclasses.replace(grid, coast_cells=coast.astype(np.uint8))
+    grid.depth_m[dry] = 0.0
+    return grid
 
 
 def default_depth_files() -> list[Path]:

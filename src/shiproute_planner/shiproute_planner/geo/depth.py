@@ -12,6 +12,7 @@ from scipy import ndimage
 from . import _depth_kernels as dk
 from . import depth_cache
 from .bathymetry import DepthGrid, default_depth_files, load_depth_grid
+from .coarse_coast import COAST_CELLS
 
 BLOCK_DEG = 0.25  # pre-check raster: minimum known depth per 0.25-deg block
 
@@ -40,9 +41,9 @@ class Bathymetry:
         """What the depths come from, finest first, with each grid's resolution."""
         parts = []
         for g in self.grids:
-            note = (" (coarse: coastal cells smeared, the coastline decides there; shelf fill "
-                    "values, whole metres far more frequent than their neighbours, read as "
-                    "unknown)") if (
+            note = (f" (coarse: cells within {COAST_CELLS} cells of GSHHG land are smeared and "
+                    "give no depth, the coastline decides there; shelf fill values, whole "
+                    "metres far more frequent than their neighbours, read as unknown)") if (
                 g.is_coarse) else ""
             parts.append(f"{g.name} ({g.resolution_text}){note}")
         return "; ".join(parts)
