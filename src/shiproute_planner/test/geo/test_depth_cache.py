@@ -71,9 +71,11 @@ def test_mapped_grid_answers_exactly_as_the_grid_prepared_in_memory(etopo5_crop:
     assert np.array_equal(points, fresh_points, equal_nan=True)
     assert np.array_equal(legs, fresh_legs, equal_nan=True)
     # a sanity anchor independent of the code: the Japan Trench off Honshu is deeper than
-    # 6,000 m in every bathymetry, the Korea Strait shallower than 200 m
+    # 6,000 m in every bathymetry, the East China Sea shelf west of Kyushu shallower than
+    # 200 m (the Korea Strait itself lies within the coastal cells: no depth, geo.coarse_coast)
     assert Bathymetry([mapped]).depth_m(np.array([144.0]), np.array([38.0]))[0] > 6000.0
-    assert Bathymetry([mapped]).depth_m(np.array([129.0]), np.array([34.5]))[0] < 200.0
+    assert Bathymetry([mapped]).depth_m(np.array([127.0]), np.array([31.5]))[0] < 200.0
+    assert np.isnan(Bathymetry([mapped]).depth_m(np.array([129.0]), np.array([34.5]))[0])
 
 
 def test_pre_check_scan_leaves_no_pages_of_the_mapped_grid_resident(etopo5_crop: Path) -> None:
