@@ -7,8 +7,10 @@ Gibraltar, Malacca, the Bosphorus, Torres Strait, the Great Barrier Reef, the El
 Lawrence). A lane is land-clean when no sample of its track (every 0.25 NM) lies on GSHHG
 full-resolution land outside 3 NM round each port and outside canals (fixed passages under
 their authorities' rules), and depth-checked when the plan was made
-with bathymetry and every planned leg's depth was known (port approaches inside coarse-grid
-coastal cells may be unknown: the coastline decides there; they are counted per lane).
+with bathymetry and every planned leg's depth was known or named by the plan as crossing a
+coarse grid's coastal cells (`geo.coarse_coast`: no UKC constraint there, the coastline
+decides; such legs are counted per lane, and `depth_fully_known_lanes` counts the lanes
+without any).
 """
 
 from __future__ import annotations
@@ -81,14 +83,22 @@ def run(budget_s: float, only: list[str]) -> dict:
         planned = np.zeros(depths.size, dtype=bool)
         for a, b in plan.optimised_spans:
             planned[a:b] = True
+        with_depth = not any(w.startswith("depth not checked:") for w in plan.warnings)
+        near_coast = np.zeros(depths.size, dtype=bool)
+        near_coast[[k for k in plan.extra.get("depth_coarse_near_coast", {}).get("legs", ())
+                    if k < depths.size]] = True
+        unknown = planned & ~np.isfinite(depths)
         row.update(
             plan_s=round(dt, 2), feasible=plan.feasible,
             infeasible_reasons=list(plan.infeasible_reasons),
             land_legs_full_res=[(v.leg, round(v.lat_deg, 3), round(v.lon_deg, 3),
                                  round(v.value, 2)) for v in land],
-            depth_checked=not any(w.startswith("depth not checked:") for w in plan.warnings)
-            and bool(np.all(np.isfinite(depths[planned]))),
+            # checked: every planned leg's depth known, or named by the plan as crossing
+            # coarse coastal cells (no UKC constraint there: the coastline decides)
+            depth_checked=with_depth and not bool(np.any(unknown & ~near_coast)),
+            depth_fully_known=with_depth and not bool(np.any(unknown)),
             depth_unknown_legs=int(np.count_nonzero(~np.isfinite(depths))),
+            depth_near_coast_legs=int(np.count_nonzero(near_coast)),
             min_ukc_m=round(float(np.nanmin([w.ukc_m for w in plan.waypoints[:-1]])), 1)
             if np.isfinite(depths).any() else None,
             distance_nm=round(plan.total_distance_nm, 1), fuel_t=round(plan.total_fuel_t, 1),
@@ -100,6 +110,7 @@ def run(budget_s: float, only: list[str]) -> dict:
         "feasible_lanes": sum(r["feasible"] for r in ok),
         "land_clean_lanes": sum(not r["land_legs_full_res"] for r in ok),
         "depth_checked_lanes": sum(r["depth_checked"] for r in ok),
+        "depth_fully_known_lanes": sum(r["depth_fully_known"] for r in ok),
         "failed_lanes": [r["lane"] for r in rows if "error" in r],
         "median_plan_s": round(statistics.median(times), 2) if times else None,
         "max_plan_s": round(max(times), 2) if times else None,
