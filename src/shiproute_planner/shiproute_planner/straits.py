@@ -52,12 +52,14 @@ STRAITS: tuple[Strait, ...] = (
     Strait("The Sound (Drogden)", ((56.40, 12.37), (55.28, 12.85)), max_draft_m=7.7,
            round_via="Great Belt (Route T)"),
     # Route T is the Danish transit route from the Skaw to north-east of Gedser (min depth
-    # 17 m): it enters the Kattegat north of Laeso and keeps to the deep water east of it
-    # (40-50 m in ETOPO5); the banks south and west of Laeso (3-14 m over 15-25 NM, real
-    # shoals, not coastal smear) are why it exists, so its passage starts before them
+    # 17 m): it enters the Kattegat north of Laeso and keeps to the deep water east of Laeso
+    # and Anholt (40-50 m in ETOPO5) before turning south-west for the Great Belt; the banks
+    # south and west of Laeso and west of Anholt (3-14 m over 15-25 NM, real shoals, not
+    # coastal smear) are why it exists, so its passage starts before them
     Strait("Great Belt (Route T)", ((57.60, 11.35), (54.45, 12.25)),
-           guide=((57.60, 11.35), (57.25, 11.48), (56.95, 11.62), (56.50, 11.30),
-                  (56.10, 11.15), (55.65, 10.82), (55.45, 11.00), (55.20, 11.00),
+           guide=((57.60, 11.35), (57.25, 11.48), (56.95, 11.70), (56.70, 11.98),
+                  (56.45, 11.90), (56.25, 11.45), (56.12, 10.98), (55.65, 10.82),
+                  (55.45, 11.00), (55.20, 11.00),
                   (54.85, 10.97), (54.60, 11.20), (54.50, 11.70), (54.45, 12.25))),
 )
 STRAIT_BY_NAME = {s.name: s for s in STRAITS}
