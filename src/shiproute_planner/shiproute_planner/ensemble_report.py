@@ -124,10 +124,11 @@ def ensemble_block(plan: RoutePlan, env: Environment, land: LandMask | None,
         "p_violated": p_violated,
         "legs": {"hs_m": _spread(hs, w), "wind_speed_m_s": _spread(wind, w)},
     }
-    said = [f"ensemble of {m_count} members ({members.kind}): "
-            + (f"planned on risk measure {risk.label} with P(Hs > limit) <= {risk.p_hs_max:g} "
-               f"(the other sea-keeping limits likewise) and P(late) <= {risk.p_late_max:g}" if risk is not None
-               else "planned on the members' mean forecast (no risk measure asked)")
+    how = ("planned on the members' mean forecast (no risk measure asked)" if risk is None
+           else f"planned on risk measure {risk.label} with P(Hs > limit) <= "
+           f"{risk.p_hs_max:g} (the other sea-keeping limits likewise) and P(late) <= "
+           f"{risk.p_late_max:g}")
+    said = [f"ensemble of {m_count} members ({members.kind}): " + how
             + f"; fuel P10/P50/P90 {block['fuel_t']['p10']:.1f}/{block['fuel_t']['p50']:.1f}/"
             f"{block['fuel_t']['p90']:.1f} t, P(Hs > limit) {block['p_hs_violation']:.2f}, "
             f"P(late) {block['p_late']:.2f}"]
