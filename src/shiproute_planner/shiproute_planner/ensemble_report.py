@@ -24,7 +24,7 @@ from .route.encoding import join_genes
 from .route.environment import Environment
 from .route.evaluation import RouteEvaluation
 from .route.fast_eval import fast_evaluator
-from .route.member_eval import member_outcomes
+from .route.member_eval import CHANCE_TOLERANCE, SEA_KEEPING, member_outcomes
 from .route.problem import RouteProblem
 from .route.risk import RiskSpec, weighted_quantile
 
@@ -119,18 +119,38 @@ def ensemble_block(plan: RoutePlan, env: Environment, land: LandMask | None,
                       per_member=eta.tolist()),
         "p_hs_violation": float(w @ ((flags & FLAG_WAVE_LIMIT) != 0)),
         "p_late": float(w @ late),
+        "p_sea_keeping_violation": float(w @ ((flags & SEA_KEEPING) != 0)),
         "p_any_violation": float(w @ (flags != 0)),
         "p_violated": p_violated,
         "legs": {"hs_m": _spread(hs, w), "wind_speed_m_s": _spread(wind, w)},
     }
-    said = [f"ensemble of {m_count} members ({members.kind}): "
-            + (f"planned on risk measure {risk.label} with P(Hs > limit) <= {risk.p_hs_max:g} "
-               f"and P(late) <= {risk.p_late_max:g}" if risk is not None
-               else "planned on the members' mean forecast (no risk measure asked)")
+    how = ("planned on the members' mean forecast (no risk measure asked)" if risk is None
+           else f"planned on risk measure {risk.label} with P(Hs > limit) <= "
+           f"{risk.p_hs_max:g} (the other sea-keeping limits likewise) and P(late) <= "
+           f"{risk.p_late_max:g}")
+    said = [f"ensemble of {m_count} members ({members.kind}): " + how
             + f"; fuel P10/P50/P90 {block['fuel_t']['p10']:.1f}/{block['fuel_t']['p50']:.1f}/"
             f"{block['fuel_t']['p90']:.1f} t, P(Hs > limit) {block['p_hs_violation']:.2f}, "
             f"P(late) {block['p_late']:.2f}"]
-    return block, said
+    return block, said + unmet_chance_constraints(block, risk)
+
+
+def unmet_chance_constraints(block: dict[str, Any], risk: RiskSpec | None) -> list[str]:
+    """A sentence per chance constraint the plan misses over the members: which, achieved
+    against asked (a best-effort plan must say it is one)."""
+    if risk is None:
+        return []
+    out = []
+    for name, achieved, asked in (
+            ("P(Hs > limit)", block["p_hs_violation"], risk.p_hs_max),
+            ("P(another sea-keeping limit exceeded)", block["p_sea_keeping_violation"],
+             risk.p_hs_max),
+            ("P(late)", block["p_late"], risk.p_late_max)):
+        if achieved > asked + CHANCE_TOLERANCE:
+            out.append(f"chance constraint {name} <= {asked:g} not met: {achieved:.2f} of the "
+                       f"members' weight (best effort under {risk.label}: the search found "
+                       "no route that meets it)")
+    return out
 
 
 def with_ensemble(plan: RoutePlan, block: dict[str, Any] | None, said: list[str]) -> RoutePlan:

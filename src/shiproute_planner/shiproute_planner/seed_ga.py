@@ -35,6 +35,10 @@ DENSE_CHECKS = 12  # feasible final candidates given the dense land check, best 
 EXACT_CHECK_EVERY = 15  # generations between exact confirmations of the GA's best
 # RPM ramps (relative change from the first to the last leg / 2) of timed seed variants
 TIMED_SLOPES = (-0.08, -0.04, 0.04, 0.08)
+# a risk-aware GA first runs on the members' mean forecast for this share of the budget and
+# seeds itself with that run's best candidates
+MEAN_PHASE_SHARE = 0.25
+MEAN_PHASE_SEEDS = 8
 
 
 def seed_ga_method(ctx: MethodContext) -> MethodResult:
@@ -52,6 +56,11 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
         return fast.evaluate(x) if fast is not None else evaluate_genes(p, env, ctx.land, x)
 
     x_seed, sources = seed_genes(ctx, seeds, fast)
+    mean_gens = mean_evals = 0
+    if risk is not None and fast is not None:
+        x_seed, sources, mean_gens, mean_evals = with_mean_optimum(ctx, fast, x_seed, sources)
+        ctx = dataclasses.replace(ctx, max_evaluations=max(
+            ctx.max_evaluations - mean_evals, 1) if ctx.max_evaluations else 0)
     x_seed, sources, offsets = best_seeds_first(p, x_seed, sources, evaluate)
     ga = initial_ga(ctx, x_seed, offsets)
     # the exact evaluator confirms bests of one forecast only (a risk-aware best is a
@@ -61,8 +70,29 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
         pop = ga.pop
         assert pop is not None  # the loop ran at least one generation
         best_x, final = risk_choice(p, env, ctx.land, pop, evaluate)
-        return MethodResult(final, best_src, ga.generation, ga.evaluations, best_x.copy())
+        return MethodResult(final, best_src, mean_gens + ga.generation,
+                            mean_evals + ga.evaluations, best_x.copy())
     return final_result(ctx, ga, confirmed, best_src)
+
+
+def with_mean_optimum(ctx: MethodContext, fast: FastEvaluator, x_seed: np.ndarray,
+                      sources: list[str]) -> tuple[np.ndarray, list[str], int, int]:
+    """The seeds plus the best of a GA run on the members' mean forecast (a
+    `MEAN_PHASE_SHARE` of the budget, its generations 1/M the cost of the members' ones):
+    the risk-aware GA starts from the plan a mean-forecast planner would make, so (elitist)
+    it never ends worse than it by its own ranking. Returns (genes, sources, generations,
+    evaluations) of that run."""
+    sub = dataclasses.replace(
+        ctx, budget_s=MEAN_PHASE_SHARE * ctx.budget_s, progress=None,
+        max_evaluations=round(MEAN_PHASE_SHARE * ctx.max_evaluations))
+    xs, src, offsets = best_seeds_first(ctx.problem, x_seed, sources, fast.evaluate)
+    ga = initial_ga(sub, xs, offsets)
+    run_ga(sub, ga, fast.evaluate, False, src)
+    pop = ga.pop  # best first (Deb order over all islands)
+    assert pop is not None  # the loop ran at least one generation
+    top = pop[:MEAN_PHASE_SEEDS]
+    return (np.concatenate([top, x_seed]), [*["mean_forecast_ga"] * len(top), *sources],
+            ga.generation, ga.evaluations)
 
 
 def all_seeds(ctx: MethodContext) -> list[TrackSeed]:

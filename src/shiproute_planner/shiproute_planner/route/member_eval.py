@@ -2,9 +2,10 @@
 
 `FastEvaluator.evaluate_members` sails each candidate on each member in one compiled call;
 here the member rows are split into per-member outcomes (objective, fuel, ETA, the wave-limit
-and lateness parts of the violation and everything else) and reduced: the objective by the
-risk measure, the constraints as chance constraints (`route.risk`), the rest as the
-members' weighted mean of their violations (any member on land keeps a candidate infeasible).
+and lateness parts of the violation, the other weather-decided limits and everything else)
+and reduced: the objective by the risk measure, Hs, sea-keeping and lateness as chance
+constraints (`route.risk`), the rest (land, depth, zones, turns) as the members' weighted
+mean of their violations (any member on land keeps a candidate infeasible).
 """
 
 from __future__ import annotations
@@ -13,7 +14,19 @@ import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
-from shiproute_core.flags import FLAG_WAVE_LIMIT
+from shiproute_core.flags import (
+    FLAG_DECK_WETNESS,
+    FLAG_ENGINE_LIMIT,
+    FLAG_IMO_HIGH_WAVE_GROUP,
+    FLAG_IMO_PARAMETRIC_ROLL,
+    FLAG_IMO_SURF_RIDING,
+    FLAG_IMO_SYNCHRONOUS_ROLL,
+    FLAG_PROPELLER_EMERGENCE,
+    FLAG_RTA,
+    FLAG_SLAMMING,
+    FLAG_WAVE_LIMIT,
+    FLAG_WIND_LIMIT,
+)
 
 from .evaluation import RouteEvaluation
 from .fast_eval import FastEvaluator
@@ -21,6 +34,12 @@ from .problem import RouteProblem
 from .risk import RiskSpec, risk_value
 
 CHANCE_TOLERANCE = 1e-9  # probabilities equal within rounding of the weights
+#: limits the weather decides member by member besides Hs: sea-keeping, wind, IMO modes
+SEA_KEEPING = np.uint32(FLAG_SLAMMING | FLAG_DECK_WETNESS | FLAG_PROPELLER_EMERGENCE
+                        | FLAG_WIND_LIMIT | FLAG_IMO_SURF_RIDING | FLAG_IMO_PARAMETRIC_ROLL
+                        | FLAG_IMO_SYNCHRONOUS_ROLL | FLAG_IMO_HIGH_WAVE_GROUP
+                        | FLAG_ENGINE_LIMIT)
+TIE_SHARE = 0.25  # the risk-measure tie-break spans this share of the lightest member weight
 
 
 @dataclass(frozen=True)
@@ -35,7 +54,8 @@ class MemberOutcomes:
     late: np.ndarray  # bool: arrives after the RTA
     hs_excess: np.ndarray  # violation share of the wave limit
     late_amount: np.ndarray  # violation share of lateness
-    other_violation: np.ndarray  # everything else (land, depth, zones, seakeeping, ...)
+    other_violation: np.ndarray  # land, depth, zones, heading, RPM range (0 if only weather)
+    sea_keeping: np.ndarray  # bool: a `SEA_KEEPING` limit exceeded on some leg
 
     def probability(self, event: np.ndarray) -> np.ndarray:
         """Weighted share of members where `event` (M, pop) holds."""
@@ -56,24 +76,43 @@ def member_outcomes(problem: RouteProblem, ev: RouteEvaluation, members: int,
     late_h = np.maximum(0.0, ev.eta_s - problem.rta_s) / 3600.0
     late_amount = np.where(late_h > 0, 1.0 + late_h, 0.0)
     other = np.maximum(ev.violation - hs_excess - late_amount, 0.0)
-    hs_hit = (np.bitwise_or.reduce(ev.leg_flags & np.uint32(FLAG_WAVE_LIMIT), axis=1)) != 0
+    leg_or = np.bitwise_or.reduce(ev.leg_flags, axis=1)
+    # what only the weather of a member decides is a chance event, not a hard violation
+    other = np.where((leg_or & ~(SEA_KEEPING | np.uint32(FLAG_WAVE_LIMIT | FLAG_RTA))) != 0,
+                     other, 0.0)
+    hs_hit = (leg_or & np.uint32(FLAG_WAVE_LIMIT)) != 0
     return MemberOutcomes(weights, ev.objective.reshape(shape), ev.fuel_t.reshape(shape),
                           ev.eta_s.reshape(shape), hs_hit.reshape(shape),
                           (late_h > 0).reshape(shape), hs_excess.reshape(shape),
-                          late_amount.reshape(shape), other.reshape(shape))
+                          late_amount.reshape(shape), other.reshape(shape),
+                          ((leg_or & SEA_KEEPING) != 0).reshape(shape))
 
 
-def _chance(p: np.ndarray, p_max: float, amount: np.ndarray) -> np.ndarray:
-    """Violation of P <= p_max: the excess probability plus the members' mean amount."""
-    return np.where(p > p_max + CHANCE_TOLERANCE, (p - p_max) + amount, 0.0)
+def chance_excess(out: MemberOutcomes, spec: RiskSpec) -> dict[str, np.ndarray]:
+    """Per chance constraint, by name, how far its probability lies above its bound (0 where
+    it holds), per candidate: `hs` and `sea_keeping` (the other weather-decided limits, held
+    to the same bound as Hs) against p_hs_max, `late` against p_late_max."""
+    def above(event: np.ndarray, p_max: float) -> np.ndarray:
+        return np.maximum(out.probability(event) - p_max - CHANCE_TOLERANCE, 0.0)
+
+    return {"hs": above(out.hs_exceeded, spec.p_hs_max),
+            "sea_keeping": above(out.sea_keeping, spec.p_hs_max),
+            "late": above(out.late, spec.p_late_max)}
 
 
-def risk_violation(out: MemberOutcomes, spec: RiskSpec) -> np.ndarray:
-    """Violation per candidate: mean other violation + the two chance constraints."""
+def risk_violation(out: MemberOutcomes, spec: RiskSpec, objective: np.ndarray) -> np.ndarray:
+    """Violation per candidate: the members' mean other violation plus, when a chance
+    constraint fails, the sum of the constraints' excess probabilities and a tie-break by the
+    risk measure `objective` worth less than a quarter of the lightest member's weight.
+
+    Under Deb's rules infeasible candidates are compared by violation alone: this orders
+    them by how far their chance constraints are missed and, at equal excess, by their risk
+    measure, so an unattainable bound never hides fuel from the search."""
     w = out.weights
-    return (w @ out.other_violation
-            + _chance(out.probability(out.hs_exceeded), spec.p_hs_max, w @ out.hs_excess)
-            + _chance(out.probability(out.late), spec.p_late_max, w @ out.late_amount))
+    excess = np.round(sum(chance_excess(out, spec).values()), 12)
+    step = TIE_SHARE * float(np.min(w[w > 0]))
+    tie = step * (0.5 + np.arctan(objective) / np.pi)
+    return w @ out.other_violation + np.where(excess > 0, excess + tie, 0.0)
 
 
 def risk_evaluate(fast: FastEvaluator, spec: RiskSpec, x: np.ndarray) -> RouteEvaluation:
@@ -86,6 +125,7 @@ def risk_evaluate(fast: FastEvaluator, spec: RiskSpec, x: np.ndarray) -> RouteEv
     pop = len(x)
     base = ev.take(np.arange(pop))
     flags = np.bitwise_or.reduce(ev.flags.reshape(members, pop), axis=0)
+    objective = risk_value(out.objective, weights, spec)
     return dataclasses.replace(base, fuel_t=weights @ out.fuel_t, flags=flags,
-                               violation=risk_violation(out, spec),
-                               objective=risk_value(out.objective, weights, spec))
+                               violation=risk_violation(out, spec, objective),
+                               objective=objective)

@@ -24,13 +24,14 @@ def _ensemble_sampler():
     return ForecastSampler(scenario_dataset("storm_march_ensemble"), dtype=np.float16)
 
 
-@pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason=(
-    "known miss (#19 check 1): after 25 generations the risk-aware plan meets neither chance "
-    "constraint (measured: P90 fuel 670.7 t vs 639.3 t of the mean plan; P(Hs > limit) 0.55 "
-    "vs 0.65 with p_hs_max 0.3, P(late) 1.0 vs 0.6); the GA on 20 members gets too few "
-    "generations and its violation mixes lateness and Hs excess"))
-def test_risk_aware_plan_has_lower_p90_fuel_and_hs_risk_than_the_mean_plan(land_mask):
+@pytest.fixture(scope="module")
+def storm_plans(land_mask):
+    """(risk-aware plan, plan on the members' mean) of the 20-member storm scenario.
+
+    cvar:0.9 weighs the worst 10 % of the members' fuel; P(Hs > limit) <= 0.1 asks the route
+    to keep under the ship's 8 m limit in all but two of the 20 members; P(late) <= 0.5 asks
+    it to be on time at least as often as a plan timed to the RTA on the mean forecast is
+    (half the members are worse than their mean)."""
     sampler = _ensemble_sampler()
     kw = dict(budget_s=1e6, max_generations=25, land=land_mask, seed=0,
               default_bathymetry=True)
@@ -38,17 +39,49 @@ def test_risk_aware_plan_has_lower_p90_fuel_and_hs_risk_than_the_mean_plan(land_
                         sampler, risk="cvar:0.9", p_hs_max=0.1, p_late_max=0.5, **kw)
     mean = plan_voyage("Busan", "Long Beach", DEPART, timedelta(days=13), "container_4600teu",
                        sampler, **kw)
+    return risky, mean
+
+
+@pytest.mark.slow
+def test_risk_aware_plan_meets_high_seas_less_often_and_states_every_missed_bound(
+        storm_plans):
+    """Both plans sailed on the same 20 members: the risk plan meets a sea above the limit
+    less often than the mean plan and is late no more often than its bound (0.5 as given);
+    a chance bound it misses is stated with achieved against asked (the search is a GA
+    within a budget: a bound it does not reach must never pass in silence), one it meets
+    is not; the plan says what it was made on."""
+    risky, mean = storm_plans
     a, b = risky.extra["ensemble"], mean.extra["ensemble"]
     assert a["members"] == b["members"] == 20
-    assert a["fuel_t"]["p90"] < b["fuel_t"]["p90"]
     assert a["p_hs_violation"] < b["p_hs_violation"]
-    # the chance constraints hold (lateness as often as the mean plan is late: ~half)
-    assert a["p_hs_violation"] <= 0.1 + 1e-9 and a["p_late"] <= 0.5 + 1e-9
-    # the plan says what it was made on
+    assert a["p_late"] <= 0.5 + 1e-9
+    for name, achieved, asked in (("P(Hs > limit)", a["p_hs_violation"], 0.1),
+                                  ("P(late)", a["p_late"], 0.5)):
+        said = [w for w in risky.warnings if f"chance constraint {name} <= {asked:g} not met"
+                in w]
+        assert len(said) == (1 if achieved > asked + 1e-9 else 0)
+        assert all(f"not met: {achieved:.2f}" in w for w in said)
     assert risky.risk_measure == "cvar:0.9" and risky.ensemble_members == 20
     assert any("20 members" in w and "cvar:0.9" in w for w in risky.warnings)
     assert mean.risk_measure == "" and any("members' mean" in w for w in mean.warnings)
+    assert not any("chance constraint" in w for w in mean.warnings)
     assert len(risky.leg_hs_spread_m) == len(risky.waypoints) - 1
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason=(
+    "known miss (#19 check 1), now on P90 fuel: the risk plan meets high seas far less often "
+    "(measured, 25 generations, seed 0: P(Hs > limit) 0.15 vs 0.75 of the mean plan, P(late) "
+    "0.30 vs 0.50) but its route (north to ~51 N) burns more in the storm members too: P90 "
+    "fuel 660.5 t vs 635.2 t. Measured trade-off of the risk GA on this scenario "
+    "(P(Hs), P90 t): (0.75, 621.4) with no Hs bound, (0.65, 636.0), (0.5, 647-652), "
+    "(0.15, 660.5) asking 0.1: no bound found gives both below the mean plan's (0.75, 635.2)"))
+def test_risk_aware_plan_has_lower_p90_fuel_and_hs_risk_than_the_mean_plan(storm_plans):
+    """The issue's check 1: over the same members, P90 fuel and P(Hs > limit) both lower."""
+    risky, mean = storm_plans
+    a, b = risky.extra["ensemble"], mean.extra["ensemble"]
+    assert a["p_hs_violation"] < b["p_hs_violation"]
+    assert a["fuel_t"]["p90"] < b["fuel_t"]["p90"]
 
 
 @pytest.mark.parametrize("extra, words", [
