@@ -69,7 +69,7 @@ def test_streamed_budget_is_the_whole_loads(tmp_path: Path, max_slices: int,
     assert sorted(notes) == sorted(ref_notes)
 
 
-def _member_major_file(path: Path, members: int, n_time: int = 48) -> Path:
+def _member_major_file(path: Path, members: int, n_time: int = 32) -> Path:
     """An ensemble stored like the bundled one: (member, time, lat, lon), 16-bit CF packing
     at 0.01, contiguous; wind and Hs on a 0.5 deg grid of 41 x 81 nodes."""
     lat = np.arange(30.0, 50.0 + 1e-9, 0.5)
@@ -108,7 +108,7 @@ def _peak_bytes(path: Path, cfg: CycleConfig) -> tuple[int, int]:
 
 def test_loader_peak_is_one_block_whatever_the_member_count(tmp_path: Path) -> None:
     cfg = CycleConfig(max_slices=1000)
-    n_time, n_nodes, n_fields = 48, 41 * 81, 3
+    n_time, n_nodes, n_fields = 32, 41 * 81, 3
     block_f32 = BLOCK_TIMES * n_nodes * n_fields * 4  # one member's block as float32
     peaks = {}
     for members in (2, 8):
