@@ -25,13 +25,16 @@ def member_slice_index(member: int, time_index: int, times_per_member: int) -> i
     return member * times_per_member + time_index
 
 
-def valid_times(views: Mapping[int, SliceView], members: int, slice_count: int) -> list[float]:
-    """The cycle's valid times (member 0's slices; any member's when member 0 is short)."""
+def valid_times(views: Mapping[int, SliceView], members: int, slice_count: int
+                ) -> tuple[list[int], list[float]]:
+    """(time indices, valid times) received so far of a cycle, in order, from any member's
+    slices (a partial cycle may lack some)."""
     per = max(1, slice_count // max(1, members))
     times: dict[int, float] = {}
     for index, view in views.items():
         times.setdefault(index % per, view.valid_s)
-    return [times[k] for k in sorted(times)]
+    order = sorted(times)
+    return order, [times[k] for k in order]
 
 
 def hs_values(view: SliceView) -> np.ndarray:

@@ -246,13 +246,13 @@ class DisplayState:
         cycles = []
         for cid, info in self.cycles.items():
             views = self.slices.get(cid, {})
-            times = valid_times(views, info.member_count, info.slice_count)
+            indices, times = valid_times(views, info.member_count, info.slice_count)
             cycles.append({
                 "cycle_id": cid, "reference_s": info.reference_s, "source": info.source,
                 "slice_count": info.slice_count, "received": len(views),
                 "members": info.member_count, "member_labels": list(info.member_labels),
                 "member_kind": info.member_kind, "times_per_member": info.times_per_member,
-                "times_s": times, "indices": list(range(len(times))),
+                "times_s": times, "indices": indices,
                 "tracks": self.tracks.get(cid, []),
             })
         return {"cycles": cycles}

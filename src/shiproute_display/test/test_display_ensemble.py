@@ -116,3 +116,13 @@ def test_ensemble_plan_spread_on_the_page() -> None:
     assert checked >= len(rows) // 2  # most legs are sailed on the members
     assert plan_payload(plan_from_msg(plan_messages(load_plan("plan_cycle1"), T0)[0]),
                         None)["ensemble"] is None
+
+
+def test_a_partial_deterministic_cycle_keeps_its_time_indices() -> None:
+    st = DisplayState()
+    st.on_cycle(CycleInfo("det-1", T0, T0, T0 + 5 * STEP_S, STEP_S, 6, "unit-test"))
+    for t in (0, 1, 4):
+        st.on_slice("det-1", thin_slice(t, T0 + t * STEP_S, GRID, _fields(0, t)))
+    cyc = st.snapshot()["forecast"]["cycles"][0]
+    assert cyc["indices"] == [0, 1, 4] and cyc["times_s"] == [T0 + t * STEP_S for t in (0, 1, 4)]
+    assert json.loads(st.slice_json("det-1", 4) or b"null")["valid_s"] == T0 + 4 * STEP_S
