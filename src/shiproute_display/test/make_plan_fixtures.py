@@ -5,7 +5,8 @@
 Three plans Busan -> Long Beach through the bundled March storm: the departure plan on cycle 1
 (`storm_march`), the re-plan 24 h later from the first plan's position on cycle 2
 (`storm_march_cycle2`) and the departure plan on the 20-member `storm_march_ensemble` under
-CVaR 0.9 of fuel (with its spread: P10/P50/P90, probabilities, per-leg Hs and wind), each a frozen `RoutePlan` written field by field (every waypoint) so
+CVaR 0.9 of fuel (with its spread: P10/P50/P90, probabilities, per-leg Hs and wind), each a
+frozen `RoutePlan` written field by field (every waypoint) so
 the tests publish it through the planner's own `plan_to_msg` / `plan_to_rpm_profile`.
 """
 

@@ -37,8 +37,8 @@ from ..ingest.cycle_builder import MAX_SLICE_BYTES, MAX_SLICES, CycleConfig, cor
 from ..ingest.cycle_load import load_cycle
 from ..ingest.members import member_file_groups
 from ..ingest.stream import warm_array_backends
-from ..ingest.wire_budget import wire_summary
 from ..ingest.watch import DirectoryWatcher
+from ..ingest.wire_budget import wire_summary
 from ..scenarios.catalogue import scenario_path
 from .convert import (
     DEFAULT_SLICE_ENCODING,
