@@ -6,7 +6,8 @@ LoadForecast service, alternates the deterministic `storm_march` cycle (0.5 deg,
 with the ensemble `--rounds` times. Reported: the ensemble cycle's members, slices and bytes of
 field values on the wire (`cycle_bytes`) as the node's diagnostics state them, the load time of
 each kind, and the node's resident memory: `weather_rss_peak_mb` (VmHWM over the run, target
-<= 400 MB as issue #16 asks of the weather node) and `weather_rss_end_mb`.
+<= 400 MB as issue #16 asks of the weather node), `weather_rss_end_mb`, and the peak so far
+after each load (`rss_peak_after_mb`: which load set it).
 """
 
 from __future__ import annotations
@@ -40,7 +41,7 @@ def _load(peer: Any, cli: Any, paths: list[str]) -> tuple[float, str]:
     return time.monotonic() - t0, str(res.cycle_id)
 
 
-def run(rounds: int) -> dict[str, Any]:
+def run(rounds: int, control: bool = False) -> dict[str, Any]:
     """Start the node, alternate the cycles, read the diagnostics and memory."""
     from diagnostic_msgs.msg import DiagnosticArray
     from shiproute_weather.scenarios.catalogue import scenario_path
@@ -49,7 +50,7 @@ def run(rounds: int) -> dict[str, Any]:
     from shiproute_bringup.rosproc import RosProcess, console_script, random_domain_id
     from shiproute_msgs.srv import LoadForecast
 
-    ensemble = str(scenario_path("storm_march_ensemble"))
+    ensemble = str(scenario_path("storm_march_cycle2" if control else "storm_march_ensemble"))
     deterministic = str(scenario_path("storm_march"))
     dom = random_domain_id()
     diag: dict[str, dict[str, str]] = {}
@@ -65,8 +66,9 @@ def run(rounds: int) -> dict[str, Any]:
 
             peer.node.create_subscription(DiagnosticArray, topics.DIAGNOSTICS, on_diag, 10)
             cli = peer.node.create_client(LoadForecast, topics.FORECAST_LOAD)
-            weather.wait_for_line(r"published cycle \S+: \d+ slices of 20 member", 300)
+            weather.wait_for_line(r"published cycle \S+: \d+ slices of \d+ member", 300)
             rss_start = rss_mb(weather.proc.pid)
+            steps = [["start-up ensemble", round(peak_rss_mb(weather.proc.pid), 1)]]
             loads: dict[str, list[float]] = {"ensemble": [], "deterministic": []}
             figures: dict[str, str] = {}
             for _ in range(rounds):
@@ -79,6 +81,7 @@ def run(rounds: int) -> dict[str, Any]:
                         peer.spin_once(0.05)
                     if kind == "ensemble":
                         figures = dict(diag.get(DIAG_NAME, {}))
+                    steps.append([kind, round(peak_rss_mb(weather.proc.pid), 1)])
             return {
                 "members": int(figures.get("members", 0)),
                 "slices": int(figures.get("slices", 0)),
@@ -92,6 +95,7 @@ def run(rounds: int) -> dict[str, Any]:
                 "weather_rss_start_mb": round(rss_start, 1),
                 "weather_rss_end_mb": round(rss_mb(weather.proc.pid), 1),
                 "weather_rss_peak_mb": round(peak_rss_mb(weather.proc.pid), 1),
+                "rss_peak_after_mb": steps,  # VmHWM after each load: which load set the peak
                 "targets": TARGETS,
             }
         finally:
@@ -105,7 +109,10 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--rounds", type=int, default=3,
                    help="deterministic + ensemble loads after the start-up load")
+    p.add_argument("--control", action="store_true",
+                   help="alternate two deterministic cycles instead (storm_march_cycle2 in "
+                        "the ensemble's place): the node's memory without members")
     args = p.parse_args(argv)
-    print_figures(run(args.rounds), args.json)
+    print_figures(run(args.rounds, args.control), args.json)
     sys.stdout.flush()
     return 0
