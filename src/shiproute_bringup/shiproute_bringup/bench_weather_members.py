@@ -65,7 +65,7 @@ def run(rounds: int, control: bool = False) -> dict[str, Any]:
                         diag[s.name] = {kv.key: kv.value for kv in s.values}
 
             peer.node.create_subscription(DiagnosticArray, topics.DIAGNOSTICS, on_diag, 10)
-            cli = peer.node.create_client(LoadForecast, topics.FORECAST_LOAD)
+            cli: Any = peer.node.create_client(LoadForecast, topics.FORECAST_LOAD)
             weather.wait_for_line(r"published cycle \S+: \d+ slices of \d+ member", 300)
             rss_start = rss_mb(weather.proc.pid)
             steps = [["start-up ensemble", round(peak_rss_mb(weather.proc.pid), 1)]]
