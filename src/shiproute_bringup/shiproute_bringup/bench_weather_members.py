@@ -41,7 +41,7 @@ def _load(peer: Any, cli: Any, paths: list[str]) -> tuple[float, str]:
     return time.monotonic() - t0, str(res.cycle_id)
 
 
-def run(rounds: int, control: bool = False) -> dict[str, Any]:
+def run(rounds: int, control: bool = False, max_slices: int = 200) -> dict[str, Any]:
     """Start the node, alternate the cycles, read the diagnostics and memory."""
     from diagnostic_msgs.msg import DiagnosticArray
     from shiproute_weather.scenarios.catalogue import scenario_path
@@ -55,7 +55,8 @@ def run(rounds: int, control: bool = False) -> dict[str, Any]:
     dom = random_domain_id()
     diag: dict[str, dict[str, str]] = {}
     with RosProcess([console_script("shiproute_weather_node"), "--ros-args", "-p",
-                     f"forecast_files:=['{ensemble}']"], domain_id=dom,
+                     f"forecast_files:=['{ensemble}']", "-p", f"max_slices:={max_slices}"],
+                    domain_id=dom,
                     name="weather") as weather:
         peer = BenchPeer("bench_weather_members", dom)
         try:
@@ -112,7 +113,8 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--control", action="store_true",
                    help="alternate two deterministic cycles instead (storm_march_cycle2 in "
                         "the ensemble's place): the node's memory without members")
+    p.add_argument("--max-slices", type=int, default=200, help="the node's max_slices")
     args = p.parse_args(argv)
-    print_figures(run(args.rounds, args.control), args.json)
+    print_figures(run(args.rounds, args.control, args.max_slices), args.json)
     sys.stdout.flush()
     return 0
