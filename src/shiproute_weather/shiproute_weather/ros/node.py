@@ -48,6 +48,7 @@ from .convert import (
     slice_to_msg,
     wire_bytes,
 )
+from .dds_profile import forget_profile, use_dynamic_slice_writer
 from .heap import return_freed_memory, return_large_blocks_at_once
 
 DIAG_NAME = "shiproute_weather: forecast"
@@ -346,8 +347,12 @@ def main(argv: list[str] | None = None) -> int:
     """Console script `shiproute_weather_node`; runs until SIGINT/SIGTERM."""
     return_large_blocks_at_once(1 << 15)  # a packed field of a slice is ~55 kB
     warm_array_backends()
+    profile = use_dynamic_slice_writer(FORECAST_SLICES)  # see dds_profile
     rclpy.init(args=argv if argv is not None else sys.argv)
-    node = WeatherNode()
+    try:
+        node = WeatherNode()
+    finally:
+        forget_profile(profile)
     executor = MultiThreadedExecutor(num_threads=3)
     executor.add_node(node)
     spin_until_shutdown(executor, (node,), stop=(node.stop,))
