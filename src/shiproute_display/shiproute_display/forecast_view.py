@@ -47,12 +47,13 @@ class SliceView:
     hs_grid: GridSpec
     hs_codes: bytes  # n_lat * n_lon bytes, HS_STEP_M per code, HS_MISSING = no value
     wind: tuple[float, ...]  # flat lon_deg, lat_deg, u_m_s, v_m_s, ...
+    member: int = 0  # ensemble member of the slice; -1 = combined over the members
 
     def to_json(self) -> bytes:
         """Body of `/api/forecast/<index>`."""
         g = self.hs_grid
         return json.dumps({
-            "index": self.index, "valid_s": self.valid_s,
+            "index": self.index, "valid_s": self.valid_s, "member": self.member,
             "grid": [g.lat0_deg, g.dlat_deg, g.n_lat, g.lon0_deg, g.dlon_deg, g.n_lon],
             "hs_step_m": HS_STEP_M, "hs_missing": HS_MISSING,
             "hs_b64": base64.b64encode(self.hs_codes).decode(),
@@ -71,7 +72,8 @@ def _block_max(values: np.ndarray, stride: int) -> np.ndarray:
 
 
 def thin_slice(index: int, valid_s: float, grid: GridSpec, fields: dict[str, np.ndarray],
-               max_cells: int = 8000, barb_spacing_deg: float = 2.5) -> SliceView:
+               max_cells: int = 8000, barb_spacing_deg: float = 2.5, member: int = 0
+               ) -> SliceView:
     """Thin one decoded slice (flat float32 arrays keyed by CF name) for the page."""
     n = grid.n_lat * grid.n_lon
     if grid.n_lat < 1 or grid.n_lon < 1 or not (grid.dlat_deg > 0 and grid.dlon_deg > 0):
@@ -105,4 +107,4 @@ def thin_slice(index: int, valid_s: float, grid: GridSpec, fields: dict[str, np.
         ok = np.isfinite(u2) & np.isfinite(v2)
         flat = np.stack([lon_g[ok], lat_g[ok], u2[ok], v2[ok]], axis=1)
         wind = np.round(flat.astype(np.float64), 2).ravel().tolist()
-    return SliceView(index, float(valid_s), hs_grid, codes.tobytes(), tuple(wind))
+    return SliceView(index, float(valid_s), hs_grid, codes.tobytes(), tuple(wind), member)

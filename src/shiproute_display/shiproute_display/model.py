@@ -34,6 +34,23 @@ class Waypoint:
 
 
 @dataclass(frozen=True)
+class EnsembleSpread:
+    """What a plan sailed on an ensemble states of its spread (RoutePlan issue-19 fields)."""
+
+    members: int
+    risk_measure: str  # mean | cvar:ALPHA | worst; '' = planned on the members' mean
+    fuel_quantiles_t: tuple[float, ...]  # P10, P50, P90 [t]
+    eta_quantiles_s: tuple[float, ...]  # P10, P50, P90 (POSIX s)
+    p_hs_violation: float
+    p_late: float
+    leg_hs_min_m: tuple[float, ...]
+    leg_hs_median_m: tuple[float, ...]
+    leg_hs_max_m: tuple[float, ...]
+    leg_wind_min_m_s: tuple[float, ...]
+    leg_wind_max_m_s: tuple[float, ...]
+
+
+@dataclass(frozen=True)
 class Plan:
     """What the page and Foxglove need of a RoutePlan."""
 
@@ -55,6 +72,7 @@ class Plan:
     baseline_fuel_t: float
     compute_time_s: float
     waypoints: tuple[Waypoint, ...]
+    ensemble: EnsembleSpread | None = None  # the spread over forecast members (None: one)
 
     @property
     def fuel_saving_t(self) -> float:
@@ -108,6 +126,14 @@ class CycleInfo:
     step_s: float
     slice_count: int
     source: str
+    member_count: int = 1  # members of the cycle; slice_count = member_count x valid times
+    member_labels: tuple[str, ...] = ()
+    member_kind: str = ""  # "ensemble" | "multi-model" ('' deterministic)
+
+    @property
+    def times_per_member(self) -> int:
+        """Valid times of each member."""
+        return self.slice_count // max(1, self.member_count)
 
 
 def _finite_position(lat: float, lon: float) -> bool:

@@ -10,7 +10,7 @@ import math
 from typing import Any
 
 from .geometry import position_at, zone_offset_h
-from .model import Plan, Profile, ShipFix, Stage
+from .model import EnsembleSpread, Plan, Profile, ShipFix, Stage
 
 
 def num(v: float, digits: int = 3) -> float | None:
@@ -44,10 +44,11 @@ def stages_of(plan: Plan, profile: Profile | None) -> list[Stage]:
 
 def schedule_rows(plan: Plan, profile: Profile | None) -> list[dict[str, Any]]:
     """One row per stage: start (UTC s + ship's zone), RPM, heading, expected SOG, fuel, Hs."""
-    legs = {round(w.time_s): w for w in plan.waypoints[:-1]}
+    legs = {round(w.time_s): (k, w) for k, w in enumerate(plan.waypoints[:-1])}
+    spread = plan.ensemble
     rows = []
     for i, s in enumerate(stages_of(plan, profile)):
-        leg = legs.get(round(s.start_s))
+        k, leg = legs.get(round(s.start_s), (-1, None))
         lat, lon, _ = position_at(plan, s.start_s)
         rows.append({
             "stage": i + 1, "start_s": s.start_s, "duration_s": num(s.duration_s, 0),
@@ -57,6 +58,8 @@ def schedule_rows(plan: Plan, profile: Profile | None) -> list[dict[str, Any]]:
             "fuel_t": num(leg.leg_fuel_t, 3) if leg else None,
             "hs_m": num(leg.hs_m, 3) if leg else None,
             "flags": int(leg.constraint_flags) if leg else 0,
+            "hs_min_m": _leg_value(spread.leg_hs_min_m, k) if spread else None,
+            "hs_max_m": _leg_value(spread.leg_hs_max_m, k) if spread else None,
         })
     return rows
 
@@ -86,6 +89,26 @@ def plan_payload(plan: Plan, profile: Profile | None) -> dict[str, Any]:
                                if p.leg_duration_s > 0 else None for p in w[:-1]],
         "leg_hs_m": [num(p.hs_m, 3) for p in w[:-1]],
         "schedule": schedule_rows(plan, profile),
+        "ensemble": ensemble_payload(plan.ensemble) if plan.ensemble else None,
+    }
+
+
+def _leg_value(values: tuple[float, ...], k: int) -> float | None:
+    return num(values[k], 2) if 0 <= k < len(values) else None
+
+
+def ensemble_payload(e: EnsembleSpread) -> dict[str, Any]:
+    """A plan's spread over forecast members: P10/P50/P90 of fuel and ETA, risks, leg Hs."""
+    return {
+        "members": e.members, "risk_measure": e.risk_measure or "mean forecast",
+        "fuel_quantiles_t": [num(v, 1) for v in e.fuel_quantiles_t],
+        "eta_quantiles_s": [num(v, 0) for v in e.eta_quantiles_s],
+        "p_hs_violation": num(e.p_hs_violation, 3), "p_late": num(e.p_late, 3),
+        "leg_hs_min_m": [num(v, 2) for v in e.leg_hs_min_m],
+        "leg_hs_median_m": [num(v, 2) for v in e.leg_hs_median_m],
+        "leg_hs_max_m": [num(v, 2) for v in e.leg_hs_max_m],
+        "leg_wind_min_m_s": [num(v, 1) for v in e.leg_wind_min_m_s],
+        "leg_wind_max_m_s": [num(v, 1) for v in e.leg_wind_max_m_s],
     }
 
 

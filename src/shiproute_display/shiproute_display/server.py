@@ -49,7 +49,7 @@ class Routes:
 
     snapshot: Callable[[], dict[str, Any]]
     coast: Callable[[], bytes]
-    forecast_slice: Callable[[str, int], bytes | None]
+    forecast_slice: Callable[[str, int, str], bytes | None]  # cycle, time index, member
     geojson: Callable[[], dict[str, Any]]
     health: Callable[[], dict[str, Any]]
 
@@ -152,12 +152,16 @@ class _Handler(BaseHTTPRequestHandler):
         try:
             cycle = query["cycle"][0]
             index = int(query["index"][0])
+            member = query.get("member", ["0"])[0]
+            if member != "p90":
+                int(member)
         except (KeyError, IndexError, ValueError):
-            self._error(HTTPStatus.BAD_REQUEST, "need ?cycle=ID&index=N")
+            self._error(HTTPStatus.BAD_REQUEST, "need ?cycle=ID&index=N[&member=M|p90]")
             return
-        body = self.server.display.routes.forecast_slice(cycle, index)
+        body = self.server.display.routes.forecast_slice(cycle, index, member)
         if body is None:
-            self._error(HTTPStatus.NOT_FOUND, f"no slice {index} of cycle {cycle!r}")
+            self._error(HTTPStatus.NOT_FOUND, f"no slice {index} of member {member} of cycle "
+                                              f"{cycle!r}")
         else:
             self._send(HTTPStatus.OK, body, "application/json")
 

@@ -15,6 +15,7 @@ from typing import Any
 
 from . import geometry
 from .coastline import ChartBox
+from .ensemble_view import combined_view, hs_peak_track, member_slice_index, valid_times
 from .forecast_view import SliceView
 from .geojson import baseline_points, chart_geojson
 from .model import CycleInfo, Plan, Profile, ShipFix
@@ -39,6 +40,8 @@ class DisplayState:
         self.track: deque[tuple[float, float]] = deque(maxlen=track_max_points)
         self.cycles: OrderedDict[str, CycleInfo] = OrderedDict()
         self.slices: dict[str, dict[int, SliceView]] = {}
+        self.tracks: dict[str, list[list[list[float]]]] = {}  # per complete cycle, per member
+        self.combined: dict[tuple[str, int], SliceView] = {}  # (cycle, time index) P90 views
         self.max_cycles = max_cycles
         self.received: dict[str, int] = {}
         self.malformed_counts: dict[str, int] = {}
@@ -97,6 +100,7 @@ class DisplayState:
             while len(self.cycles) > self.max_cycles:
                 old, _ = self.cycles.popitem(last=False)
                 self.slices.pop(old, None)
+                self._forget_views(old)
             return [("forecast", self._forecast_summary())]
 
     def on_slice(self, cycle_id: str, view: SliceView) -> list[Event]:
@@ -112,8 +116,25 @@ class DisplayState:
             views[view.index] = view
             info = self.cycles.get(cycle_id)
             if info is not None and len(views) == info.slice_count:
+                self._forget_views(cycle_id)  # a re-published cycle: views anew
+                self.tracks[cycle_id] = self._member_tracks(info, views)
                 return [("forecast", self._forecast_summary())]
             return []
+
+    def _forget_views(self, cycle_id: str) -> None:
+        """Drop a cycle's derived views (locked)."""
+        self.tracks.pop(cycle_id, None)
+        for key in [k for k in self.combined if k[0] == cycle_id]:
+            del self.combined[key]
+
+    @staticmethod
+    def _member_tracks(info: CycleInfo, views: dict[int, SliceView]) -> list[list[list[float]]]:
+        """Each member's Hs-peak track of a complete ensemble cycle ([] for one member)."""
+        if info.member_count < 2:
+            return []
+        per = info.times_per_member
+        return [hs_peak_track([views[member_slice_index(m, k, per)] for k in range(per)])
+                for m in range(info.member_count)]
 
     # ------------------------------------------------------------------ outputs
     def now_s(self) -> float:
@@ -140,10 +161,32 @@ class DisplayState:
                     "track": [list(p) for p in self.track],
                     "forecast": self._forecast_summary(), "stats": self._stats()}
 
-    def slice_json(self, cycle_id: str, index: int) -> bytes | None:
-        """The thinned slice of a cycle as JSON, None when not held."""
+    def slice_json(self, cycle_id: str, index: int, member: str = "0") -> bytes | None:
+        """The thinned slice of a cycle at valid-time `index` of `member` (a number, or "p90":
+        each cell's P90 over the members) as JSON, None when not held."""
         with self._lock:
-            view = self.slices.get(cycle_id, {}).get(index)
+            views = self.slices.get(cycle_id, {})
+            info = self.cycles.get(cycle_id)
+            members = info.member_count if info is not None else 1
+            per = info.times_per_member if info is not None else max(1, len(views))
+            if not 0 <= index < per:
+                return None
+            if member == "p90":
+                key = (cycle_id, index)
+                view = self.combined.get(key)
+                if view is None:
+                    held = [views.get(member_slice_index(m, index, per)) for m in range(members)]
+                    if any(v is None for v in held):
+                        return None  # the P90 of a partial cycle would not be a P90
+                    view = combined_view([v for v in held if v is not None], index)
+                    self.combined[key] = view
+            else:
+                try:
+                    m = int(member)
+                except ValueError:
+                    return None
+                view = views.get(member_slice_index(m, index, per)) if 0 <= m < members \
+                    else None
         return view.to_json() if view is not None else None
 
     def chart_box(self) -> ChartBox | None:
@@ -203,11 +246,14 @@ class DisplayState:
         cycles = []
         for cid, info in self.cycles.items():
             views = self.slices.get(cid, {})
+            indices, times = valid_times(views, info.member_count, info.slice_count)
             cycles.append({
                 "cycle_id": cid, "reference_s": info.reference_s, "source": info.source,
                 "slice_count": info.slice_count, "received": len(views),
-                "times_s": [views[i].valid_s for i in sorted(views)],
-                "indices": sorted(views),
+                "members": info.member_count, "member_labels": list(info.member_labels),
+                "member_kind": info.member_kind, "times_per_member": info.times_per_member,
+                "times_s": times, "indices": indices,
+                "tracks": self.tracks.get(cid, []),
             })
         return {"cycles": cycles}
 

@@ -2,9 +2,11 @@
 
     ros2_ws/.venv/bin/python src/shiproute_display/test/make_plan_fixtures.py
 
-Two plans Busan -> Long Beach through the bundled March storm: the departure plan on cycle 1
-(`storm_march`) and the re-plan 24 h later from the first plan's position on cycle 2
-(`storm_march_cycle2`), each a frozen `RoutePlan` written field by field (every waypoint) so
+Three plans Busan -> Long Beach through the bundled March storm: the departure plan on cycle 1
+(`storm_march`), the re-plan 24 h later from the first plan's position on cycle 2
+(`storm_march_cycle2`) and the departure plan on the 20-member `storm_march_ensemble` under
+CVaR 0.9 of fuel (with its spread: P10/P50/P90, probabilities, per-leg Hs and wind), each a
+frozen `RoutePlan` written field by field (every waypoint) so
 the tests publish it through the planner's own `plan_to_msg` / `plan_to_rpm_profile`.
 """
 
@@ -46,7 +48,11 @@ def main() -> None:
                          previous_plan=first, position=(lat, lon, t),
                          cycle_id="storm_march_cycle2")
     (DATA / "plan_cycle2.json").write_text(json.dumps(plan_dict(second)))
-    for p in (first, second):
+    ensemble = plan_voyage("Busan", "Long Beach", DEPART, RTA, "container_4600teu",
+                           load_forecast("storm_march_ensemble"), budget_s=10.0,
+                           cycle_id="storm_march_ensemble", risk="cvar:0.9")
+    (DATA / "plan_ensemble.json").write_text(json.dumps(plan_dict(ensemble)))
+    for p in (first, second, ensemble):
         print(p.plan_id, p.cycle_id, len(p.waypoints), round(p.total_fuel_t, 1), p.warnings)
 
 

@@ -218,7 +218,8 @@ def test_sample_plan_geojson_is_valid_and_split_at_180():
 def server():
     routes = Routes(snapshot=lambda: {"plan": None, "stats": {}},
                     coast=lambda: b'{"rings":[]}',
-                    forecast_slice=lambda cycle, i: b"{}" if (cycle, i) == ("c", 1) else None,
+                    forecast_slice=lambda cycle, i, member: (
+                        b"{}" if (cycle, i, member) == ("c", 1, "0") else None),
                     geojson=lambda: {"type": "FeatureCollection", "features": []},
                     health=lambda: {"ok": True})
     srv = DisplayServer(routes, Feed(max_clients=1, depth=4), "127.0.0.1", 0,

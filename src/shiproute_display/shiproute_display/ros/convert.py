@@ -25,6 +25,7 @@ from ..errors import MalformedMessageError
 from ..forecast_view import HS_NAME, WIND_U_NAME, WIND_V_NAME, GridSpec, SliceView, thin_slice
 from ..model import (
     CycleInfo,
+    EnsembleSpread,
     Plan,
     Profile,
     ShipFix,
@@ -69,8 +70,21 @@ def plan_from_msg(msg: RoutePlan) -> Plan:
         warnings=tuple(msg.warnings), total_fuel_t=float(msg.total_fuel_t),
         total_distance_nm=float(msg.total_distance_nm),
         baseline_fuel_t=float(msg.baseline_fuel_t), compute_time_s=float(msg.compute_time_s),
-        waypoints=wps)
+        waypoints=wps, ensemble=_spread(msg))
     return check_plan(plan)
+
+
+def _spread(msg: RoutePlan) -> EnsembleSpread | None:
+    """The plan's ensemble spread, None when it was made on one forecast."""
+    members = int(getattr(msg, "ensemble_members", 0))
+    if members < 1:
+        return None
+    floats = lambda name: tuple(float(v) for v in getattr(msg, name))  # noqa: E731
+    return EnsembleSpread(
+        members, str(msg.risk_measure), floats("fuel_quantiles_t"),
+        tuple(posix_s(t) for t in msg.eta_quantiles), float(msg.p_hs_violation),
+        float(msg.p_late), floats("leg_hs_min_m"), floats("leg_hs_median_m"),
+        floats("leg_hs_max_m"), floats("leg_wind_min_m_s"), floats("leg_wind_max_m_s"))
 
 
 def profile_from_msg(msg: RpmProfile) -> Profile:
@@ -93,9 +107,15 @@ def cycle_from_msg(msg: ForecastCycle) -> CycleInfo:
     if not msg.cycle_id or msg.slice_count < 1:
         raise MalformedMessageError(
             f"ForecastCycle {msg.cycle_id!r} announces {msg.slice_count} slices")
+    members = max(1, int(msg.member_count))
+    if msg.slice_count % members:
+        raise MalformedMessageError(
+            f"ForecastCycle {msg.cycle_id!r}: {msg.slice_count} slices cannot be split into "
+            f"{members} members")
     return CycleInfo(str(msg.cycle_id), posix_s(msg.reference_time),
                      posix_s(msg.first_valid_time), posix_s(msg.last_valid_time),
-                     float(msg.step_s), int(msg.slice_count), str(msg.source))
+                     float(msg.step_s), int(msg.slice_count), str(msg.source), members,
+                     tuple(str(x) for x in msg.member_labels), str(msg.member_kind))
 
 
 def slice_view_from_msg(msg: ForecastSlice, max_cells: int) -> SliceView:
@@ -111,7 +131,8 @@ def slice_view_from_msg(msg: ForecastSlice, max_cells: int) -> SliceView:
         except SliceError as err:
             raise MalformedMessageError(f"forecast slice {msg.slice_index}: {err}") from err
         fields[f.name] = unpack_field(v) if isinstance(v, PackedField) else np.asarray(v)
-    return thin_slice(int(msg.slice_index), posix_s(msg.valid_time), grid, fields, max_cells)
+    return thin_slice(int(msg.slice_index), posix_s(msg.valid_time), grid, fields, max_cells,
+                      member=int(msg.member))
 
 
 def navsatfix(lat_deg: float, lon_deg: float, t_s: float, frame_id: str) -> NavSatFix:

@@ -6,7 +6,7 @@
   const view = new Chart.View($("chart-wrap"), $("chart-canvas"), $("chart-svg"));
   const S = { plan: null, history: [], ship: null, track: [], forecast: { cycles: [] }, stats: null,
               nowBase: null, nowAt: 0, follow: true, sliderT: null, lastSeq: 0, missed: 0,
-              coastBox: null, sliceCache: new Map(), sliceKey: null, plansShown: 0 };
+              coastBox: null, sliceCache: new Map(), sliceKey: null, plansShown: 0, member: "p90" };
   window.__display = { plansShown: 0, lastPlanId: null, lastPlanShownAt: 0, coastDrawn: false, drawn: () => view.drawn };
 
   // ---------- formatting (UTC, kn, NM, deg true) ----------
@@ -85,16 +85,28 @@
     const ul = $("warnings"); ul.replaceChildren();
     for (const w of p.warnings) { const li = document.createElement("li"); li.textContent = w; ul.appendChild(li); }
     if (!p.warnings.length) { const li = document.createElement("li"); li.className = "none"; li.textContent = "no warnings"; ul.appendChild(li); }
+    showEnsemble(p.ensemble);
     buildSchedule(p); buildHistory(); setupSlider(true); updateLegLegend();
     S.plansShown += 1;
     Object.assign(window.__display, { plansShown: S.plansShown, lastPlanId: p.plan_id, lastPlanShownAt: Date.now() });
+  }
+  function showEnsemble(e) {  // the plan's spread over forecast members (null: one forecast)
+    $("ensemble-panel").classList.toggle("hidden", !e);
+    if (!e) return;
+    $("ens-ident").textContent = `${e.members} members · optimised for ${e.risk_measure}`;
+    const cells = (id, vals, f) => [...$(id).querySelectorAll("td")].forEach((td, i) => { td.textContent = f(vals[i]); });
+    cells("ens-fuel", e.fuel_quantiles_t, (v) => fx(v, 1));
+    cells("ens-eta", e.eta_quantiles_s, (v) => short(v));
+    const pct = (v) => (v === null || v === undefined || !isFinite(v)) ? "--" : `${(100 * v).toFixed(0)} %`;
+    $("ens-p-hs").textContent = pct(e.p_hs_violation); $("ens-p-late").textContent = pct(e.p_late);
   }
   function buildSchedule(p) {
     const tb = $("schedule").querySelector("tbody"); tb.replaceChildren();
     p.schedule.forEach((r) => {
       const tr = document.createElement("tr"); tr.dataset.start = r.start_s; tr.dataset.rpm = r.rpm;
       const cells = [r.stage, short(r.start_s), zoneTime(r.start_s, r.zone_h, false), fx(r.rpm, 1), hdg(r.heading_deg),
-        fx(r.sog_kn, 1), fx(r.fuel_t, 1), fx(r.hs_m, 1)];
+        fx(r.sog_kn, 1), fx(r.fuel_t, 1), fx(r.hs_m, 1),
+        r.hs_min_m === null || r.hs_min_m === undefined ? "--" : `${fx(r.hs_min_m, 1)}–${fx(r.hs_max_m, 1)}`];
       cells.forEach((c, i) => { const td = document.createElement("td"); td.textContent = c; if (i === 7 && r.flags) td.className = "flag"; tr.appendChild(td); });
       tb.appendChild(tr);
     });
@@ -172,7 +184,11 @@
       let best = 0; c.times_s.forEach((v, i) => { if (Math.abs(v - t) < Math.abs(c.times_s[best] - t)) best = i; });
       const step = c.times_s.length > 1 ? c.times_s[1] - c.times_s[0] : 0;
       if (t < c.times_s[0] - step || t > c.times_s[c.times_s.length - 1] + step) { txt += " · no forecast for this time"; view.data.slice = null; }
-      else { txt += ` · forecast valid ${utc(c.times_s[best], false)} UTC`; loadSlice(c.cycle_id, c.indices[best]); }
+      else {
+        txt += ` · forecast valid ${utc(c.times_s[best], false)} UTC`;
+        if (c.members > 1) txt += ` · ${memberName(c, S.member)}`;
+        loadSlice(c.cycle_id, c.indices[best], c.members > 1 ? S.member : "0");
+      }
     } else txt += " · no forecast received";
     lbl.textContent = txt;
     if (live) view.requestRender(); else view.render();
@@ -181,14 +197,34 @@
     const cs = S.forecast.cycles.filter((c) => c.received > 0);
     return cs.find((c) => S.plan && c.cycle_id === S.plan.cycle_id) || cs[cs.length - 1] || null;
   }
-  async function loadSlice(cycle, index) {
-    const key = `${cycle}#${index}`;
+  function memberName(c, m) {
+    if (m === "p90") return `P90 of ${c.members} members`;
+    const lbl = c.member_labels[+m];
+    return `member ${m}` + (lbl && lbl !== String(m) ? ` (${lbl})` : "");
+  }
+  function showMembers(c) {  // the member selector and the members' Hs-peak tracks
+    const row = $("member-row"), sel = $("member-view"), n = c ? c.members : 1;
+    row.classList.toggle("hidden", n < 2);
+    view.data.tracks = n > 1 && $("show-tracks").checked ? c.tracks : null;
+    if (n < 2) return;
+    if (sel.dataset.cycle !== c.cycle_id) {
+      sel.replaceChildren();
+      for (const v of ["p90", ...Array.from({ length: n }, (_, m) => String(m))]) {
+        const o = document.createElement("option"); o.value = v; o.textContent = memberName(c, v); sel.appendChild(o);
+      }
+      sel.dataset.cycle = c.cycle_id;
+      if (S.member !== "p90" && +S.member >= n) S.member = "p90";
+      sel.value = S.member;
+    }
+  }
+  async function loadSlice(cycle, index, member = "0") {
+    const key = `${cycle}#${index}#${member}`;
     if (S.sliceKey === key && view.data.slice) return;
     S.sliceKey = key;
     let s = S.sliceCache.get(key);
     if (!s) {
       try {
-        const r = await fetch(`/api/forecast?cycle=${encodeURIComponent(cycle)}&index=${index}`);
+        const r = await fetch(`/api/forecast?cycle=${encodeURIComponent(cycle)}&index=${index}&member=${member}`);
         if (!r.ok) return;
         const j = await r.json(), bin = atob(j.hs_b64), hs = new Uint8Array(bin.length);
         for (let i = 0; i < bin.length; i++) hs[i] = bin.charCodeAt(i);
@@ -229,7 +265,9 @@
   function showForecast(f) {
     S.forecast = f || { cycles: [] };
     const c = pickCycle();
-    $("st-forecast").textContent = c ? `forecast ${c.cycle_id}: ${c.received}/${c.slice_count} slices` : "forecast: none";
+    $("st-forecast").textContent = c ? `forecast ${c.cycle_id}: ${c.received}/${c.slice_count} slices`
+      + (c.members > 1 ? ` · ${c.members} members × ${c.times_per_member} times` : "") : "forecast: none";
+    showMembers(c);
     applyTime(true);
   }
 
@@ -270,6 +308,8 @@
   $("leg-colour").addEventListener("change", (e) => { view.data.legMode = e.target.value; view.render(); updateLegLegend(); });
   $("show-hs").addEventListener("change", (e) => { view.data.showHs = e.target.checked; view.render(); });
   $("show-wind").addEventListener("change", (e) => { view.data.showWind = e.target.checked; view.render(); });
+  $("member-view").addEventListener("change", (e) => { S.member = e.target.value; applyTime(); });
+  $("show-tracks").addEventListener("change", () => { showMembers(pickCycle()); view.render(); });
   Chart.drawRamp($("hs-ramp"), (f) => { const c = Chart.hsColour(f * 14); return `rgb(${c.join(",")})`; });
   setTheme(theme);
   view.resize();

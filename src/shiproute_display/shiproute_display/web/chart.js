@@ -196,7 +196,11 @@ const Chart = (() => {
     _drawSvg() {
       const g = (id) => { const el = document.getElementById(id); el.replaceChildren(); return el; };
       const gc = g("layer-gc"), prev = g("layer-prev"), plan = g("layer-plan"), track = g("layer-track"), marks = g("layer-marks");
-      const d = this.data;
+      const d = this.data, tracks = g("layer-tracks");
+      (d.tracks || []).forEach((tr, m) => {  // each member's Hs-peak track: [lon, lat, t, hs]
+        const el = this._line(tracks, tr.map((q) => q[1]), tr.map((q) => q[0]), { class: "member-track" });
+        if (el) { const t = document.createElementNS(SVGNS, "title"); t.textContent = `member ${m}: highest Hs`; el.appendChild(t); }
+      });
       if (d.gc) this._line(gc, d.gc.lat, d.gc.lon, { stroke: css("--gc"), "stroke-width": 1.6, "stroke-dasharray": "7 6", id: "great-circle" });
       if (d.previous) this._line(prev, d.previous.lat, d.previous.lon, { stroke: css("--prev"), "stroke-width": 2, "stroke-opacity": 0.55, id: "previous-plan" });
       if (d.plan) {

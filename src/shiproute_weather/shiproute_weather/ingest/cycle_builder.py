@@ -86,20 +86,33 @@ def thin(ds: xr.Dataset, cfg: CycleConfig) -> tuple[xr.Dataset, list[str]]:
     return ds, notes
 
 
-def _member_time_stride(ds: xr.Dataset, members: int, max_slices: int
-                        ) -> tuple[xr.Dataset, str]:
+def member_time_stride(members: int, n_times: int, max_slices: int) -> int:
     """Every k-th valid time of each member so that members x times <= max_slices: the whole
     horizon stays covered at a coarser step (a voyage outlives a forecast; cutting the horizon
     instead would leave the plan on persistence and calm water after a day or two)."""
+    if members <= 1 or members * n_times <= max_slices:
+        return 1
+    return -(-n_times // max(1, max_slices // members))
+
+
+def member_stride_note(members: int, n_times: int, max_slices: int, stride: int,
+                       step_h: float) -> str:
+    """What `member_time_stride` did, in words (the same for the whole and the streamed load)."""
+    kept = len(range(0, n_times, stride))
+    return (f"{members} members x {n_times} valid times exceed max_slices {max_slices}: "
+            f"one valid time in {stride} kept ({kept} per member, {step_h:g} h apart, the "
+            "whole horizon)")
+
+
+def _member_time_stride(ds: xr.Dataset, members: int, max_slices: int
+                        ) -> tuple[xr.Dataset, str]:
+    """`member_time_stride` applied to a dataset, with its note."""
     n_t = ds.sizes["time"]
-    budget = max(1, max_slices // members)
-    stride = -(-n_t // budget)
+    stride = member_time_stride(members, n_t, max_slices)
     kept = ds.isel(time=slice(0, None, stride))
     t = kept["time"].values
     step_h = float((t[1] - t[0]) / np.timedelta64(1, "h")) if t.size > 1 else 0.0
-    return kept, (f"{members} members x {n_t} valid times exceed max_slices {max_slices}: "
-                  f"one valid time in {stride} kept ({kept.sizes['time']} per member, "
-                  f"{step_h:g} h apart, the whole horizon)")
+    return kept, member_stride_note(members, n_t, max_slices, stride, step_h)
 
 
 def _member_budget(ds: xr.Dataset, cfg: CycleConfig) -> tuple[xr.Dataset, list[str]]:

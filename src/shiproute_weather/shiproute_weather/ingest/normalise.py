@@ -212,6 +212,18 @@ def _member_info(ds: xr.Dataset, chosen: dict[str, tuple[str, Mapping]]
     return None, ""
 
 
+def member_axis(raw: xr.Dataset, where: str) -> tuple[str, list[str]]:
+    """(raw member dimension, member labels as `to_canonical` gives them) of a raw dataset, read
+    from names and coordinates only; ("", []) when it has no member dimension of > 1 member."""
+    ds = rename_coords(raw, where)
+    values, dim = _member_info(ds, _choose(ds))
+    if values is None:
+        return "", []
+    labels = [_label(x) for x in np.asarray(values).tolist()]
+    check_unique_labels(labels, f"{where} ({dim})")
+    return dim, labels
+
+
 def to_canonical(raw: xr.Dataset, where: str) -> xr.Dataset:
     """Canonical dataset from a raw one: names, SI units, directions, grid, UTC times.
 

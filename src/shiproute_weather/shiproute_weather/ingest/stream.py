@@ -8,7 +8,7 @@ publisher drops them, leaving little more than the middleware history.
 from __future__ import annotations
 
 from collections.abc import Callable, Iterator
-from dataclasses import replace
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TypeVar
 
@@ -25,6 +25,7 @@ from .cycle_builder import CycleConfig
 from .loaders import NETCDF_CHUNK_CACHE_BYTES, decode_variables, detect_format
 from .normalise import to_canonical
 from .outliers import masked_counts
+from .stream_plan import StreamPlan, plan_stream
 
 #: Valid times per block. A block's memory is freed only once all its slices are published,
 #: so while publishing the process briefly holds one block twice (slices + middleware
@@ -35,26 +36,14 @@ T = TypeVar("T")
 
 
 def streamable(paths: list[str], cfg: CycleConfig) -> bool:
-    """One deterministic NetCDF file with waves (or no wind), no time thinning: the streaming
-    path applies.
+    """One NetCDF file (deterministic or an ensemble) with waves (or no wind), no time
+    thinning: the streaming path applies.
 
     A wind-only file is loaded whole: its waves are grown from the wind through all of its
     valid times (`wind_waves`)."""
     return (len(paths) == 1 and cfg.slice_interval_s <= 0 and cfg.grid_stride == 1
             and Path(paths[0]).exists() and detect_format(Path(paths[0])) == "netcdf"
-            and not _wind_without_waves(paths[0]) and not _has_members(paths[0]))
-
-
-def _has_members(path: str) -> bool:
-    """Whether a NetCDF file has an ensemble member dimension of more than one member (read
-    lazily): such a file is loaded whole, so every member's slices are made and counted."""
-    from .normalise import MEMBER_DIMS
-
-    try:
-        with xr.open_dataset(path, engine="netcdf4", decode_times=False) as raw:
-            return any(raw.sizes.get(d, 1) > 1 for d in MEMBER_DIMS)
-    except Exception:
-        return False  # the block-wise path reports what is wrong with the file
+            and not _wind_without_waves(paths[0]))
 
 
 def _wind_without_waves(path: str) -> bool:
@@ -71,32 +60,31 @@ def _wind_without_waves(path: str) -> bool:
     return cv.WIND_U in found and not found & waves
 
 
-def _blocks(path: str, cfg: CycleConfig) -> Iterator[tuple[int, xr.Dataset]]:
-    """(valid times the file yields in all, block) for each block of valid times."""
-    import netCDF4
+@dataclass(frozen=True)
+class Block:
+    """One member's block of valid times, canonical (deterministic dims), validated."""
 
-    netCDF4.set_chunk_cache(NETCDF_CHUNK_CACHE_BYTES, 61, 0.75)
-    try:
-        raw = xr.open_dataset(path, engine="netcdf4", decode_timedelta=True,
-                              mask_and_scale=False)
-    except Exception as exc:
-        raise ForecastFileError(path, f"cannot be read as NetCDF ({exc})") from exc
-    with raw:
-        lazy = rename_coords(raw, path)
-        n = lazy.sizes["time"]
-        total = min(n, cfg.max_slices)
-        attrs: dict[str, str] | None = None
+    member: int  # 0-based member of the cycle
+    data: xr.Dataset
+
+
+def _member_blocks(lazy: xr.Dataset, path: str, cfg: CycleConfig, plan: StreamPlan,
+                   attrs: dict[str, str]) -> Iterator[Block]:
+    """Blocks of BLOCK_TIMES valid times of each member in turn (member-major order)."""
+    for m, raw_member in enumerate(plan.members or (-1,)):
         last_t = None
-        for i in range(0, min(n, cfg.max_slices), BLOCK_TIMES):
+        for i in range(0, len(plan.times), BLOCK_TIMES):
+            sel: dict[str, list[int]] = {"time": list(plan.times[i:i + BLOCK_TIMES])}
+            if plan.member_dim:  # one member: its dim of size 1 is dropped by to_canonical
+                sel[plan.member_dim] = [raw_member]
             try:
-                sub = decode_variables(
-                    lazy.isel(time=slice(i, min(i + BLOCK_TIMES, n, cfg.max_slices))))
+                sub = decode_variables(lazy.isel(sel))
             except Exception as exc:
                 raise ForecastFileError(path, f"unreadable data in valid times {i}.. ({exc})") \
                     from exc
             block = to_canonical(sub, path)
-            if attrs is None:
-                attrs = dict(block.attrs)
+            if not attrs:  # the first block's attrs (cycle id, source) hold for every block
+                attrs.update(block.attrs)
                 if cfg.cycle_id:
                     attrs["cycle_id"] = cfg.cycle_id
             block.attrs.update(attrs)
@@ -107,7 +95,24 @@ def _blocks(path: str, cfg: CycleConfig) -> Iterator[tuple[int, xr.Dataset]]:
             last_t = t[-1]
             if cfg.box is not None:
                 block = subset(block, cfg.box)
-            yield total, snap_grid(block)
+            yield Block(m, snap_grid(block))
+
+
+def _blocks(path: str, cfg: CycleConfig) -> Iterator[tuple[StreamPlan, Block]]:
+    """(the cycle's plan, block) for each member's block of valid times."""
+    import netCDF4
+
+    netCDF4.set_chunk_cache(NETCDF_CHUNK_CACHE_BYTES, 61, 0.75)
+    try:
+        raw = xr.open_dataset(path, engine="netcdf4", decode_timedelta=True,
+                              mask_and_scale=False)
+    except Exception as exc:
+        raise ForecastFileError(path, f"cannot be read as NetCDF ({exc})") from exc
+    with raw:
+        lazy = rename_coords(raw, path)
+        plan = plan_stream(lazy, path, cfg)
+        for block in _member_blocks(lazy, path, cfg, plan, {}):
+            yield plan, block
 
 
 def load_slices(path: str, cfg: CycleConfig
@@ -126,29 +131,41 @@ def _keep(s: SliceData) -> SliceData:
     return s
 
 
+def _grid_stride(block: xr.Dataset, cfg: CycleConfig) -> int:
+    """Smallest grid stride that keeps one float32 slice within `cfg.max_slice_bytes`."""
+    per_node = 4 * len(block.data_vars)
+    ny, nx = block.sizes["latitude"], block.sizes["longitude"]
+    stride = 1
+    while -(-ny // stride) * -(-nx // stride) * per_node > cfg.max_slice_bytes \
+            and -(-ny // stride) * -(-nx // stride) > 4:
+        stride += 1
+    return stride
+
+
 def load_encoded(path: str, cfg: CycleConfig, encode: Callable[[SliceData], T]
                  ) -> tuple[CycleInfo, list[T], list[str]]:
     """`load_slices` with each slice passed through `encode` as soon as its block is read.
 
-    The float32 slices of a block are dropped once encoded, so a caller that encodes to the
-    wire form (half the bytes when packed) never holds the whole cycle as float32: the peak of
-    a reload is the encoded cycle plus one block instead of the float32 cycle beside it.
-    Each slice handed to `encode` already carries its final index and the cycle's count.
+    The file is read one member and BLOCK_TIMES valid times at a time (an ensemble member by
+    member), and the float32 slices of a block are dropped once encoded: a caller that encodes
+    to the wire form (half the bytes when packed) never holds the cycle as float32, and the
+    peak of a load is the encoded cycle plus one block of one member. Each slice handed to
+    `encode` already carries its final index, member and the cycle's counts.
     """
     out: list[T] = []
     first: xr.Dataset | None = None
+    plan: StreamPlan | None = None
     stride = 1
     notes: list[str] = []
     masked: dict[str, int] = {}
     times: list[int] = []
-    for total, block in _blocks(path, cfg):
+    for plan, blk in _blocks(path, cfg):
+        block = blk.data
         for name, k in masked_counts(block).items():
             masked[name] = masked.get(name, 0) + k
         if first is None:
-            per_node = 4 * len(block.data_vars)
-            ny, nx = block.sizes["latitude"], block.sizes["longitude"]
-            while -(-ny // stride) * -(-nx // stride) * per_node > cfg.max_slice_bytes:
-                stride += 1
+            notes.extend(plan.notes)
+            stride = _grid_stride(block, cfg)
             if stride > 1:
                 notes.append(f"grid thinned by {stride} to keep slices <= "
                              f"{cfg.max_slice_bytes} B")
@@ -159,23 +176,46 @@ def load_encoded(path: str, cfg: CycleConfig, encode: Callable[[SliceData], T]
             first = block.isel(time=[0])
             for name in masked:
                 first[name].attrs["masked_outliers"] = 0  # the totals are set below
+        label = plan.labels[blk.member] if plan.labels else ""
         for sl in dataset_to_slices(block):
-            times.append(sl.valid_time_ns)
-            out.append(encode(replace(sl, slice_index=len(out), slice_count=total)))
+            _check_member_time(path, blk.member, len(times), times, sl.valid_time_ns, len(out))
+            out.append(encode(replace(sl, slice_index=len(out), slice_count=plan.slice_count,
+                                      member=blk.member, member_count=plan.member_count,
+                                      member_label=label)))
         del block
-    if first is None:
+    if first is None or plan is None:
         raise WeatherError(f"{path}: no valid time")
+    return _cycle_of(path, first, plan, out, times, masked, notes)
+
+
+def _check_member_time(path: str, member: int, n_times: int, times: list[int], t_ns: int,
+                       index: int) -> None:
+    """Collect member 0's valid times; every later member must repeat them."""
+    if member == 0:
+        times.append(t_ns)
+    elif t_ns != times[index - member * n_times]:
+        raise GridError(path, f"member {member} has another valid time than member 0")
+
+
+def _cycle_of(path: str, first: xr.Dataset, plan: StreamPlan, out: list[T], times: list[int],
+              masked: dict[str, int], notes: list[str]
+              ) -> tuple[CycleInfo, list[T], list[str]]:
+    """The cycle announcement of a streamed load, after every block was read."""
     n = len(out)
-    if n != total:  # every block yields all its valid times: a mismatch is a loader bug
-        raise WeatherError(f"{path}: read {n} valid times, expected {total}")
+    if n != plan.slice_count:  # every block yields all its valid times: else a loader bug
+        raise WeatherError(f"{path}: read {n} slices, expected {plan.slice_count}")
     t = np.array(times, dtype=np.int64)
-    step = float((t[1] - t[0]) / 1e9) if n > 1 else 0.0
+    step = float((t[1] - t[0]) / 1e9) if t.size > 1 else 0.0
     for name, k in masked.items():
         first[name].attrs["masked_outliers"] = k
+    if plan.ensemble_note:
+        first.attrs["ensemble"] = plan.ensemble_note
     report = load_notes(first)
     info = replace(cycle_info(first, [path]), first_valid_time_ns=int(t[0]),
                    last_valid_time_ns=int(t[-1]), step_s=step, slice_count=n,
-                   notes=tuple(report))
+                   notes=tuple(report + notes), member_count=plan.member_count,
+                   member_labels=plan.labels,
+                   member_kind="ensemble" if plan.member_count > 1 else "")
     return info, out, report + notes
 
 

@@ -13,7 +13,7 @@ import sys
 import threading
 import time
 import uuid
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -33,16 +33,12 @@ from shiproute_msgs.srv import LoadForecast
 
 from ..errors import WeatherError
 from ..ingest.combine import Box
-from ..ingest.cycle_builder import (
-    MAX_SLICE_BYTES,
-    MAX_SLICES,
-    CycleConfig,
-    build_cycle,
-    corridor_box,
-)
+from ..ingest.cycle_builder import MAX_SLICE_BYTES, MAX_SLICES, CycleConfig, corridor_box
+from ..ingest.cycle_load import load_cycle
 from ..ingest.members import member_file_groups
-from ..ingest.stream import load_encoded, streamable, warm_array_backends
+from ..ingest.stream import warm_array_backends
 from ..ingest.watch import DirectoryWatcher
+from ..ingest.wire_budget import wire_summary
 from ..scenarios.catalogue import scenario_path
 from .convert import (
     DEFAULT_SLICE_ENCODING,
@@ -52,6 +48,7 @@ from .convert import (
     slice_to_msg,
     wire_bytes,
 )
+from .dds_profile import forget_profile, use_dynamic_slice_writer
 from .heap import return_freed_memory, return_large_blocks_at_once
 
 DIAG_NAME = "shiproute_weather: forecast"
@@ -72,8 +69,21 @@ class LoadRequest:
     origin: str
     done: threading.Event | None = None
     members: list[list[str]] | None = None  # files of each member of a multi-model cycle
+    labels: tuple[str, ...] | None = None  # their labels (None: the start-up parameter's)
     result: tuple[bool, str, str] = (False, "", "")
 
+
+
+def service_request_error(request: LoadForecast.Request) -> str | None:
+    """Why a LoadForecast request cannot be a cycle (None when it can): files or members,
+    not both; labels only with members."""
+    if request.paths and request.member_files:
+        return "give either paths (one cycle) or member_files (a multi-model cycle), not both"
+    if request.member_labels and not request.member_files:
+        return "member_labels given without member_files"
+    if not request.paths and not any(str(e).strip() for e in request.member_files):
+        return "no paths given"
+    return None
 
 
 def _list_value(param: Parameter) -> list[Any]:
@@ -142,7 +152,8 @@ class WeatherNode(Node):
         self.loads = 0
         self.state: dict[str, str] = {"cycle_id": "", "slices": "0", "members": "0",
                                       "member_labels": "", "slice_encoding": "",
-                                      "bytes_per_slice": "0",
+                                      "bytes_per_slice": "0", "cycle_wire_bytes": "0",
+                                      "wire_budget": "", "load_path": "",
                                       "source_files": "", "load_s": "", "last_error": "",
                                       "notes": "", "cycles_published": "0",
                                       "publication_id": "", "loads_refused": "0",
@@ -198,7 +209,16 @@ class WeatherNode(Node):
 
     def _on_load(self, request: LoadForecast.Request,
                  response: LoadForecast.Response) -> LoadForecast.Response:
+        reason = service_request_error(request)
+        if reason is not None:  # refused before any file is read: the last cycle stays
+            self._failed(LoadRequest(list(request.paths), "service"), WeatherError(reason))
+            response.accepted, response.message = False, reason
+            return response
         req = LoadRequest(list(request.paths), "service", threading.Event())
+        if request.member_files:
+            req.members = member_file_groups(list(request.member_files))
+            req.paths = [f for g in req.members for f in g]
+            req.labels = tuple(str(x) for x in request.member_labels)
         self.requests.put(req)
         assert req.done is not None
         if not req.done.wait(timeout=120.0):
@@ -225,18 +245,13 @@ class WeatherNode(Node):
             # the last good cycle in force, and the announcement is followed by slices at
             # the transport's pace (no encoding sits in between)
             encoding = str(self.get_parameter("slice_encoding").value)
-            kept: list[ForecastSlice]
-            if not req.members and streamable(req.paths, self.cfg_base):  # block-wise
-                info, kept, notes = load_encoded(
-                    req.paths[0], self.cfg_base, lambda s: slice_to_msg(s, None, encoding))
-            else:
-                info, slices, notes = build_cycle(req.paths, self.cfg_base, req.members or ())
-                kept = []
-                for k in range(len(slices)):
-                    s, slices[k] = slices[k], None  # type: ignore[call-overload]  # free
-                    kept.append(slice_to_msg(s, None, encoding))
-                    del s
+            cfg = (self.cfg_base if req.labels is None
+                   else replace(self.cfg_base, member_labels=req.labels))
+            info, kept, notes, how = load_cycle(req.paths, cfg, req.members or (),
+                                                lambda s: slice_to_msg(s, None, encoding))
             nbytes = max((wire_bytes(m) for m in kept), default=0)
+            total_bytes = sum(wire_bytes(m) for m in kept)
+            budget = wire_summary(info, total_bytes, nbytes, encoding, cfg)
             cycle = cycle_to_msg(info)
         except Exception as exc:  # a bad file must never stop the node
             return self._failed(req, exc)
@@ -264,6 +279,8 @@ class WeatherNode(Node):
                               members=str(info.member_count),
                               member_labels=", ".join(info.member_labels),
                               slice_encoding=encoding, bytes_per_slice=str(nbytes),
+                              cycle_wire_bytes=str(total_bytes), wire_budget=budget,
+                              load_path=how,
                               source_files=", ".join(req.paths),
                               load_s=f"{dt:.3f}", last_error="", notes="; ".join(notes),
                               cycles_published=str(n), publication_id=publication)
@@ -330,8 +347,12 @@ def main(argv: list[str] | None = None) -> int:
     """Console script `shiproute_weather_node`; runs until SIGINT/SIGTERM."""
     return_large_blocks_at_once(1 << 15)  # a packed field of a slice is ~55 kB
     warm_array_backends()
+    profile = use_dynamic_slice_writer(FORECAST_SLICES)  # see dds_profile
     rclpy.init(args=argv if argv is not None else sys.argv)
-    node = WeatherNode()
+    try:
+        node = WeatherNode()
+    finally:
+        forget_profile(profile)
     executor = MultiThreadedExecutor(num_threads=3)
     executor.add_node(node)
     spin_until_shutdown(executor, (node,), stop=(node.stop,))

@@ -48,10 +48,10 @@ def test_two_member_netcdf_realization_keeps_both_winds(tmp_path: Path) -> None:
     np.testing.assert_array_equal(u[0], base[cv.WIND_U].values)
     np.testing.assert_allclose(u[1] - u[0], -2.5, atol=1e-5)
     np.testing.assert_array_equal(ds[cv.WAVE_HS].values[0], ds[cv.WAVE_HS].values[1])
-    # a realization file is loaded whole (every member's slices), not by the streaming path
+    # the node streams a realization file member by member (test_member_stream.py)
     from shiproute_weather.ingest.cycle_builder import CycleConfig
     from shiproute_weather.ingest.stream import streamable
-    assert not streamable([str(path)], CycleConfig())
+    assert streamable([str(path)], CycleConfig())
 
 
 def test_netcdf_with_duplicate_member_numbers_is_refused(tmp_path: Path) -> None:
