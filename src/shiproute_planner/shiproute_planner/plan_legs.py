@@ -181,6 +181,7 @@ def plan_leg(prep: PreparedVoyage, run: LegRun, k: int, request: VoyageRequest,
     search.clock.lap("search")
     if res.evaluation is None:
         raise PlanCancelledError("planning was cancelled before a route was found")
+    run.warnings += [n for n in res.notes if n not in run.warnings]
     run.member_legs.append(MemberLeg(problem, res.genes, res.evaluation))
     run.generations += res.generations
     run.evaluations += res.evaluations

@@ -19,6 +19,7 @@ from .ga.ranking import deb_order, is_better
 from .geo.landmask import LandMask
 from .geo.verify import land_crossings
 from .method_context import Baseline, MethodContext, MethodResult, Progress, compute_baseline
+from .plan_types import reasons_of
 from .risk_choice import risk_choice
 from .route.encoding import clip_genes, gene_bounds
 from .route.environment import Environment
@@ -31,6 +32,7 @@ from .route.seeding import TrackSeed, great_circle_track, sea_lane_track, track_
 
 EXACT_CHOICE_RESERVE_S = 0.25  # wall time kept for the exact final choice and dense land check
 EXACT_CHOICE_SHARE = 0.28  # ... at most this share of a small budget (re-plans of 0.5 s)
+EXACT_TOP_PER_S = 40.0  # final candidates re-evaluated exactly per second of budget (4..24)
 DENSE_CHECKS = 12  # feasible final candidates given the dense land check, best first
 EXACT_CHECK_EVERY = 15  # generations between exact confirmations of the GA's best
 # RPM ramps (relative change from the first to the last leg / 2) of timed seed variants
@@ -53,6 +55,8 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
 
     x_seed, sources = seed_genes(ctx, seeds, fast)
     x_seed, sources, offsets = best_seeds_first(p, x_seed, sources, evaluate)
+    x_seed, sources, offsets, notes = fresh_seeds_if_stale(ctx, fast, evaluate, x_seed,
+                                                           sources, offsets)
     ga = initial_ga(ctx, x_seed, offsets)
     # the exact evaluator confirms bests of one forecast only (a risk-aware best is a
     # measure over members the exact evaluator does not see)
@@ -61,8 +65,35 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
         pop = ga.pop
         assert pop is not None  # the loop ran at least one generation
         best_x, final = risk_choice(p, env, ctx.land, pop, evaluate)
-        return MethodResult(final, best_src, ga.generation, ga.evaluations, best_x.copy())
-    return final_result(ctx, ga, confirmed, best_src)
+        return MethodResult(final, best_src, ga.generation, ga.evaluations, best_x.copy(),
+                            notes)
+    return dataclasses.replace(final_result(ctx, ga, confirmed, best_src), notes=notes)
+
+
+def fresh_seeds_if_stale(ctx: MethodContext, fast: FastEvaluator | None,
+                         evaluate: Callable[[np.ndarray], RouteEvaluation], x_seed: np.ndarray,
+                         sources: list[str], offsets: np.ndarray
+                         ) -> tuple[np.ndarray, list[str], np.ndarray, tuple[str, ...]]:
+    """When none of the given seeds (the previous plan on a new forecast cycle, the pool's
+    route) is feasible, the seeds of a cold plan too (constant-RPM baseline, great circle,
+    sea lane, tracks via bent points): a route that runs into the new cycle's storm is not
+    repaired in a few generations from its own variants alone. Returns the seeds, ranked,
+    and the plan's note saying why (nothing when a given seed is still feasible)."""
+    if not ctx.seeds or ctx.baseline is not None or len(x_seed) == 0:
+        return x_seed, sources, offsets, ()
+    first = evaluate(x_seed[:1])
+    if first.violation[0] <= 0:
+        return x_seed, sources, offsets, ()
+    why = "; ".join(reasons_of(int(first.flags[0]))) or "constraints violated"
+    p = ctx.problem
+    cold = dataclasses.replace(ctx, seeds=[], gene_seeds=[],
+                               baseline=compute_baseline(p, ctx.env, ctx.land))
+    more, more_sources = seed_genes(cold, all_seeds(cold), fast)
+    x, names, off = best_seeds_first(p, np.concatenate([x_seed, more]), sources + more_sources,
+                                     evaluate)
+    note = (f"re-plan: no route seeded from the {sources[0].removesuffix('_timed')} is "
+            f"feasible on this forecast ({why}); searched from fresh seeds as well")
+    return x, names, off, (note,)
 
 
 def all_seeds(ctx: MethodContext) -> list[TrackSeed]:
@@ -203,8 +234,9 @@ def final_result(ctx: MethodContext, ga: AskTellGA, confirmed: list[np.ndarray],
     than the constant-RPM baseline the GA was seeded with."""
     pop = ga.pop
     assert pop is not None  # the loop ran at least one generation
-    pool_x = pop if not confirmed else np.concatenate([pop[:24], confirmed[::-1], pop[24:]])
-    best_x, final = exact_choice(ctx.problem, ctx.env, ctx.land, pool_x, top=min(24, len(pop)))
+    top = min(24, len(pop), max(4, round(EXACT_TOP_PER_S * ctx.budget_s)))  # fits the budget
+    pool_x = pop if not confirmed else np.concatenate([pop[:top], confirmed[::-1], pop[top:]])
+    best_x, final = exact_choice(ctx.problem, ctx.env, ctx.land, pool_x, top=top)
     b = ctx.baseline
     if b is not None and is_better(
         float(b.evaluation.violation[0]), float(b.evaluation.objective[0]),
