@@ -38,6 +38,8 @@ EXACT_CHECK_EVERY = 15  # generations between exact confirmations of the GA's be
 ISLAND_MIN_EVALUATIONS = 40_000  # islands only on searches this long (seed_ga.islands_pay)
 ISLAND_MIN_BUDGET_S = 8.0
 SHORT_SEARCH_POP = 30  # population of a shorter search
+FRESH_SEEDS_MIN_BUDGET_S = 1.0  # a stale re-plan's fresh seeds cost ~0.1-0.2 s per span
+FRESH_SEEDS_MIN_EVALUATIONS = 5_000
 # RPM ramps (relative change from the first to the last leg / 2) of timed seed variants
 TIMED_SLOPES = (-0.08, -0.04, 0.04, 0.08)
 
@@ -73,6 +75,14 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
     return dataclasses.replace(final_result(ctx, ga, confirmed, best_src), notes=notes)
 
 
+def fresh_seeds_fit(ctx: MethodContext) -> bool:
+    """Whether the span's search can afford a cold plan's seeds (the baseline fits and
+    ~25 more tracks turned into genes) and still search from them."""
+    if ctx.max_evaluations:
+        return ctx.max_evaluations >= FRESH_SEEDS_MIN_EVALUATIONS
+    return ctx.budget_s >= FRESH_SEEDS_MIN_BUDGET_S
+
+
 def fresh_seeds_if_stale(ctx: MethodContext, fast: FastEvaluator | None,
                          evaluate: Callable[[np.ndarray], RouteEvaluation], x_seed: np.ndarray,
                          sources: list[str], offsets: np.ndarray
@@ -88,14 +98,20 @@ def fresh_seeds_if_stale(ctx: MethodContext, fast: FastEvaluator | None,
     if first.violation[0] <= 0:
         return x_seed, sources, offsets, ()
     why = "; ".join(reasons_of(int(first.flags[0]))) or "constraints violated"
+    name = sources[0].removesuffix("_timed")
+    if not fresh_seeds_fit(ctx):
+        return x_seed, sources, offsets, (
+            f"re-plan: no route seeded from the {name} is feasible on this forecast ({why}); "
+            f"the budget ({ctx.budget_s:.2f} s for this span) was too short for fresh seeds: "
+            "a longer budget may find a feasible route",)
     p = ctx.problem
     cold = dataclasses.replace(ctx, seeds=[], gene_seeds=[],
                                baseline=compute_baseline(p, ctx.env, ctx.land))
     more, more_sources = seed_genes(cold, all_seeds(cold), fast)
     x, names, off = best_seeds_first(p, np.concatenate([x_seed, more]), sources + more_sources,
                                      evaluate)
-    note = (f"re-plan: no route seeded from the {sources[0].removesuffix('_timed')} is "
-            f"feasible on this forecast ({why}); searched from fresh seeds as well")
+    note = (f"re-plan: no route seeded from the {name} is feasible on this forecast "
+            f"({why}); searched from fresh seeds as well")
     return x, names, off, (note,)
 
 
