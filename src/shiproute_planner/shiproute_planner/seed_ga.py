@@ -76,8 +76,7 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
 
 
 def fresh_seeds_fit(ctx: MethodContext) -> bool:
-    """Whether the span's search can afford a cold plan's seeds (the baseline fits and
-    ~25 more tracks turned into genes) and still search from them."""
+    """Whether the span's search affords a cold plan's seeds (baseline, ~25 more tracks)."""
     if ctx.max_evaluations:
         return ctx.max_evaluations >= FRESH_SEEDS_MIN_EVALUATIONS
     return ctx.budget_s >= FRESH_SEEDS_MIN_BUDGET_S
@@ -87,32 +86,34 @@ def fresh_seeds_if_stale(ctx: MethodContext, fast: FastEvaluator | None,
                          evaluate: Callable[[np.ndarray], RouteEvaluation], x_seed: np.ndarray,
                          sources: list[str], offsets: np.ndarray
                          ) -> tuple[np.ndarray, list[str], np.ndarray, tuple[str, ...]]:
-    """When none of the given seeds (the previous plan on a new forecast cycle, the pool's
-    route) is feasible, the seeds of a cold plan too (constant-RPM baseline, great circle,
-    sea lane, tracks via bent points): a route that runs into the new cycle's storm is not
-    repaired in a few generations from its own variants alone. Returns the seeds, ranked,
-    and the plan's note saying why (nothing when a given seed is still feasible)."""
-    if not ctx.seeds or ctx.baseline is not None or len(x_seed) == 0:
+    """When no given seed (the previous plan on a new cycle, the pool's route) is feasible,
+    a cold plan's seeds too (there already with a baseline): a route into the new cycle's
+    storm is not repaired in a few generations. Returns them ranked, and the note why."""
+    if not ctx.seeds or len(x_seed) == 0:
         return x_seed, sources, offsets, ()
-    first = evaluate(x_seed[:1])
-    if first.violation[0] <= 0:
+    name = ctx.seeds[0].source
+    given = np.flatnonzero([s.startswith(name) for s in sources])
+    ev = evaluate(x_seed[given]) if given.size else None
+    if ev is None or (ev.violation <= 0).any():
         return x_seed, sources, offsets, ()
-    why = "; ".join(reasons_of(int(first.flags[0]))) or "constraints violated"
-    name = sources[0].removesuffix("_timed")
+    k = int(np.argmin(ev.violation))
+    why = "; ".join(reasons_of(int(ev.flags[k]))) or "constraints violated"
+    stale = f"re-plan: no route seeded from the {name} is feasible on this forecast ({why})"
+    if ctx.baseline is not None:  # the cold plan's seeds are in already
+        return x_seed, sources, offsets, (stale + "; searched from fresh seeds as well",)
     if not fresh_seeds_fit(ctx):
+        budget = (f"{ctx.max_evaluations} evaluations" if ctx.max_evaluations
+                  else f"{ctx.budget_s:.2f} s")
         return x_seed, sources, offsets, (
-            f"re-plan: no route seeded from the {name} is feasible on this forecast ({why}); "
-            f"the budget ({ctx.budget_s:.2f} s for this span) was too short for fresh seeds: "
-            "a longer budget may find a feasible route",)
+            f"{stale}; this span's budget ({budget}) was too short for fresh seeds: a "
+            "longer budget may find a feasible route",)
     p = ctx.problem
     cold = dataclasses.replace(ctx, seeds=[], gene_seeds=[],
                                baseline=compute_baseline(p, ctx.env, ctx.land))
     more, more_sources = seed_genes(cold, all_seeds(cold), fast)
     x, names, off = best_seeds_first(p, np.concatenate([x_seed, more]), sources + more_sources,
                                      evaluate)
-    note = (f"re-plan: no route seeded from the {name} is feasible on this forecast "
-            f"({why}); searched from fresh seeds as well")
-    return x, names, off, (note,)
+    return x, names, off, (stale + "; searched from fresh seeds as well",)
 
 
 def all_seeds(ctx: MethodContext) -> list[TrackSeed]:
