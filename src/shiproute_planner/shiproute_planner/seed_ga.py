@@ -270,7 +270,7 @@ def final_result(ctx: MethodContext, ga: AskTellGA, confirmed: list[np.ndarray],
     than the constant-RPM baseline the GA was seeded with."""
     pop = ga.pop
     assert pop is not None  # the loop ran at least one generation
-    top = min(24, len(pop), max(4, round(EXACT_TOP_PER_S * ctx.budget_s)))  # fits the budget
+    top = min(24, len(pop), max(4, round(min(EXACT_TOP_PER_S * ctx.budget_s, 24.0))))
     pool_x = pop if not confirmed else np.concatenate([pop[:top], confirmed[::-1], pop[top:]])
     best_x, final = exact_choice(ctx.problem, ctx.env, ctx.land, pool_x, top=top)
     b = ctx.baseline
