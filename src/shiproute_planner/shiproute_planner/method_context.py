@@ -67,6 +67,7 @@ class MethodResult:
     generations: int = 0
     evaluations: int = 0
     genes: np.ndarray | None = None  # heading/RPM genes of the route, when the method has them
+    notes: tuple[str, ...] = ()  # what the plan says about this leg's search (its warnings)
 
 
 @dataclass(frozen=True)

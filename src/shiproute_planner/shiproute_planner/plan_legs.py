@@ -165,7 +165,7 @@ def plan_leg(prep: PreparedVoyage, run: LegRun, k: int, request: VoyageRequest,
     problem = leg.problem
     run.warnings += [n for n in leg.notes if n not in run.warnings]
     seeds, gene_seeds = leg_seeds(problem, search.pool, a, b, search.month,
-                                  options.previous_plan if k == 0 else None, options.position)
+                                  options.previous_plan, under_way)
     search.clock.lap("passages")
     need = options.with_baseline or (options.method == "seed_ga" and not seeds)
     base = compute_baseline(problem, prep.env, prep.land) if need else None
@@ -181,6 +181,7 @@ def plan_leg(prep: PreparedVoyage, run: LegRun, k: int, request: VoyageRequest,
     search.clock.lap("search")
     if res.evaluation is None:
         raise PlanCancelledError("planning was cancelled before a route was found")
+    run.warnings += [n for n in res.notes if n not in run.warnings]
     run.member_legs.append(MemberLeg(problem, res.genes, res.evaluation))
     run.generations += res.generations
     run.evaluations += res.evaluations

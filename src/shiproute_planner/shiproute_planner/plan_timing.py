@@ -25,9 +25,22 @@ CHECKS_RESERVE_S = 0.15
 CHECKS_RESERVE_SHARE = 0.05
 
 
-def checks_reserve_s(budget_s: float) -> float:
-    """Wall time kept from the search for the checks of the finished plan."""
-    return min(CHECKS_RESERVE_S, CHECKS_RESERVE_SHARE * budget_s)
+MAX_CHECKS_SHARE = 0.4  # a measured checks time reserves at most this share of the budget
+
+
+def checks_reserve_s(budget_s: float, measured_s: float = 0.0) -> float:
+    """Wall time kept from the search for the checks of the finished plan: the estimate,
+    or what the checks of the previous plan of the voyage took (`measured_s`, a re-plan's
+    budget of 0.5 s cannot leave them 25 ms), within MAX_CHECKS_SHARE of the budget."""
+    estimate = min(CHECKS_RESERVE_S, CHECKS_RESERVE_SHARE * budget_s)
+    return max(estimate, min(measured_s, MAX_CHECKS_SHARE * budget_s))
+
+
+def previous_checks_s(previous: object) -> float:
+    """What the checks of a previous plan (its extra["timing_s"]) took [s]; 0 when unknown."""
+    timing = getattr(previous, "extra", {}).get("timing_s", {}) if previous is not None else {}
+    value = timing.get("checks", 0.0) if isinstance(timing, dict) else 0.0
+    return float(value) if isinstance(value, int | float) and value > 0 else 0.0
 
 
 def tolerated_overrun_s(budget_s: float) -> float:
@@ -41,6 +54,7 @@ class PlanClock:
     (or the start) to `phase`, so sequential code is timed without being re-indented."""
 
     t0: float = field(default_factory=lambda: time.perf_counter())
+    checks_measured_s: float = 0.0  # the checks of the voyage's previous plan took this
     spent_s: dict[str, float] = field(default_factory=lambda: dict.fromkeys(PHASES, 0.0))
     mark: float = field(default=0.0)
 
@@ -60,7 +74,7 @@ class PlanClock:
 
     def left_s(self, budget_s: float) -> float:
         """Budget left for the searches still to run, keeping the checks' reserve."""
-        return budget_s - self.elapsed_s() - checks_reserve_s(budget_s)
+        return budget_s - self.elapsed_s() - checks_reserve_s(budget_s, self.checks_measured_s)
 
     def block(self, budget_s: float) -> dict[str, float]:
         """The plan's `extra["timing_s"]`: budget, total and each phase [s]."""

@@ -34,7 +34,7 @@ from .plan_checks import checked_plan
 from .plan_legs import LegRun, sail_legs
 from .plan_prepare import PreparedVoyage, prepare_voyage
 from .plan_setup import TimeLike, to_posix_s
-from .plan_timing import PlanClock
+from .plan_timing import PlanClock, previous_checks_s
 from .plan_types import RoutePlan
 from .request import (
     CancelHook,
@@ -68,8 +68,8 @@ def plan(request: VoyageRequest, options: PlanOptions | None = None,
     with `options` (defaults: the seed GA, 3 s, seed 0); see `plan_voyage` for the meaning of
     each field. Raises InvalidVoyageError naming a bad input; a cancelled run returns the
     best plan so far (PlanCancelledError before any route was found)."""
-    clock = PlanClock()
     options = options or PlanOptions()
+    clock = PlanClock(checks_measured_s=previous_checks_s(options.previous_plan))
     prep = prepare_voyage(request, options, forecast)
     clock.lap("set-up")
     run = sail_legs(request, options, prep, clock)

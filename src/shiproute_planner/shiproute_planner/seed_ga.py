@@ -11,30 +11,31 @@ from collections.abc import Callable
 
 import numpy as np
 from shiproute_core.flags import FLAG_LAND
-from shiproute_core.geodesy import inverse
 
-from .ga.islands import IslandGA, cross_track_rad
+from .ga.islands import IslandGA
 from .ga.loop import AskTellGA, GAConfig, SeedGA
 from .ga.ranking import deb_order, is_better
+from .ga_seeds import all_seeds, best_seeds_first, fresh_seeds_if_stale, seed_genes
 from .geo.landmask import LandMask
 from .geo.verify import land_crossings
-from .method_context import Baseline, MethodContext, MethodResult, Progress, compute_baseline
+from .method_context import MethodContext, MethodResult, Progress
 from .risk_choice import risk_choice
-from .route.encoding import clip_genes, gene_bounds
+from .route.encoding import gene_bounds
 from .route.environment import Environment
 from .route.evaluation import RouteEvaluation
 from .route.fast_eval import FastEvaluator, fast_evaluator
 from .route.generate import evaluate_genes
 from .route.member_eval import risk_evaluate
 from .route.problem import RouteProblem
-from .route.seeding import TrackSeed, great_circle_track, sea_lane_track, track_to_genes, via_track
 
 EXACT_CHOICE_RESERVE_S = 0.25  # wall time kept for the exact final choice and dense land check
 EXACT_CHOICE_SHARE = 0.28  # ... at most this share of a small budget (re-plans of 0.5 s)
+EXACT_TOP_PER_S = 40.0  # final candidates re-evaluated exactly per second of budget (4..24)
 DENSE_CHECKS = 12  # feasible final candidates given the dense land check, best first
 EXACT_CHECK_EVERY = 15  # generations between exact confirmations of the GA's best
-# RPM ramps (relative change from the first to the last leg / 2) of timed seed variants
-TIMED_SLOPES = (-0.08, -0.04, 0.04, 0.08)
+ISLAND_MIN_EVALUATIONS = 40_000  # islands only on searches this long (seed_ga.islands_pay)
+ISLAND_MIN_BUDGET_S = 8.0
+SHORT_SEARCH_POP = 30  # population of a shorter search
 # a risk-aware GA first runs on the members' mean forecast for this share of the budget and
 # seeds itself with that run's best candidates
 MEAN_PHASE_SHARE = 0.25
@@ -62,6 +63,8 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
         ctx = dataclasses.replace(ctx, max_evaluations=max(
             ctx.max_evaluations - mean_evals, 1) if ctx.max_evaluations else 0)
     x_seed, sources, offsets = best_seeds_first(p, x_seed, sources, evaluate)
+    x_seed, sources, offsets, notes = fresh_seeds_if_stale(ctx, fast, evaluate, x_seed,
+                                                           sources, offsets)
     ga = initial_ga(ctx, x_seed, offsets)
     # the exact evaluator confirms bests of one forecast only (a risk-aware best is a
     # measure over members the exact evaluator does not see)
@@ -71,8 +74,12 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
         assert pop is not None  # the loop ran at least one generation
         best_x, final = risk_choice(p, env, ctx.land, pop, evaluate)
         return MethodResult(final, best_src, mean_gens + ga.generation,
-                            mean_evals + ga.evaluations, best_x.copy())
-    return final_result(ctx, ga, confirmed, best_src)
+                            mean_evals + ga.evaluations, best_x.copy(), notes)
+    return dataclasses.replace(final_result(ctx, ga, confirmed, best_src), notes=notes)
+
+
+
+
 
 
 def with_mean_optimum(ctx: MethodContext, fast: FastEvaluator, x_seed: np.ndarray,
@@ -95,58 +102,35 @@ def with_mean_optimum(ctx: MethodContext, fast: FastEvaluator, x_seed: np.ndarra
             ga.generation, ga.evaluations)
 
 
-def all_seeds(ctx: MethodContext) -> list[TrackSeed]:
-    """The given seeds, the baseline's tracks (when there is a baseline) and earlier/later
-    versions of the first two given seeds."""
-    seeds = list(ctx.seeds)
-    base = ctx.baseline
-    if base is None and not seeds:
-        base = compute_baseline(ctx.problem, ctx.env, ctx.land)
-    tracks = _seed_tracks(ctx, base) if base is not None else []
-    for s in ctx.seeds[:2]:  # given seeds (previous plan, pool): also earlier/later versions
-        for slope in TIMED_SLOPES:
-            ramp = np.linspace(-1.0, 1.0, max(s.rpm.size, 1))
-            tracks.append((f"{s.source}_timed", s.lon_deg, s.lat_deg, s.rpm * (1 + slope * ramp)))
-    for name, lon, lat, rpm in tracks:
-        seeds.append(TrackSeed(name, lon, lat, np.broadcast_to(rpm, lon.size - 1).copy()))
-    return seeds
 
 
-def seed_genes(ctx: MethodContext, seeds: list[TrackSeed], fast: FastEvaluator | None
-               ) -> tuple[np.ndarray, list[str]]:
-    """(genes, source names) of the seed tracks and of the ready gene seeds that fit."""
-    p = ctx.problem
-    x_seed = (track_to_genes(p, ctx.env, seeds, ctx.land, fast=fast) if seeds
-              else np.empty((0, p.n_var)))
-    sources = [s.source for s in seeds]
-    for name, genes in ctx.gene_seeds:
-        if genes.size == p.n_var and np.all(np.isfinite(genes)):
-            x_seed = np.concatenate([x_seed, clip_genes(p, genes[None, :])])
-            sources.append(name)
-    return x_seed, sources
 
 
-def best_seeds_first(p: RouteProblem, x_seed: np.ndarray, sources: list[str],
-                     evaluate: Callable[[np.ndarray], RouteEvaluation]
-                     ) -> tuple[np.ndarray, list[str], np.ndarray]:
-    """Seeds ranked best first (the initial population jitters them most), their sources,
-    and their cross-track offsets from the great circle (which island each goes to)."""
-    if len(x_seed) <= 1:
-        return x_seed, sources, np.zeros(len(x_seed))
-    sev = evaluate(x_seed)
-    order = deb_order(sev.violation, sev.objective)
-    offsets = cross_track_rad(sev.lon_deg[order], sev.lat_deg[order],
-                              (p.dep_lon_deg, p.dep_lat_deg), (p.arr_lon_deg, p.arr_lat_deg))
-    return x_seed[order], [sources[i] for i in order], offsets
+
+
+def islands_pay(ctx: MethodContext) -> bool:
+    """Whether the search is long enough for islands: each island must get generations
+    enough to refine its basin before the merge. Below ISLAND_MIN_EVALUATIONS (or its wall
+    time at the compiled evaluator's ~5,000 evaluations/s) one population converges further:
+    Busan -> Long Beach in the March storm at 14,000 evaluations (a 3 s plan), mean of three
+    seeds: 614-615 t with three islands of 40, 611.4 t with one population of 80, 608.7 t of
+    50, 607.4 t of 30 (602.3 t at 150,000 evaluations)."""
+    if ctx.max_evaluations:
+        return ctx.max_evaluations >= ISLAND_MIN_EVALUATIONS
+    return ctx.budget_s >= ISLAND_MIN_BUDGET_S
 
 
 def initial_ga(ctx: MethodContext, x_seed: np.ndarray, offsets: np.ndarray) -> AskTellGA:
-    """Islands by side of the great circle when there are seeds enough, else one GA."""
+    """Islands by side of the great circle when there are seeds and search enough, else one
+    GA (of at most SHORT_SEARCH_POP on a short search)."""
     p = ctx.problem
     lo, hi = gene_bounds(p)
     cfg = ctx.ga_config or GAConfig()
-    if len(x_seed) >= 2 * ctx.n_islands and ctx.n_islands > 1:
+    if len(x_seed) >= 2 * ctx.n_islands and ctx.n_islands > 1 and islands_pay(ctx):
         return IslandGA(lo, hi, p.n_stages, cfg, ctx.rng, x_seed, offsets, ctx.n_islands)
+    if not islands_pay(ctx):
+        cfg = dataclasses.replace(cfg, pop_size=min(cfg.pop_size, SHORT_SEARCH_POP),
+                                  offspring=min(cfg.offspring, SHORT_SEARCH_POP))
     return SeedGA(lo, hi, p.n_stages, cfg, ctx.rng, x_seed)
 
 
@@ -233,8 +217,9 @@ def final_result(ctx: MethodContext, ga: AskTellGA, confirmed: list[np.ndarray],
     than the constant-RPM baseline the GA was seeded with."""
     pop = ga.pop
     assert pop is not None  # the loop ran at least one generation
-    pool_x = pop if not confirmed else np.concatenate([pop[:24], confirmed[::-1], pop[24:]])
-    best_x, final = exact_choice(ctx.problem, ctx.env, ctx.land, pool_x, top=min(24, len(pop)))
+    top = min(24, len(pop), max(4, round(min(EXACT_TOP_PER_S * ctx.budget_s, 24.0))))
+    pool_x = pop if not confirmed else np.concatenate([pop[:top], confirmed[::-1], pop[top:]])
+    best_x, final = exact_choice(ctx.problem, ctx.env, ctx.land, pool_x, top=top)
     b = ctx.baseline
     if b is not None and is_better(
         float(b.evaluation.violation[0]), float(b.evaluation.objective[0]),
@@ -314,49 +299,4 @@ def with_land_legs(ev: RouteEvaluation, legs: list[int]) -> RouteEvaluation:
     leg_flags[0, legs] |= np.uint32(FLAG_LAND)
     return dataclasses.replace(ev, leg_flags=leg_flags, flags=ev.flags | np.uint32(FLAG_LAND),
                                violation=ev.violation + 2.0 * len(legs))
-
-
-def _seed_tracks(ctx: MethodContext, base: Baseline) -> list[tuple]:
-    """Baseline, great circle, sea lane and sea lanes via bent midpoints, each with the
-    baseline RPM scaled by track length (speed ~ RPM) so it arrives about on time."""
-    p = ctx.problem
-    length_b = float(base.evaluation.distance_m[0])
-
-    def scaled(lon: np.ndarray, lat: np.ndarray) -> float:
-        """Baseline RPM scaled by track length (speed ~ RPM) so the seed is about on time."""
-        length = float(np.sum(inverse(lon[:-1], lat[:-1], lon[1:], lat[1:])[1]))
-        return float(np.clip(base.rpm * length / max(length_b, 1.0), p.limits.rpm_min,
-                             p.limits.rpm_max))
-
-    tracks = [(base.name, base.lon_deg, base.lat_deg)]
-    if not ctx.seeds:
-        if base.name != "great_circle":
-            tracks.append(("great_circle", *great_circle_track(p)))
-        if base.name != "sea_lane":
-            lane = sea_lane_track(p)
-            if lane is not None:
-                tracks.append(("searoute", *lane))
-        if ctx.n_offset_seeds:
-            # the baseline's port approaches + open-ocean great circles via points moved
-            # north/south of the great circle at 1/3, 1/2 and 2/3 of the way
-            g_lon, g_lat = great_circle_track(p, 7)
-            spread = np.linspace(-ctx.offset_span_deg, ctx.offset_span_deg,
-                                 ctx.n_offset_seeds + 1)
-            spread = np.concatenate([spread[spread != 0.0], [-3.0, 3.0]])
-            for j in (2, 3, 4):
-                for d in spread:
-                    mlat = float(np.clip(g_lat[j] + d, -p.limits.lat_bound_deg,
-                                         p.limits.lat_bound_deg))
-                    v = via_track(base.lon_deg, base.lat_deg, float(g_lon[j]), mlat)
-                    tracks.append(("via_point", *v))
-    out: list[tuple[str, np.ndarray, np.ndarray, float | np.ndarray]] = [
-        (name, lon, lat, scaled(lon, lat)) for name, lon, lat in tracks]
-    # the baseline track with RPM ramps: passing a storm earlier or later than the
-    # constant-RPM schedule does is often cheaper than steering around it
-    n_leg = base.lon_deg.size - 1
-    ramp = np.linspace(-1.0, 1.0, max(n_leg, 1))
-    for slope in TIMED_SLOPES:
-        rpm = np.clip(base.rpm * (1.0 + slope * ramp), p.limits.rpm_min, p.limits.rpm_max)
-        out.append(("baseline_timed", base.lon_deg, base.lat_deg, rpm))
-    return out
 

@@ -18,6 +18,8 @@ from dataclasses import dataclass
 import numpy as np
 from shiproute_core.geodesy import M_PER_NM, densify_track, inverse, unwrap_near, wrap_lon
 
+from .route.nearest import nearest_node
+
 NEAR_M = 25_000.0  # a lane "uses" a strait when it passes both gates this close
 
 
@@ -84,11 +86,10 @@ def straits_on_lane(lon_deg: np.ndarray, lat_deg: np.ndarray
     for s in STRAITS:
         idx = []
         for g_lat, g_lon in s.gates:
-            _, d = inverse(lon, lat, np.full(lon.size, g_lon), np.full(lon.size, g_lat))
-            d = np.asarray(d)
-            if d.min() > NEAR_M:
+            near = nearest_node(lon, lat, g_lon, g_lat, NEAR_M)
+            if near is None:
                 break
-            idx.append(int(np.argmin(d)))
+            idx.append(near[0])
         if len(idx) == 2 and idx[0] != idx[1]:
             found.append((min(idx), s, idx[0] > idx[1], idx[0], idx[1]))
     return sorted(found, key=lambda f: f[0])

@@ -49,7 +49,7 @@ from .plan_worker import PlanInputs, PlanWorker
 from .qos import ANNOUNCEMENTS, LATCHED, SLICES, STATE
 from .replan_policy import ReplanThresholds, off_plan_reasons
 from .spin import spin_with_intake
-from .startup import load_depth_grids, seed_pool_statement
+from .startup import load_depth_grids, seed_pool_statement, warm_up_logged
 
 
 class PlannerNode(Node):
@@ -73,7 +73,8 @@ class PlannerNode(Node):
             ship_time_s=self._ship_time_s, in_force=self._in_force,
             take=self._take_cycle, report=self._report_error)
         # requests and their outcomes, so a PlanRoute goal waits for the run that answers it
-        self._worker = PlanWorker(self._lock, self._snapshot, self._plan_once, self._plan_failed)
+        self._worker = PlanWorker(self._lock, self._snapshot, self._plan_once, self._plan_failed,
+                                  lambda: warm_up_logged(self._p, self.get_logger()))
         self._plans_failed = 0
         self._ship: ShipState | None = None
         self._plan: RoutePlan | None = None
@@ -117,9 +118,9 @@ class PlannerNode(Node):
             callback_group=ReentrantCallbackGroup(),
         )
         self.create_timer(1.0, self._tick, callback_group=MutuallyExclusiveCallbackGroup())
-        self._worker.start()
         self._log_seed_pool()
         self._load_bathymetry()
+        self._worker.start()  # warms the planner up (startup.warm_planner) before planning
         self.get_logger().info("planner ready; waiting for a complete forecast cycle")
 
     def _load_bathymetry(self) -> None:

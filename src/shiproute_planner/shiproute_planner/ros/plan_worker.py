@@ -38,7 +38,9 @@ class PlanWorker:
     def __init__(self, lock: threading.Lock,
                  snapshot: Callable[[str, float | None, int], PlanInputs | str],
                  plan_once: Callable[[PlanInputs], str | None],
-                 failed: Callable[[PlanInputs, Exception], str]) -> None:
+                 failed: Callable[[PlanInputs, Exception], str],
+                 warm_up: Callable[[], None] | None = None) -> None:
+        self._warm_up = warm_up  # run on the thread before the first request is served
         self._wake = threading.Condition(lock)
         self._snapshot = snapshot
         self._plan_once = plan_once
@@ -94,6 +96,8 @@ class PlanWorker:
             self._done_event.notify_all()
 
     def _work(self) -> None:
+        if self._warm_up is not None:
+            self._warm_up()  # a request arriving meanwhile waits: its clock starts after
         while True:
             with self._wake:
                 while self._pending is None and not self._stop:

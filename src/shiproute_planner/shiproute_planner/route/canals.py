@@ -15,8 +15,9 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
-from shiproute_core.geodesy import inverse
 from shiproute_core.units import M_S_PER_KNOT
+
+from .nearest import nearest_node
 
 if TYPE_CHECKING:
     from .evaluation import RouteEvaluation
@@ -81,11 +82,10 @@ def canals_on_lane(lon_deg: np.ndarray, lat_deg: np.ndarray) -> list[tuple[int, 
         ends = (canal.line[canal.slow[0]], canal.line[canal.slow[1]])
         idx = []
         for e_lat, e_lon in ends:
-            _, d = inverse(lon, lat, np.full(lon.size, e_lon), np.full(lon.size, e_lat))
-            d = np.asarray(d)
-            if d.min() > NEAR_M:
+            near = nearest_node(lon, lat, e_lon, e_lat, NEAR_M)
+            if near is None:
                 break
-            idx.append(int(np.argmin(d)))
+            idx.append(near[0])
         if len(idx) == 2:
             found.append((min(idx), canal, idx[0] > idx[1]))
     return sorted(found, key=lambda f: f[0])

@@ -1,0 +1,157 @@
+"""The seed GA's starting population: the seed tracks (given, baseline, great circle, sea
+lane, bent via points, timed variants), their genes ranked best first, and fresh seeds when a
+re-plan's given seeds are all infeasible on a new forecast."""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Callable
+
+import numpy as np
+from shiproute_core.geodesy import inverse
+
+from .ga.islands import cross_track_rad
+from .ga.ranking import deb_order
+from .method_context import Baseline, MethodContext, compute_baseline
+from .plan_types import reasons_of
+from .route.encoding import clip_genes
+from .route.evaluation import RouteEvaluation
+from .route.fast_eval import FastEvaluator
+from .route.problem import RouteProblem
+from .route.seeding import TrackSeed, great_circle_track, sea_lane_track, track_to_genes, via_track
+
+FRESH_SEEDS_MIN_BUDGET_S = 1.0  # a stale re-plan's fresh seeds cost ~0.1-0.2 s per span
+FRESH_SEEDS_MIN_EVALUATIONS = 5_000
+# RPM ramps (relative change from the first to the last leg / 2) of timed seed variants
+TIMED_SLOPES = (-0.08, -0.04, 0.04, 0.08)
+
+
+def fresh_seeds_fit(ctx: MethodContext) -> bool:
+    """Whether the span's search affords a cold plan's seeds (baseline, ~25 more tracks)."""
+    if ctx.max_evaluations:
+        return ctx.max_evaluations >= FRESH_SEEDS_MIN_EVALUATIONS
+    return ctx.budget_s >= FRESH_SEEDS_MIN_BUDGET_S
+
+
+def fresh_seeds_if_stale(ctx: MethodContext, fast: FastEvaluator | None,
+                         evaluate: Callable[[np.ndarray], RouteEvaluation], x_seed: np.ndarray,
+                         sources: list[str], offsets: np.ndarray
+                         ) -> tuple[np.ndarray, list[str], np.ndarray, tuple[str, ...]]:
+    """When no given seed (the previous plan on a new cycle, the pool's route) is feasible,
+    a cold plan's seeds too (there already with a baseline): a route into the new cycle's
+    storm is not repaired in a few generations. Returns them ranked, and the note why."""
+    if not ctx.seeds or len(x_seed) == 0:
+        return x_seed, sources, offsets, ()
+    name = ctx.seeds[0].source
+    given = np.flatnonzero([s.startswith(name) for s in sources])
+    ev = evaluate(x_seed[given]) if given.size else None
+    if ev is None or (ev.violation <= 0).any():
+        return x_seed, sources, offsets, ()
+    k = int(np.argmin(ev.violation))
+    why = "; ".join(reasons_of(int(ev.flags[k]))) or "constraints violated"
+    stale = f"re-plan: no route seeded from the {name} is feasible on this forecast ({why})"
+    if ctx.baseline is not None:  # the cold plan's seeds are in already
+        return x_seed, sources, offsets, (stale + "; searched from fresh seeds as well",)
+    if not fresh_seeds_fit(ctx):
+        budget = (f"{ctx.max_evaluations} evaluations" if ctx.max_evaluations
+                  else f"{ctx.budget_s:.2f} s")
+        return x_seed, sources, offsets, (
+            f"{stale}; this span's budget ({budget}) was too short for fresh seeds: a "
+            "longer budget may find a feasible route",)
+    p = ctx.problem
+    cold = dataclasses.replace(ctx, seeds=[], gene_seeds=[],
+                               baseline=compute_baseline(p, ctx.env, ctx.land))
+    more, more_sources = seed_genes(cold, all_seeds(cold), fast)
+    x, names, off = best_seeds_first(p, np.concatenate([x_seed, more]), sources + more_sources,
+                                     evaluate)
+    return x, names, off, (stale + "; searched from fresh seeds as well",)
+
+
+def all_seeds(ctx: MethodContext) -> list[TrackSeed]:
+    """The given seeds, the baseline's tracks (when there is a baseline) and earlier/later
+    versions of the first two given seeds."""
+    seeds = list(ctx.seeds)
+    base = ctx.baseline
+    if base is None and not seeds:
+        base = compute_baseline(ctx.problem, ctx.env, ctx.land)
+    tracks = seed_tracks(ctx, base) if base is not None else []
+    for s in ctx.seeds[:2]:  # given seeds (previous plan, pool): also earlier/later versions
+        for slope in TIMED_SLOPES:
+            ramp = np.linspace(-1.0, 1.0, max(s.rpm.size, 1))
+            tracks.append((f"{s.source}_timed", s.lon_deg, s.lat_deg, s.rpm * (1 + slope * ramp)))
+    for name, lon, lat, rpm in tracks:
+        seeds.append(TrackSeed(name, lon, lat, np.broadcast_to(rpm, lon.size - 1).copy()))
+    return seeds
+
+
+def seed_genes(ctx: MethodContext, seeds: list[TrackSeed], fast: FastEvaluator | None
+               ) -> tuple[np.ndarray, list[str]]:
+    """(genes, source names) of the seed tracks and of the ready gene seeds that fit."""
+    p = ctx.problem
+    x_seed = (track_to_genes(p, ctx.env, seeds, ctx.land, fast=fast) if seeds
+              else np.empty((0, p.n_var)))
+    sources = [s.source for s in seeds]
+    for name, genes in ctx.gene_seeds:
+        if genes.size == p.n_var and np.all(np.isfinite(genes)):
+            x_seed = np.concatenate([x_seed, clip_genes(p, genes[None, :])])
+            sources.append(name)
+    return x_seed, sources
+
+
+def best_seeds_first(p: RouteProblem, x_seed: np.ndarray, sources: list[str],
+                     evaluate: Callable[[np.ndarray], RouteEvaluation]
+                     ) -> tuple[np.ndarray, list[str], np.ndarray]:
+    """Seeds ranked best first (the initial population jitters them most), their sources,
+    and their cross-track offsets from the great circle (which island each goes to)."""
+    if len(x_seed) <= 1:
+        return x_seed, sources, np.zeros(len(x_seed))
+    sev = evaluate(x_seed)
+    order = deb_order(sev.violation, sev.objective)
+    offsets = cross_track_rad(sev.lon_deg[order], sev.lat_deg[order],
+                              (p.dep_lon_deg, p.dep_lat_deg), (p.arr_lon_deg, p.arr_lat_deg))
+    return x_seed[order], [sources[i] for i in order], offsets
+
+
+def seed_tracks(ctx: MethodContext, base: Baseline) -> list[tuple]:
+    """Baseline, great circle, sea lane and sea lanes via bent midpoints, each with the
+    baseline RPM scaled by track length (speed ~ RPM) so it arrives about on time."""
+    p = ctx.problem
+    length_b = float(base.evaluation.distance_m[0])
+
+    def scaled(lon: np.ndarray, lat: np.ndarray) -> float:
+        """Baseline RPM scaled by track length (speed ~ RPM) so the seed is about on time."""
+        length = float(np.sum(inverse(lon[:-1], lat[:-1], lon[1:], lat[1:])[1]))
+        return float(np.clip(base.rpm * length / max(length_b, 1.0), p.limits.rpm_min,
+                             p.limits.rpm_max))
+
+    tracks = [(base.name, base.lon_deg, base.lat_deg)]
+    if not ctx.seeds:
+        if base.name != "great_circle":
+            tracks.append(("great_circle", *great_circle_track(p)))
+        if base.name != "sea_lane":
+            lane = sea_lane_track(p)
+            if lane is not None:
+                tracks.append(("searoute", *lane))
+        if ctx.n_offset_seeds:
+            # the baseline's port approaches + open-ocean great circles via points moved
+            # north/south of the great circle at 1/3, 1/2 and 2/3 of the way
+            g_lon, g_lat = great_circle_track(p, 7)
+            spread = np.linspace(-ctx.offset_span_deg, ctx.offset_span_deg,
+                                 ctx.n_offset_seeds + 1)
+            spread = np.concatenate([spread[spread != 0.0], [-3.0, 3.0]])
+            for j in (2, 3, 4):
+                for d in spread:
+                    mlat = float(np.clip(g_lat[j] + d, -p.limits.lat_bound_deg,
+                                         p.limits.lat_bound_deg))
+                    v = via_track(base.lon_deg, base.lat_deg, float(g_lon[j]), mlat)
+                    tracks.append(("via_point", *v))
+    out: list[tuple[str, np.ndarray, np.ndarray, float | np.ndarray]] = [
+        (name, lon, lat, scaled(lon, lat)) for name, lon, lat in tracks]
+    # the baseline track with RPM ramps: passing a storm earlier or later than the
+    # constant-RPM schedule does is often cheaper than steering around it
+    n_leg = base.lon_deg.size - 1
+    ramp = np.linspace(-1.0, 1.0, max(n_leg, 1))
+    for slope in TIMED_SLOPES:
+        rpm = np.clip(base.rpm * (1.0 + slope * ramp), p.limits.rpm_min, p.limits.rpm_max)
+        out.append(("baseline_timed", base.lon_deg, base.lat_deg, rpm))
+    return out
