@@ -38,6 +38,7 @@ from ..voyage_params import check_parameter, parse_utc
 from ..voyage_request import check_voyage_request
 from . import process_tuning as tuning
 from .convert import plan_messages, posix_s, ship_position, ship_state_optionals, voyage_request
+from .cycle_ledger import CycleLedger
 from .dds_profile import forget_profile, use_dynamic_slice_buffers
 from .diagnostics import plan_log_line, planner_status, progress_values
 from .drop_log import DropLog
@@ -67,6 +68,7 @@ class PlannerNode(Node):
         self._cycle_id = ""
         self._cycle_reference_s = 0.0  # reference time of the cycle in force (0: unknown)
         self._cycles_accepted = 0
+        self._ledger = CycleLedger()  # planned, failed or superseded: every accepted cycle
         self._forecast_intake = ForecastIntake(
             self._drops, self.get_logger(),
             accept_older=lambda: bool(self._p("accept_older_forecasts")),
@@ -206,6 +208,7 @@ class PlannerNode(Node):
             self._forecast, self._cycle_id = sampler, cycle_id
             self._cycle_reference_s = reference_s
             self._cycles_accepted += 1
+            self._ledger.taken(cycle_id)
             if self._worker.planning:
                 self._worker.cancel.set()  # supersede the running plan
         self._request(f"new forecast cycle {cycle_id}")
@@ -286,6 +289,7 @@ class PlannerNode(Node):
     def _plan_failed(self, inputs: PlanInputs, err: Exception) -> str:
         self._last_error = f"planning failed ({inputs.reason}): {err}"
         self._plans_failed += 1
+        self._ledger.answered(inputs.cycle_id, planned=False)
         self.get_logger().error(self._last_error)
         return self._last_error
 
@@ -345,6 +349,7 @@ class PlannerNode(Node):
         self._pub_plan.publish(plan_msg)
         self._plan, self._plan_wall = plan, time.monotonic()
         self._plans_made += 1
+        self._ledger.answered(inputs.cycle_id, planned=True)
         self.get_logger().info(plan_log_line(plan, inputs.reason))
 
     def _write_outputs(self, plan: RoutePlan, sampler) -> None:
@@ -373,7 +378,7 @@ class PlannerNode(Node):
             "plans_made": str(self._plans_made),
             "plans_failed": str(self._plans_failed),
             "last_error": self._last_error,
-            **self._drops.values(),
+            **self._drops.values(), **self._ledger.values(),
         }
         self._pub_diag.publish(planner_status(values, self._plan,
                                               time.monotonic() - self._plan_wall,
