@@ -23,6 +23,7 @@ import sys
 import time
 from typing import Any
 
+import numpy as np
 from shiproute_core.bench_report import print_figures
 
 from shiproute_bringup.bench_nodes import BenchPeer, peak_rss_mb, rss_mb, start_nodes
@@ -227,7 +228,7 @@ class _Soak:
         accepted = int(diag.get("forecast_cycles_accepted", "0"))
         planned, failed, superseded = (int(diag.get(f"forecast_cycles_{k}", "0"))
                                        for k in ("planned", "failed", "superseded"))
-        gaps = [b - a for a, b in zip(self.plan_times, self.plan_times[1:])]
+        gaps = np.diff(self.plan_times) if len(self.plan_times) > 1 else np.zeros(1)
         return {
             "cycles_accepted_by_planner": accepted, "cycles_planned": planned,
             "cycles_failed": failed, "cycles_superseded": superseded,
@@ -236,7 +237,7 @@ class _Soak:
             "every_good_cycle_planned": accepted > 0 and planned == accepted,
             "last_cycle_planned": self.last_cycle_planned(),
             "last_plan_wait_s": round(self.waited_last_plan_s, 1),
-            "plan_gap_max_s": round(max(gaps, default=0.0), 1),
+            "plan_gap_max_s": round(float(gaps.max()), 1),
         }
 
     def figures(self) -> dict:

@@ -21,6 +21,7 @@ class CycleLedger:
         self._in_force = ""
         self._in_force_answered = True
         self._just_superseded = ""  # the previous cycle, when `taken` counted it superseded
+        self.accepted = 0
         self.planned = 0
         self.failed = 0
         self.superseded = 0
@@ -35,6 +36,7 @@ class CycleLedger:
                 self.last_superseded = f"{self._in_force} (superseded by {cycle_id})"
                 self._just_superseded = self._in_force
             self._in_force, self._in_force_answered = cycle_id, False
+            self.accepted += 1
 
     def answered(self, cycle_id: str, planned: bool) -> None:
         """A plan was published (`planned`) or planning failed on `cycle_id`: the cycle in
@@ -53,10 +55,11 @@ class CycleLedger:
                 self.failed += 1
 
     def values(self) -> dict[str, str]:
-        """Diagnostic key/values: cycles planned, failed and superseded unplanned (the last
-        one named), and whether the cycle in force has been answered yet."""
+        """Diagnostic key/values: cycles accepted, planned, failed and superseded unplanned
+        (the last one named), and whether the cycle in force has been answered yet."""
         with self._lock:
-            return {"forecast_cycles_planned": str(self.planned),
+            return {"forecast_cycles_accepted": str(self.accepted),
+                    "forecast_cycles_planned": str(self.planned),
                     "forecast_cycles_failed": str(self.failed),
                     "forecast_cycles_superseded": str(self.superseded),
                     "forecast_cycles_superseded_last": self.last_superseded or "none",

@@ -44,6 +44,7 @@ from .diagnostics import plan_log_line, planner_status, progress_values
 from .drop_log import DropLog
 from .forecast_intake import ForecastIntake
 from .goal import GoalDesk, run_goal
+from .memory_release import release_after_plan
 from .parameters import DROP_KINDS, PARAMETERS, method_reason, paths
 from .plan_call import front_from_parameters, plan_from_parameters, run_start, write_outputs
 from .plan_worker import PlanInputs, PlanWorker
@@ -67,7 +68,6 @@ class PlannerNode(Node):
         self._forecast = None
         self._cycle_id = ""
         self._cycle_reference_s = 0.0  # reference time of the cycle in force (0: unknown)
-        self._cycles_accepted = 0
         self._ledger = CycleLedger()  # planned, failed or superseded: every accepted cycle
         self._forecast_intake = ForecastIntake(
             self._drops, self.get_logger(),
@@ -207,7 +207,6 @@ class PlannerNode(Node):
         with self._lock:
             self._forecast, self._cycle_id = sampler, cycle_id
             self._cycle_reference_s = reference_s
-            self._cycles_accepted += 1
             self._ledger.taken(cycle_id)
             if self._worker.planning:
                 self._worker.cancel.set()  # supersede the running plan
@@ -314,12 +313,10 @@ class PlannerNode(Node):
         self._publish(plan, inputs)
         # after publishing: files, then the freed buffers of a new cycle back to the OS
         self._write_outputs(plan, inputs.forecast)
+        released = release_after_plan(collect=self._trim_memory)  # raster pages, freed heap
         if self._trim_memory:
             self._trim_memory = False
-            tuning.return_freed_memory()  # a full collection first
-            tuning.freeze_long_lived()  # after the first plan, which loaded all planning needs
-            rss, peak = tuning.memory_mb()
-            self.get_logger().info(f"planner memory: {rss:.0f} MiB resident, peak {peak:.0f} MiB")
+            self.get_logger().info(released.text())
         return plan.plan_id
 
     def _plan_front(self, inputs: PlanInputs) -> str:
@@ -372,7 +369,6 @@ class PlannerNode(Node):
             "forecast_cycle": self._cycle_id or "none",
             "forecast_cycle_in_force": self._cycle_id or "none",
             "forecast_reference_time_s": f"{self._cycle_reference_s:.0f}",
-            "forecast_cycles_accepted": str(self._cycles_accepted),
             "forecast_last_refusal": self._forecast_intake.last_refusal or "none",
             "planning": str(self._worker.planning),
             "plans_made": str(self._plans_made),
