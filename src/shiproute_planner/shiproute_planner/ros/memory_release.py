@@ -7,7 +7,10 @@ Two kinds go back (Linux; elsewhere nothing happens):
   grids, all `.npy` in the shiproute data directory): a plan's land and depth scans touch
   them, and every touched page stays in the process's resident set although it is clean and
   can be read again from the page cache at once. `madvise(MADV_DONTNEED)` drops them from
-  this process only (the page cache and other processes keep them).
+  this process only (the page cache and other processes keep them);
+- pages of LLVM's library (~70 MB touched while the kernels are compiled or loaded), idle
+  between plans; only maps without write permission and without a private (relocated) copy
+  of any page are dropped, so every dropped page is the file's own and is read back unchanged.
 """
 
 from __future__ import annotations
@@ -15,19 +18,22 @@ from __future__ import annotations
 import ctypes
 import mmap
 import os
-from collections.abc import Iterator
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from ..geo.datadir import data_dir
 from . import process_tuning as tuning
 
-#: the file maps whose pages are dropped: the prepared rasters and grids
+#: the file maps whose pages are dropped: the prepared rasters and grids ...
 MAPPED_SUFFIXES = (".npy",)
+#: ... and the code and constant pages of LLVM, which compiles the numba kernels (or loads
+#: them from numba's cache) before the first plan and is idle after it
+COMPILER_LIBRARIES = ("libllvmlite.so",)
 
 
 @dataclass(frozen=True)
 class Released:
-    """What one release returned and what the process holds after it [MiB]."""
+    """What one release handed back and what the process holds after it [MiB]."""
 
     file_pages_mb: float
     resident_mb: float
@@ -40,53 +46,54 @@ class Released:
                 "pages handed back)")
 
 
-def read_only_file_maps(directory: str, maps_path: str = "/proc/self/maps"
-                        ) -> Iterator[tuple[int, int]]:
-    """(start, end) addresses of this process's read-only maps of `MAPPED_SUFFIXES` files
-    under `directory` (none where /proc is missing)."""
-    prefix = os.path.join(os.path.realpath(directory), "")
-    try:
-        with open(maps_path) as f:
-            lines = f.readlines()
-    except OSError:
-        return
-    for line in lines:
-        parts = line.split(maxsplit=5)
-        if len(parts) < 6 or "w" in parts[1]:
-            continue
-        path = parts[5].strip()
-        if path.startswith(prefix) and path.endswith(MAPPED_SUFFIXES):
-            start, end = (int(x, 16) for x in parts[0].split("-"))
-            yield start, end
-
-
-def resident_kib(start: int, end: int, smaps_path: str = "/proc/self/smaps") -> int:
-    """Resident KiB of the map starting at `start` (0 when it is not found)."""
-    head = f"{start:x}-{end:x} "
+def clean_file_maps(select: Callable[[str], bool], smaps_path: str = "/proc/self/smaps"
+                    ) -> list[tuple[int, int, int]]:
+    """(start, end, resident KiB) of this process's file maps that `select(path)` accepts,
+    are not writable and hold no private copy of a page (Anonymous 0): every resident page is
+    the file's own, so dropping it loses nothing (none where /proc is missing)."""
+    found: list[tuple[int, int, int]] = []
+    current: list[int] | None = None  # start, end, rss, anonymous of an accepted map
     try:
         with open(smaps_path) as f:
-            found = False
             for line in f:
-                if line.startswith(head):
-                    found = True
-                elif found and line.startswith("Rss:"):
-                    return int(line.split()[1])
+                head = line.split(maxsplit=5)
+                if len(head) >= 5 and "-" in head[0] and len(head[1]) == 4:
+                    if current is not None and current[3] == 0:
+                        found.append((current[0], current[1], current[2]))
+                    path = head[5].strip() if len(head) == 6 else ""
+                    current = None
+                    if "w" not in head[1] and path.startswith("/") and select(path):
+                        a, b = (int(x, 16) for x in head[0].split("-"))
+                        current = [a, b, 0, 0]
+                elif current is not None and head[0] in ("Rss:", "Anonymous:"):
+                    current[2 if head[0] == "Rss:" else 3] = int(head[1])
     except (OSError, ValueError):
-        pass
-    return 0
+        return []
+    if current is not None and current[3] == 0:
+        found.append((current[0], current[1], current[2]))
+    return found
 
 
-def drop_file_pages(directory: str) -> float:
-    """Drop the resident pages of the read-only raster maps under `directory`; returns the
-    MiB that were resident in them."""
+def raster_maps(directory: str) -> Callable[[str], bool]:
+    """Selects the prepared rasters and grids (`MAPPED_SUFFIXES`) under `directory`."""
+    prefix = os.path.join(os.path.realpath(directory), "")
+    return lambda path: path.startswith(prefix) and path.endswith(MAPPED_SUFFIXES)
+
+
+def compiler_library(path: str) -> bool:
+    """Selects LLVM's library (`COMPILER_LIBRARIES`), used to compile and load the kernels."""
+    return os.path.basename(path) in COMPILER_LIBRARIES
+
+
+def drop_file_pages(select: Callable[[str], bool]) -> float:
+    """Drop the resident pages of the clean file maps `select` accepts; returns their MiB."""
     try:
         madvise = ctypes.CDLL("libc.so.6", use_errno=True).madvise
     except (OSError, AttributeError):
         return 0.0
     madvise.argtypes = (ctypes.c_void_p, ctypes.c_size_t, ctypes.c_int)
     dropped_kib = 0
-    for start, end in read_only_file_maps(directory):
-        kib = resident_kib(start, end)
+    for start, end, kib in clean_file_maps(select):
         if kib and madvise(start, end - start, mmap.MADV_DONTNEED) == 0:
             dropped_kib += kib
     return dropped_kib / 1024.0
@@ -97,7 +104,8 @@ def release_after_plan(collect: bool, data_directory: str | None = None) -> Rele
     the shiproute data directory) and return freed heap memory. With `collect` (a new cycle's
     first plan) a full garbage collection runs first, and what the process holds then is left
     out of later collections (`process_tuning.freeze_long_lived`)."""
-    file_mb = drop_file_pages(str(data_dir()) if data_directory is None else data_directory)
+    directory = str(data_dir()) if data_directory is None else data_directory
+    file_mb = drop_file_pages(raster_maps(directory)) + drop_file_pages(compiler_library)
     tuning.return_freed_memory(collect=collect)
     if collect:
         tuning.freeze_long_lived()  # after the first plan, which loaded all planning needs

@@ -5,31 +5,41 @@ from __future__ import annotations
 import json
 import subprocess
 import sys
-import textwrap
 from pathlib import Path
 
 import numpy as np
 import pytest
 from shiproute_planner.ros.memory_release import (
+    clean_file_maps,
+    compiler_library,
     drop_file_pages,
-    read_only_file_maps,
-    resident_kib,
+    raster_maps,
 )
 
 linux_only = pytest.mark.skipif(not Path("/proc/self/smaps").exists(), reason="needs Linux /proc")
 
 
-def test_only_read_only_npy_maps_under_the_directory_are_chosen(tmp_path: Path) -> None:
+def _map(lines: str, rss_kib: int, anon_kib: int) -> str:
+    return f"{lines}\nSize: 1024 kB\nRss: {rss_kib} kB\nAnonymous: {anon_kib} kB\n"
+
+
+def test_only_clean_read_only_maps_that_are_selected_are_chosen(tmp_path: Path) -> None:
     data = tmp_path / "data"
-    maps = tmp_path / "maps"
-    maps.write_text(textwrap.dedent(f"""\
-        7f0000000000-7f0000100000 r--s 00000000 08:01 11 {data}/landmask.npy
-        7f0000100000-7f0000200000 rw-s 00000000 08:01 12 {data}/written.npy
-        7f0000200000-7f0000300000 r--p 00000000 08:01 13 {data}/notes.json
-        7f0000300000-7f0000400000 r--s 00000000 08:01 14 {tmp_path}/elsewhere/depth.npy
-        7f0000400000-7f0000500000 rw-p 00000000 00:00 0
-        """))
-    assert list(read_only_file_maps(str(data), str(maps))) == [(0x7F0000000000, 0x7F0000100000)]
+    lib = "/venv/site-packages/llvmlite/binding/libllvmlite.so"
+    smaps = tmp_path / "smaps"
+    smaps.write_text("".join([
+        _map(f"7f0000000000-7f0000100000 r--s 00000000 08:01 11 {data}/landmask.npy", 900, 0),
+        _map(f"7f0000100000-7f0000200000 rw-s 00000000 08:01 12 {data}/written.npy", 900, 0),
+        _map(f"7f0000200000-7f0000300000 r--p 00000000 08:01 13 {data}/notes.json", 900, 0),
+        _map(f"7f0000300000-7f0000400000 r--s 00000000 08:01 14 {tmp_path}/x/depth.npy", 9, 0),
+        _map("7f0000400000-7f0000500000 rw-p 00000000 00:00 0", 900, 900),
+        _map(f"7f0000500000-7f0000600000 r-xp 00000000 08:01 15 {lib}", 700, 0),
+        _map(f"7f0000600000-7f0000700000 r--p 00000000 08:01 15 {lib}", 300, 12),  # relro
+    ]))
+    assert clean_file_maps(raster_maps(str(data)), str(smaps)) == [
+        (0x7F0000000000, 0x7F0000100000, 900)]
+    assert clean_file_maps(compiler_library, str(smaps)) == [
+        (0x7F0000500000, 0x7F0000600000, 700)]
 
 
 @linux_only
@@ -38,11 +48,12 @@ def test_dropped_pages_leave_the_process_and_the_values_read_back(tmp_path: Path
     np.save(tmp_path / "raster.npy", values)
     mapped = np.load(tmp_path / "raster.npy", mmap_mode="r")
     total = float(np.sum(mapped, dtype=np.float64))  # touches every page
-    (start, end), = read_only_file_maps(str(tmp_path))
-    assert resident_kib(start, end) >= 0.9 * values.nbytes / 1024
-    dropped_mb = drop_file_pages(str(tmp_path))
+    (_, _, kib), = clean_file_maps(raster_maps(str(tmp_path)))
+    assert kib >= 0.9 * values.nbytes / 1024
+    dropped_mb = drop_file_pages(raster_maps(str(tmp_path)))
     assert dropped_mb >= 0.9 * values.nbytes / 2**20
-    assert resident_kib(start, end) <= 64  # a few pages at most
+    (_, _, kib_after), = clean_file_maps(raster_maps(str(tmp_path)))
+    assert kib_after <= 64  # a few pages at most
     assert float(np.sum(mapped, dtype=np.float64)) == total
 
 
