@@ -311,9 +311,9 @@ class PlannerNode(Node):
             self.get_logger().info(f"plan on {inputs.cycle_id} superseded by a newer cycle")
             return None
         self._publish(plan, inputs)
-        # after publishing: files, then the freed buffers of a new cycle back to the OS
+        # after publishing: files, then what a plan does not keep back to the OS
         self._write_outputs(plan, inputs.forecast)
-        released = release_after_plan(collect=self._trim_memory)  # raster pages, freed heap
+        released = release_after_plan(collect=self._trim_memory)  # clean file pages, heap
         if self._trim_memory:
             self._trim_memory = False
             self.get_logger().info(released.text())
