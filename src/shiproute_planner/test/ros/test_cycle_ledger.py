@@ -24,7 +24,7 @@ def test_cycles_coalesced_while_planning_are_counted_and_named() -> None:
     v = ledger.values()
     assert v["forecast_cycles_superseded"] == "2"
     assert v["forecast_cycles_superseded_last"] == "b (superseded by c)"
-    assert v["forecast_cycles_planned"] == "1"
+    assert (v["forecast_cycles_accepted"], v["forecast_cycles_planned"]) == ("3", "1")
     assert v["forecast_cycle_in_force_answered"] == "True"
 
 
