@@ -101,11 +101,11 @@ def drop_file_pages(select: Callable[[str], bool]) -> float:
 
 def release_after_plan(collect: bool, data_directory: str | None = None) -> Released:
     """After a plan: drop the raster pages it touched (maps under `data_directory`, default
-    the shiproute data directory) and return freed heap memory. With `collect` (a new cycle's
-    first plan) a full garbage collection runs first, and what the process holds then is left
-    out of later collections (`process_tuning.freeze_long_lived`)."""
-    directory = str(data_dir()) if data_directory is None else data_directory
-    file_mb = drop_file_pages(raster_maps(directory)) + drop_file_pages(compiler_library)
+    the shiproute data directory) and LLVM's, and return freed heap memory. With `collect`
+    (a new cycle's first plan) a full garbage collection runs first, and what the process
+    holds then is left out of later collections (`process_tuning.freeze_long_lived`)."""
+    rasters = raster_maps(str(data_dir()) if data_directory is None else data_directory)
+    file_mb = drop_file_pages(lambda path: rasters(path) or compiler_library(path))  # one pass
     tuning.return_freed_memory(collect=collect)
     if collect:
         tuning.freeze_long_lived()  # after the first plan, which loaded all planning needs
