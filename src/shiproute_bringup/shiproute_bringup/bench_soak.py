@@ -6,10 +6,13 @@ sent once the previous one has been answered) it asks the weather node to load t
 forecast's two real cycles in turn (`storm_march`, `storm_march_cycle2`), and every 30 s it
 publishes a bad cycle (zero longitude spacing) of its own, which the planner must refuse. The
 planner runs with `accept_older_forecasts:=true` because the two cycles alternate (every other
-one is an older model run). Reported: loads answered (`cycles`), plans received, cycles the
-planner refused or dropped incomplete (`rejected`), node deaths, and each node's resident
-memory at the start (after a warm-up of 30 s, both cycles loaded, then 8 s without a load),
-at the end (8 s after the last load) and its peak (VmHWM) over the whole run.
+one is an older model run); `--ensemble` alternates the 20-member `storm_march_ensemble`
+cycle with the deterministic `storm_march`. Reported: loads answered (`cycles`), plans
+received, how every cycle the planner accepted ended (planned, failed, or superseded by a newer
+one before its plan: `cycles_superseded`, the last one named), cycles the planner refused or
+dropped incomplete (`rejected`), node deaths, and each node's resident memory at the start
+(after a warm-up of 30 s, both cycles loaded, then 8 s without a load), at the end (after the
+plan on the last cycle loaded, waited for, and 2 s more) and its peak (VmHWM) over the run.
 """
 
 from __future__ import annotations
@@ -20,6 +23,7 @@ import sys
 import time
 from typing import Any
 
+import numpy as np
 from shiproute_core.bench_report import print_figures
 
 from shiproute_bringup.bench_nodes import BenchPeer, peak_rss_mb, rss_mb, start_nodes
@@ -35,6 +39,11 @@ BAD_EVERY_S = 30.0
 #: the first plan includes the planner's start-up (compiled kernels, land and depth data): on a
 #: machine shared by several sessions it took over 120 s
 FIRST_PLAN_S = 300.0
+#: the plan on the last cycle loaded is waited for this long after the soak's end
+LAST_PLAN_S = 120.0
+#: the two real cycles loaded in turn (the first is also the one loaded at start)
+CYCLES = ("storm_march", "storm_march_cycle2")
+ENSEMBLE_CYCLES = ("storm_march", "storm_march_ensemble")
 
 
 def _bad_cycle(types: dict, k: int) -> tuple:
@@ -72,11 +81,12 @@ class _Soak:
         self.peer, self.procs, self.files, self.period_s = peer, procs, files, period_s
         node, latched = peer.node, peer.latched
         self.plans: list[str] = []
+        self.plan_times: list[float] = []  # arrival of each plan [monotonic s]
+        self.loaded: list[tuple[str, float]] = []  # (cycle id, answer time) of each load
         self.diag: dict[str, str] = {}
         self.ship_state_type = ShipState
         self.load_request = LoadForecast.Request
-        node.create_subscription(RoutePlan, topics.PLAN_ROUTE,
-                                 lambda m: self.plans.append(m.cycle_id), latched)
+        node.create_subscription(RoutePlan, topics.PLAN_ROUTE, self._on_plan, latched)
         node.create_subscription(DiagnosticArray, topics.DIAGNOSTICS, self._on_diag, 10)
         self.state_pub = node.create_publisher(ShipState, topics.SHIP_STATE, 10)
         self.cycle_pub = node.create_publisher(ForecastCycle, topics.FORECAST_CYCLE, latched)
@@ -93,7 +103,12 @@ class _Soak:
         self.pending: Any = None
         self.next_load = self.next_bad = self.next_state = 0.0
         self.quiet_since = 0.0
+        self.waited_last_plan_s = 0.0
         self.t_start = time.monotonic()
+
+    def _on_plan(self, msg: Any) -> None:
+        self.plans.append(msg.cycle_id)
+        self.plan_times.append(time.monotonic())
 
     def _on_diag(self, msg: Any) -> None:
         for st in msg.status:
@@ -138,6 +153,7 @@ class _Soak:
             ans = self.pending.result()
             if ans is not None and ans.accepted:
                 self.cycles += 1
+                self.loaded.append((ans.cycle_id, time.monotonic()))
             else:
                 self.refused_loads += 1
             self.pending = None
@@ -177,16 +193,52 @@ class _Soak:
                 break
             self.peer.spin_once(0.01)
 
-    def settle(self) -> None:
-        """The last load's answer, 2 s more of ship states, then the end and peak memory."""
+    def last_cycle_planned(self) -> bool:
+        """Whether a plan on the last loaded cycle arrived after its load was answered and the
+        planner says the cycle in force has been answered."""
+        if not self.loaded:
+            return True
+        cycle_id, answered_at = self.loaded[-1]
+        planned = any(c == cycle_id and t >= answered_at
+                      for c, t in zip(self.plans, self.plan_times, strict=True))
+        return planned and self.diag.get("forecast_cycle_in_force_answered") == "True"
+
+    def settle(self, timeout_s: float = LAST_PLAN_S) -> None:
+        """The last load's answer, the plan on the last cycle (up to `timeout_s`), 2 s more of
+        ship states, then the end and peak memory."""
         while self.pending is not None and not self.pending.done():
             self.peer.spin_once(0.05)
+        self.collect_load()
+        deadline = time.monotonic() + timeout_s
+        while not self.last_cycle_planned() and time.monotonic() < deadline and not self.dead():
+            self.ship_state()
+            self.peer.spin_once(0.05)
+        self.waited_last_plan_s = time.monotonic() - deadline + timeout_s
         t_quiet = time.monotonic() + 2.0  # the last load was sent >= QUIET_S before the end
         while time.monotonic() < t_quiet:
             self.ship_state()
             self.peer.spin_once(0.05)
         self.end_rss = {k: rss_mb(p.proc.pid) for k, p in self.procs.items()}
         self.peak = {k: peak_rss_mb(p.proc.pid) for k, p in self.procs.items()}
+
+    def cycle_figures(self) -> dict:
+        """How the cycles the planner accepted ended: planned, failed or superseded by a newer
+        one before a plan (the last one named); `cycles_unaccounted` must be 0."""
+        diag = self.diag
+        accepted = int(diag.get("forecast_cycles_accepted", "0"))
+        planned, failed, superseded = (int(diag.get(f"forecast_cycles_{k}", "0"))
+                                       for k in ("planned", "failed", "superseded"))
+        gaps = np.diff(self.plan_times) if len(self.plan_times) > 1 else np.zeros(1)
+        return {
+            "cycles_accepted_by_planner": accepted, "cycles_planned": planned,
+            "cycles_failed": failed, "cycles_superseded": superseded,
+            "cycles_superseded_last": diag.get("forecast_cycles_superseded_last", ""),
+            "cycles_unaccounted": accepted - planned - failed - superseded,
+            "every_good_cycle_planned": accepted > 0 and planned == accepted,
+            "last_cycle_planned": self.last_cycle_planned(),
+            "last_plan_wait_s": round(self.waited_last_plan_s, 1),
+            "plan_gap_max_s": round(float(gaps.max()), 1),
+        }
 
     def figures(self) -> dict:
         """The run's JSON-able result."""
@@ -195,7 +247,7 @@ class _Soak:
             "minutes": round((time.monotonic() - self.t_start) / 60.0, 2),
             "period_s": self.period_s,
             "cycles": self.cycles, "loads_refused": self.refused_loads,
-            "cycles_accepted_by_planner": int(diag.get("forecast_cycles_accepted", "0")),
+            **self.cycle_figures(),
             "plans": len(self.plans), "plans_failed": int(diag.get("plans_failed", "0")),
             "bad_cycles_sent": self.bad_sent,
             "rejected": int(diag.get("forecast_cycles_dropped", "0")),
@@ -208,11 +260,13 @@ class _Soak:
         }
 
 
-def run(minutes: float, period_s: float, budget_s: float) -> dict:
-    """Start the nodes, soak them for `minutes`, return the figures."""
+def run(minutes: float, period_s: float, budget_s: float, ensemble: bool = False) -> dict:
+    """Start the nodes, soak them for `minutes`, return the figures (`ensemble`: the loads
+    alternate the 20-member ensemble cycle with the deterministic one)."""
     from shiproute_weather.scenarios.catalogue import scenario_path
 
-    files = [str(scenario_path("storm_march")), str(scenario_path("storm_march_cycle2"))]
+    names = ENSEMBLE_CYCLES if ensemble else CYCLES
+    files = [str(scenario_path(n)) for n in names]
     dom = random_domain_id()
     weather, planner = start_nodes(
         dom, [f"forecast_files:=['{files[0]}']"], RTA, budget_s,
@@ -227,7 +281,7 @@ def run(minutes: float, period_s: float, budget_s: float) -> dict:
         peer.close()
         planner.stop()
         weather.stop()
-    return soak.figures()
+    return {"cycles_loaded": ", ".join(names), **soak.figures()}
 
 
 def _state(ship_state_type) -> object:
@@ -245,10 +299,12 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--minutes", type=float, default=10.0, help="soak duration [min]")
     p.add_argument("--period", type=float, default=2.0, help="seconds between forecast loads")
     p.add_argument("--budget", type=float, default=0.5, help="planner budget per plan [s]")
+    p.add_argument("--ensemble", action="store_true",
+                   help="alternate the 20-member storm_march_ensemble cycle with storm_march")
     args = p.parse_args(argv)
     if not (args.minutes > 0 and args.period > 0 and args.budget > 0):
         p.error("--minutes, --period and --budget must be positive")
-    result = run(args.minutes, args.period, args.budget)
+    result = run(args.minutes, args.period, args.budget, args.ensemble)
     print_figures(result, args.json)
     return 0
 

@@ -38,11 +38,13 @@ from ..voyage_params import check_parameter, parse_utc
 from ..voyage_request import check_voyage_request
 from . import process_tuning as tuning
 from .convert import plan_messages, posix_s, ship_position, ship_state_optionals, voyage_request
+from .cycle_ledger import CycleLedger
 from .dds_profile import forget_profile, use_dynamic_slice_buffers
 from .diagnostics import plan_log_line, planner_status, progress_values
 from .drop_log import DropLog
 from .forecast_intake import ForecastIntake
 from .goal import GoalDesk, run_goal
+from .memory_release import release_after_plan
 from .parameters import DROP_KINDS, PARAMETERS, method_reason, paths
 from .plan_call import front_from_parameters, plan_from_parameters, run_start, write_outputs
 from .plan_worker import PlanInputs, PlanWorker
@@ -66,7 +68,7 @@ class PlannerNode(Node):
         self._forecast = None
         self._cycle_id = ""
         self._cycle_reference_s = 0.0  # reference time of the cycle in force (0: unknown)
-        self._cycles_accepted = 0
+        self._ledger = CycleLedger()  # planned, failed or superseded: every accepted cycle
         self._forecast_intake = ForecastIntake(
             self._drops, self.get_logger(),
             accept_older=lambda: bool(self._p("accept_older_forecasts")),
@@ -92,8 +94,7 @@ class PlannerNode(Node):
 
         io_group = ReentrantCallbackGroup()
         # the forecast arrives on a node of its own, spun by a single-threaded executor (see
-        # `main`): packed in arrival order as they come, and ~2x faster per slice than through the
-        # multi-threaded executor's thread pool
+        # `main`): packed in arrival order, ~2x faster per slice than through a thread pool
         self.intake = rclpy.create_node(
             f"{self.get_name()}_forecast_intake", namespace=self.get_namespace(),
             context=self.context, use_global_arguments=False)  # not renamed like this node
@@ -206,7 +207,7 @@ class PlannerNode(Node):
         with self._lock:
             self._forecast, self._cycle_id = sampler, cycle_id
             self._cycle_reference_s = reference_s
-            self._cycles_accepted += 1
+            self._ledger.taken(cycle_id)
             if self._worker.planning:
                 self._worker.cancel.set()  # supersede the running plan
         self._request(f"new forecast cycle {cycle_id}")
@@ -287,6 +288,7 @@ class PlannerNode(Node):
     def _plan_failed(self, inputs: PlanInputs, err: Exception) -> str:
         self._last_error = f"planning failed ({inputs.reason}): {err}"
         self._plans_failed += 1
+        self._ledger.answered(inputs.cycle_id, planned=False)
         self.get_logger().error(self._last_error)
         return self._last_error
 
@@ -309,14 +311,12 @@ class PlannerNode(Node):
             self.get_logger().info(f"plan on {inputs.cycle_id} superseded by a newer cycle")
             return None
         self._publish(plan, inputs)
-        # after publishing: files, then the freed buffers of a new cycle back to the OS
+        # after publishing: files, then what a plan does not keep back to the OS
         self._write_outputs(plan, inputs.forecast)
+        released = release_after_plan(collect=self._trim_memory)  # clean file pages, heap
         if self._trim_memory:
             self._trim_memory = False
-            tuning.return_freed_memory()  # a full collection first
-            tuning.freeze_long_lived()  # after the first plan, which loaded all planning needs
-            rss, peak = tuning.memory_mb()
-            self.get_logger().info(f"planner memory: {rss:.0f} MiB resident, peak {peak:.0f} MiB")
+            self.get_logger().info(released.text())
         return plan.plan_id
 
     def _plan_front(self, inputs: PlanInputs) -> str:
@@ -346,6 +346,7 @@ class PlannerNode(Node):
         self._pub_plan.publish(plan_msg)
         self._plan, self._plan_wall = plan, time.monotonic()
         self._plans_made += 1
+        self._ledger.answered(inputs.cycle_id, planned=True)
         self.get_logger().info(plan_log_line(plan, inputs.reason))
 
     def _write_outputs(self, plan: RoutePlan, sampler) -> None:
@@ -368,13 +369,12 @@ class PlannerNode(Node):
             "forecast_cycle": self._cycle_id or "none",
             "forecast_cycle_in_force": self._cycle_id or "none",
             "forecast_reference_time_s": f"{self._cycle_reference_s:.0f}",
-            "forecast_cycles_accepted": str(self._cycles_accepted),
             "forecast_last_refusal": self._forecast_intake.last_refusal or "none",
             "planning": str(self._worker.planning),
             "plans_made": str(self._plans_made),
             "plans_failed": str(self._plans_failed),
             "last_error": self._last_error,
-            **self._drops.values(),
+            **self._drops.values(), **self._ledger.values(),
         }
         self._pub_diag.publish(planner_status(values, self._plan,
                                               time.monotonic() - self._plan_wall,
