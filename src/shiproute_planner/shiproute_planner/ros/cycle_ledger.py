@@ -1,7 +1,7 @@
 """Which forecast cycles put in force got a plan, a failure, or were superseded unplanned.
 
-The planner plans on the newest complete cycle: a cycle that arrives while a plan runs cancels
-that plan, and cycles arriving faster than plans are made are coalesced into the newest one.
+The planner plans on the newest complete cycle: a plan that runs when a cycle arrives ends on
+its own cycle first, and cycles arriving faster than plans are made are coalesced into the newest.
 Such a cycle was accepted but never planned on; it is not lost silently: the ledger counts it
 and names the last one (and its successor) for /diagnostics, so every accepted cycle is
 accounted for: accepted = planned + failed + superseded + (at most one) in force unanswered.

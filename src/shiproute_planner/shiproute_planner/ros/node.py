@@ -202,14 +202,13 @@ class PlannerNode(Node):
         return self._cycle_id, self._cycle_reference_s
 
     def _take_cycle(self, sampler, cycle_id: str, reference_s: float) -> None:
-        """A complete cycle replaces the one in force and triggers a re-plan; the running plan
-        is superseded, and the freed slice buffers go back to the OS."""
+        """A complete cycle replaces the one in force and triggers a re-plan after the run in
+        progress, which finishes on its own cycle (every good cycle gets its plan, within one
+        budget of the next), and the freed slice buffers go back to the OS."""
         with self._lock:
             self._forecast, self._cycle_id = sampler, cycle_id
             self._cycle_reference_s = reference_s
             self._ledger.taken(cycle_id)
-            if self._worker.planning:
-                self._worker.cancel.set()  # supersede the running plan
         self._request(f"new forecast cycle {cycle_id}")
         tuning.return_freed_memory(collect=False)  # the slice buffers: freed, not yet returned
         self._trim_memory = True
@@ -293,7 +292,7 @@ class PlannerNode(Node):
         return self._last_error
 
     def _plan_once(self, inputs: PlanInputs) -> str | None:
-        """Plan and publish; the plan's id, None when the run was superseded by a newer cycle."""
+        """Plan and publish; the plan's id, None when the run was cancelled (goal, shutdown)."""
         origin = str(self._p("origin"))
         depart, position = run_start(
             origin, inputs.position, inputs.previous, str(self._p("departure_time")),
@@ -308,7 +307,7 @@ class PlannerNode(Node):
             else float(self._p("budget_s")), previous=inputs.previous, position=position,
             progress=self._on_progress, cancel=self._worker.cancel, objective=inputs.objective)
         if self._worker.cancel.is_set():
-            self.get_logger().info(f"plan on {inputs.cycle_id} superseded by a newer cycle")
+            self.get_logger().info(f"plan on {inputs.cycle_id} cancelled")
             return None
         self._publish(plan, inputs)
         # after publishing: files, then what a plan does not keep back to the OS
