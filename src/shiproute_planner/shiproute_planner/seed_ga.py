@@ -33,9 +33,6 @@ EXACT_CHOICE_SHARE = 0.28  # ... at most this share of a small budget (re-plans 
 EXACT_TOP_PER_S = 40.0  # final candidates re-evaluated exactly per second of budget (4..24)
 DENSE_CHECKS = 12  # feasible final candidates given the dense land check, best first
 EXACT_CHECK_EVERY = 15  # generations between exact confirmations of the GA's best
-ISLAND_MIN_EVALUATIONS = 40_000  # islands only on searches this long (seed_ga.islands_pay)
-ISLAND_MIN_BUDGET_S = 8.0
-SHORT_SEARCH_POP = 30  # population of a shorter search
 # a risk-aware GA first runs on the members' mean forecast for this share of the budget and
 # seeds itself with that run's best candidates
 MEAN_PHASE_SHARE = 0.25
@@ -108,29 +105,13 @@ def with_mean_optimum(ctx: MethodContext, fast: FastEvaluator, x_seed: np.ndarra
 
 
 
-def islands_pay(ctx: MethodContext) -> bool:
-    """Whether the search is long enough for islands: each island must get generations
-    enough to refine its basin before the merge. Below ISLAND_MIN_EVALUATIONS (or its wall
-    time at the compiled evaluator's ~5,000 evaluations/s) one population converges further:
-    Busan -> Long Beach in the March storm at 14,000 evaluations (a 3 s plan), mean of three
-    seeds: 614-615 t with three islands of 40, 611.4 t with one population of 80, 608.7 t of
-    50, 607.4 t of 30 (602.3 t at 150,000 evaluations)."""
-    if ctx.max_evaluations:
-        return ctx.max_evaluations >= ISLAND_MIN_EVALUATIONS
-    return ctx.budget_s >= ISLAND_MIN_BUDGET_S
-
-
 def initial_ga(ctx: MethodContext, x_seed: np.ndarray, offsets: np.ndarray) -> AskTellGA:
-    """Islands by side of the great circle when there are seeds and search enough, else one
-    GA (of at most SHORT_SEARCH_POP on a short search)."""
+    """Islands by side of the great circle when there are seeds enough, else one GA."""
     p = ctx.problem
     lo, hi = gene_bounds(p)
     cfg = ctx.ga_config or GAConfig()
-    if len(x_seed) >= 2 * ctx.n_islands and ctx.n_islands > 1 and islands_pay(ctx):
+    if len(x_seed) >= 2 * ctx.n_islands and ctx.n_islands > 1:
         return IslandGA(lo, hi, p.n_stages, cfg, ctx.rng, x_seed, offsets, ctx.n_islands)
-    if not islands_pay(ctx):
-        cfg = dataclasses.replace(cfg, pop_size=min(cfg.pop_size, SHORT_SEARCH_POP),
-                                  offspring=min(cfg.offspring, SHORT_SEARCH_POP))
     return SeedGA(lo, hi, p.n_stages, cfg, ctx.rng, x_seed)
 
 
