@@ -12,41 +12,18 @@ already (`shiproute_core.fastdds.USER_SETTINGS`).
 
 from __future__ import annotations
 
-import os
-import tempfile
 from pathlib import Path
 
-from shiproute_core.fastdds import USER_SETTINGS, forget_profile
+from shiproute_core.fastdds import forget_profile, use_topic_profile
 
 __all__ = ["forget_profile", "use_dynamic_slice_writer"]
 
-_PROFILE = """<?xml version="1.0" encoding="UTF-8"?>
-<dds xmlns="http://www.eprosima.com">
-  <profiles>
-    <data_writer profile_name="shiproute weather writers" is_default_profile="true">
-      <qos><publishMode><kind>ASYNCHRONOUS</kind></publishMode></qos>
-      <historyMemoryPolicy>PREALLOCATED_WITH_REALLOC</historyMemoryPolicy>
-    </data_writer>
-    <data_reader profile_name="shiproute weather readers" is_default_profile="true">
-      <historyMemoryPolicy>PREALLOCATED_WITH_REALLOC</historyMemoryPolicy>
-    </data_reader>
-    <data_writer profile_name="{topic}">
-      <qos><publishMode><kind>ASYNCHRONOUS</kind></publishMode></qos>
-      <historyMemoryPolicy>DYNAMIC</historyMemoryPolicy>
-    </data_writer>
-  </profiles>
-</dds>
-"""
+#: the slice writer's settings: asynchronous like every writer, payloads sized per sample
+SLICE_WRITER_SETTINGS = """      <qos><publishMode><kind>ASYNCHRONOUS</kind></publishMode></qos>
+      <historyMemoryPolicy>DYNAMIC</historyMemoryPolicy>"""
 
 
 def use_dynamic_slice_writer(slices_topic: str) -> Path | None:
     """Point Fast DDS at the weather node's profile (call before rclpy.init). Returns the
     profile file, or None when the environment configures Fast DDS already."""
-    if any(os.environ.get(name) for name in USER_SETTINGS):
-        return None
-    fd, name = tempfile.mkstemp(prefix="shiproute-weather-dds-", suffix=".xml")
-    with os.fdopen(fd, "w") as f:
-        f.write(_PROFILE.format(topic=slices_topic))
-    os.environ["FASTDDS_DEFAULT_PROFILES_FILE"] = name
-    os.environ["RMW_FASTRTPS_USE_QOS_FROM_XML"] = "1"
-    return Path(name)
+    return use_topic_profile("weather", slices_topic, SLICE_WRITER_SETTINGS, "data_writer")
