@@ -96,7 +96,9 @@ class DisplayState:
         with self._lock:
             self.cycles[info.cycle_id] = info
             self.cycles.move_to_end(info.cycle_id)
-            self.slices.setdefault(info.cycle_id, {})
+            views = self.slices.setdefault(info.cycle_id, {})
+            if len(views) == info.slice_count:  # every slice came before the announcement
+                self.tracks[info.cycle_id] = self._member_tracks(info, views)
             while len(self.cycles) > self.max_cycles:
                 old, _ = self.cycles.popitem(last=False)
                 self.slices.pop(old, None)

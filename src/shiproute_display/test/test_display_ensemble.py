@@ -32,16 +32,20 @@ def _fields(m: int, t: int) -> dict[str, np.ndarray]:
     return {HS_NAME: hs.reshape(-1), WIND_U_NAME: u, WIND_V_NAME: np.zeros_like(u)}
 
 
-def _state(complete: bool = True) -> DisplayState:
+def _state(complete: bool = True, announce_first: bool = True) -> DisplayState:
     st = DisplayState()
-    st.on_cycle(CycleInfo("ens-1", T0, T0, T0 + (TIMES - 1) * STEP_S, STEP_S, MEMBERS * TIMES,
-                          "unit-test", MEMBERS, ("control", "p1", "p2"), "ensemble"))
+    info = CycleInfo("ens-1", T0, T0, T0 + (TIMES - 1) * STEP_S, STEP_S, MEMBERS * TIMES,
+                     "unit-test", MEMBERS, ("control", "p1", "p2"), "ensemble")
+    if announce_first:
+        st.on_cycle(info)
     for m in range(MEMBERS):
         for t in range(TIMES):
             if not complete and (m, t) == (2, 3):
                 continue
             st.on_slice("ens-1", thin_slice(m * TIMES + t, T0 + t * STEP_S, GRID, _fields(m, t),
                                             member=m))
+    if not announce_first:  # separate topics: every slice may come before the announcement
+        st.on_cycle(info)
     return st
 
 
@@ -78,8 +82,9 @@ def test_p90_of_a_partial_cycle_is_refused_and_tracks_wait() -> None:
     assert st.snapshot()["forecast"]["cycles"][0]["tracks"] == []
 
 
-def test_each_members_hs_peak_track() -> None:
-    tracks = _state().snapshot()["forecast"]["cycles"][0]["tracks"]
+@pytest.mark.parametrize("announce_first", [True, False])
+def test_each_members_hs_peak_track(announce_first: bool) -> None:
+    tracks = _state(announce_first=announce_first).snapshot()["forecast"]["cycles"][0]["tracks"]
     assert len(tracks) == MEMBERS
     for m, track in enumerate(tracks):
         assert len(track) == TIMES
