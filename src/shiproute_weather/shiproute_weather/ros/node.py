@@ -20,6 +20,7 @@ from typing import Any
 import rclpy
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from rcl_interfaces.msg import ParameterDescriptor, SetParametersResult
+from rclpy._rclpy_pybind11 import RCLError
 from rclpy.callback_groups import MutuallyExclusiveCallbackGroup, ReentrantCallbackGroup
 from rclpy.executors import MultiThreadedExecutor
 from rclpy.node import Node
@@ -48,7 +49,6 @@ from .convert import (
     slice_to_msg,
     wire_bytes,
 )
-from .dds_profile import forget_profile, use_dynamic_slice_writer
 from .heap import return_freed_memory, return_large_blocks_at_once
 
 DIAG_NAME = "shiproute_weather: forecast"
@@ -335,7 +335,10 @@ class WeatherNode(Node):
                                               for k, v in self.state.items()])
         arr = DiagnosticArray(status=[status])
         arr.header.stamp = self.get_clock().now().to_msg()
-        self.diag_pub.publish(arr)
+        try:
+            self.diag_pub.publish(arr)
+        except RCLError as err:  # a failed diagnostics sample must not end the node
+            self.get_logger().warning(f"diagnostics not published: {err}")
 
     def stop(self) -> None:
         """Stop the loader thread."""
@@ -347,12 +350,8 @@ def main(argv: list[str] | None = None) -> int:
     """Console script `shiproute_weather_node`; runs until SIGINT/SIGTERM."""
     return_large_blocks_at_once(1 << 15)  # a packed field of a slice is ~55 kB
     warm_array_backends()
-    profile = use_dynamic_slice_writer(FORECAST_SLICES)  # see dds_profile
     rclpy.init(args=argv if argv is not None else sys.argv)
-    try:
-        node = WeatherNode()
-    finally:
-        forget_profile(profile)
+    node = WeatherNode()
     executor = MultiThreadedExecutor(num_threads=3)
     executor.add_node(node)
     spin_until_shutdown(executor, (node,), stop=(node.stop,))
