@@ -20,7 +20,6 @@ from typing import Any
 import rclpy
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 from rcl_interfaces.msg import ParameterDescriptor, SetParametersResult
-from rclpy._rclpy_pybind11 import RCLError
 from rclpy.callback_groups import MutuallyExclusiveCallbackGroup, ReentrantCallbackGroup
 from rclpy.executors import MultiThreadedExecutor
 from rclpy.node import Node
@@ -337,7 +336,7 @@ class WeatherNode(Node):
         arr.header.stamp = self.get_clock().now().to_msg()
         try:
             self.diag_pub.publish(arr)
-        except RCLError as err:  # a failed diagnostics sample must not end the node
+        except RuntimeError as err:  # rclpy's RCLError: a failed sample must not end the node
             self.get_logger().warning(f"diagnostics not published: {err}")
 
     def stop(self) -> None:
