@@ -1,4 +1,4 @@
-"""A per-process Fast DDS profile for one topic's reader or writer, written once for every node.
+"""A per-process Fast DDS profile for the forecast-slice reader, written once for every node.
 
 rmw_fastrtps reads an XML profile file named in the environment when the process's participant
 is created. A node that needs its own settings for one reader (the forecast slices) writes a
@@ -25,9 +25,9 @@ PROFILE_TEMPLATE = """<?xml version="1.0" encoding="UTF-8"?>
     <data_reader profile_name="shiproute {process} readers" is_default_profile="true">
       <historyMemoryPolicy>PREALLOCATED_WITH_REALLOC</historyMemoryPolicy>
     </data_reader>
-    <{endpoint} profile_name="{topic}">
-{settings}
-    </{endpoint}>
+    <data_reader profile_name="{topic}">
+{reader_settings}
+    </data_reader>
   </profiles>
 </dds>
 """
@@ -36,30 +36,23 @@ USER_SETTINGS = ("FASTDDS_DEFAULT_PROFILES_FILE", "FASTRTPS_DEFAULT_PROFILES_FIL
 _SET_HERE = ("FASTDDS_DEFAULT_PROFILES_FILE", "RMW_FASTRTPS_USE_QOS_FROM_XML")
 
 
-def profile_xml(process: str, topic: str, settings: str, endpoint: str = "data_reader") -> str:
-    """The profile document: rmw_fastrtps' defaults plus `settings` for the `endpoint`
-    (`data_reader` or `data_writer`) of `topic`."""
-    return PROFILE_TEMPLATE.format(process=process, topic=topic, endpoint=endpoint,
-                                   settings=settings.rstrip("\n"))
+def profile_xml(process: str, topic: str, reader_settings: str) -> str:
+    """The profile document: rmw_fastrtps' defaults plus `reader_settings` for `topic`."""
+    return PROFILE_TEMPLATE.format(process=process, topic=topic,
+                                   reader_settings=reader_settings.rstrip("\n"))
 
 
-def use_topic_profile(process: str, topic: str, settings: str,
-                      endpoint: str = "data_reader") -> Path | None:
+def use_topic_reader_profile(process: str, topic: str, reader_settings: str) -> Path | None:
     """Write the profile to a temporary file and point Fast DDS at it (call before rclpy.init).
     Returns the file, or None when the environment configures Fast DDS already."""
     if any(os.environ.get(name) for name in USER_SETTINGS):
         return None
     fd, name = tempfile.mkstemp(prefix=f"shiproute-{process}-dds-", suffix=".xml")
     with os.fdopen(fd, "w") as f:
-        f.write(profile_xml(process, topic, settings, endpoint))
+        f.write(profile_xml(process, topic, reader_settings))
     os.environ["FASTDDS_DEFAULT_PROFILES_FILE"] = name
     os.environ["RMW_FASTRTPS_USE_QOS_FROM_XML"] = "1"
     return Path(name)
-
-
-def use_topic_reader_profile(process: str, topic: str, reader_settings: str) -> Path | None:
-    """`use_topic_profile` for one reader (the forecast-slice reader of a node)."""
-    return use_topic_profile(process, topic, reader_settings)
 
 
 def forget_profile(path: Path | None) -> None:
