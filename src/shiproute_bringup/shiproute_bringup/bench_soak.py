@@ -234,6 +234,9 @@ class _Soak:
             "cycles_failed": failed, "cycles_superseded": superseded,
             "cycles_superseded_last": diag.get("forecast_cycles_superseded_last", ""),
             "cycles_unaccounted": accepted - planned - failed - superseded,
+            # good loads overtaken before they were complete (a newer cycle arrived first):
+            # coalesced at the intake, counted in /diagnostics among the dropped cycles
+            "cycles_overtaken_in_transit": max(self.cycles - accepted, 0),
             "every_good_cycle_planned": accepted > 0 and planned == accepted,
             "last_cycle_planned": self.last_cycle_planned(),
             "last_plan_wait_s": round(self.waited_last_plan_s, 1),
