@@ -81,8 +81,9 @@ class RiskFront:
 
 
 def front_note(front: list[FrontPoint], spec: RiskSpec, chosen_p_hs: float | None) -> str:
-    """The plan's sentence on the trade-off the search saw (empty without a front)."""
-    if not front:
+    """The plan's sentence on the trade-off the search saw (empty when it saw none: no
+    front, or one exposure only)."""
+    if len(front) < 2:
         return ""
     step = max(1, -(-len(front) // FRONT_POINTS_SAID))
     shown = front[::step]
@@ -93,7 +94,7 @@ def front_note(front: list[FrontPoint], spec: RiskSpec, chosen_p_hs: float | Non
     lo, hi = front[0], front[-1]
     cost = (f"; lowering P(Hs > limit) from {hi.p_hs:.2f} to {lo.p_hs:.2f} costs "
             f"{lo.risk - hi.risk:+.1f} in {spec.label} and {lo.p90_fuel_t - hi.p90_fuel_t:+.1f} t "
-            "at P90" if len(front) > 1 else "")
+            "at P90")
     chosen = "" if chosen_p_hs is None else f"; chosen at P(Hs > limit) {chosen_p_hs:.2f}"
     return (f"risk trade-off seen by the search on the optimised span (P(Hs > limit) -> "
             f"{spec.label} of the objective, on time within P(late) <= "

@@ -89,4 +89,5 @@ def test_front_note_states_the_cost_of_lower_exposure_and_the_choice():
     assert f"from {pts[-1].p_hs:.2f} to {pts[0].p_hs:.2f} costs" in note
     assert f"{pts[0].risk - pts[-1].risk:+.1f} in cvar:0.9" in note
     assert "asked P(Hs > limit) <= 0.2; chosen at P(Hs > limit) 0.20" in note
-    assert front_note([], front.spec, None) == ""
+    # no trade-off seen (no front, or one exposure only): nothing to say
+    assert front_note([], front.spec, None) == "" and front_note(pts[:1], front.spec, 0.2) == ""
