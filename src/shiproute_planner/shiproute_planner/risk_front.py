@@ -35,6 +35,12 @@ class FrontPoint:
     p90_fuel_t: float  # the members' P90 of the optimised span's fuel
     genes: np.ndarray
 
+    @property
+    def exposure(self) -> float:
+        """The smallest P(Hs > limit) bound this candidate meets: the other sea-keeping
+        limits are held to the same bound (`route.member_eval.chance_excess`)."""
+        return max(self.p_hs, self.p_sea_keeping)
+
 
 @dataclass
 class RiskFront:
@@ -62,10 +68,11 @@ class RiskFront:
                                              float(risk[k]), p90, x[k].copy())
 
     def front(self, on_time_only: bool = True) -> list[FrontPoint]:
-        """Pareto front over (P(Hs > limit), risk measure), lowest exposure first; with
-        `on_time_only` only candidates that meet the lateness bound."""
+        """Pareto front over (exposure, risk measure), lowest exposure first, the exposure
+        being the smallest P(Hs > limit) bound a candidate meets (`FrontPoint.exposure`);
+        with `on_time_only` only candidates that meet the lateness bound."""
         points = sorted((p for (_, _, ok), p in self.cells.items() if ok or not on_time_only),
-                        key=lambda p: (p.p_hs, p.risk))
+                        key=lambda p: (p.exposure, p.risk))
         kept: list[FrontPoint] = []
         for p in points:
             if not kept or p.risk < kept[-1].risk:
@@ -75,8 +82,7 @@ class RiskFront:
     def within_bounds(self) -> list[FrontPoint]:
         """Candidates meeting every chance bound of the spec, best risk measure first."""
         cap = self.spec.p_hs_max + CHANCE_TOLERANCE
-        ok = [p for (_, _, on_time), p in self.cells.items()
-              if on_time and p.p_hs <= cap and p.p_sea_keeping <= cap]
+        ok = [p for (_, _, on_time), p in self.cells.items() if on_time and p.exposure <= cap]
         return sorted(ok, key=lambda p: p.risk)
 
 
@@ -89,17 +95,17 @@ def front_note(front: list[FrontPoint], spec: RiskSpec, chosen_p_hs: float | Non
     shown = front[::step]
     if shown[-1] is not front[-1]:
         shown.append(front[-1])
-    pts = ", ".join(f"{p.p_hs:.2f} -> {p.risk:.1f} (P90 fuel {p.p90_fuel_t:.1f} t)"
+    pts = ", ".join(f"{p.exposure:.2f} -> {p.risk:.1f} (P90 fuel {p.p90_fuel_t:.1f} t)"
                     for p in shown)
     lo, hi = front[0], front[-1]
-    cost = (f"; lowering P(Hs > limit) from {hi.p_hs:.2f} to {lo.p_hs:.2f} costs "
+    cost = (f"; lowering it from {hi.exposure:.2f} to {lo.exposure:.2f} costs "
             f"{lo.risk - hi.risk:+.1f} in {spec.label} and {lo.p90_fuel_t - hi.p90_fuel_t:+.1f} t "
             "at P90")
     chosen = "" if chosen_p_hs is None else f"; chosen at P(Hs > limit) {chosen_p_hs:.2f}"
-    return (f"risk trade-off seen by the search on the optimised span (P(Hs > limit) -> "
-            f"{spec.label} of the objective, on time within P(late) <= "
-            f"{spec.p_late_max:g}): {pts}{cost}; asked P(Hs > limit) <= {spec.p_hs_max:g}"
-            f"{chosen}")
+    return (f"risk trade-off seen by the search on the optimised span (P(Hs or another "
+            f"sea-keeping limit exceeded) -> {spec.label} of the objective, on time within "
+            f"P(late) <= {spec.p_late_max:g}): {pts}{cost}; asked P(Hs > limit) <= "
+            f"{spec.p_hs_max:g}{chosen}")
 
 
 def front_first(front: RiskFront, pop: np.ndarray, keep: int = 4) -> np.ndarray:

@@ -26,8 +26,9 @@ def _outcomes(rng: np.random.Generator, pop: int) -> tuple[MemberOutcomes, np.nd
 
 
 def _brute(batches, spec: RiskSpec):
-    """(Pareto front as (p_hs, risk) pairs, best risk within the bounds) over every
-    candidate free of other violations and on time within the bound."""
+    """(Pareto front as (exposure, risk) pairs, best risk within the bounds) over every
+    candidate free of other violations and on time within the bound; the exposure is the
+    larger of P(Hs > limit) and P(another sea-keeping limit), both held to p_hs_max."""
     pts = []
     for out, risk in batches:
         p_hs = out.probability(out.hs_exceeded)
@@ -35,11 +36,10 @@ def _brute(batches, spec: RiskSpec):
         p_late = out.probability(out.late)
         for k in range(risk.size):
             if out.other_violation[0, k] == 0 and p_late[k] <= spec.p_late_max + 1e-9:
-                pts.append((round(float(p_hs[k]), 9), float(risk[k]), float(p_sk[k])))
-    front = [(h, r) for h, r, _ in pts
-             if not any((h2 <= h and r2 < r) or (h2 < h and r2 <= r) for h2, r2, _ in pts)]
-    front = sorted({(h, min(r2 for h2, r2 in front if h2 == h)) for h, _ in front})
-    inside = [r for h, r, sk in pts if h <= spec.p_hs_max + 1e-9 and sk <= spec.p_hs_max + 1e-9]
+                pts.append((round(max(float(p_hs[k]), float(p_sk[k])), 9), float(risk[k])))
+    front = sorted({(h, r) for h, r in pts
+                    if not any((h2 <= h and r2 < r) or (h2 < h and r2 <= r) for h2, r2 in pts)})
+    inside = [r for h, r in pts if h <= spec.p_hs_max + 1e-9]
     return front, (min(inside) if inside else None)
 
 
@@ -54,7 +54,7 @@ def test_front_and_choice_match_a_brute_force_over_every_candidate(seed):
         front.offer(rng.random((40, 3)), out, risk)
         batches.append((out, risk))
     want_front, want_best = _brute(batches, spec)
-    got = [(p.p_hs, p.risk) for p in front.front()]
+    got = [(p.exposure, p.risk) for p in front.front()]
     assert np.allclose(np.asarray(got).reshape(-1, 2), np.asarray(want_front).reshape(-1, 2))
     # along the front, exposure rises as the risk measure falls
     assert all(a[0] < b[0] and a[1] > b[1] for a, b in zip(got, got[1:], strict=False))
@@ -86,7 +86,7 @@ def test_front_note_states_the_cost_of_lower_exposure_and_the_choice():
     pts = front.front()
     assert len(pts) >= 2
     note = front_note(pts, front.spec, 0.2)
-    assert f"from {pts[-1].p_hs:.2f} to {pts[0].p_hs:.2f} costs" in note
+    assert f"from {pts[-1].exposure:.2f} to {pts[0].exposure:.2f} costs" in note
     assert f"{pts[0].risk - pts[-1].risk:+.1f} in cvar:0.9" in note
     assert "asked P(Hs > limit) <= 0.2; chosen at P(Hs > limit) 0.20" in note
     # no trade-off seen (no front, or one exposure only): nothing to say
