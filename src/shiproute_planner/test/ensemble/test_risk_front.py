@@ -3,6 +3,8 @@ its choice within the bounds match a brute force over every candidate offered.""
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
 import pytest
 from shiproute_planner.risk_front import RiskFront, front_note
@@ -57,7 +59,7 @@ def test_front_and_choice_match_a_brute_force_over_every_candidate(seed):
     got = [(p.exposure, p.risk) for p in front.front()]
     assert np.allclose(np.asarray(got).reshape(-1, 2), np.asarray(want_front).reshape(-1, 2))
     # along the front, exposure rises as the risk measure falls
-    assert all(a[0] < b[0] and a[1] > b[1] for a, b in zip(got, got[1:], strict=False))
+    assert all(a[0] < b[0] and a[1] > b[1] for a, b in itertools.pairwise(got))
     inside = front.within_bounds()
     assert (want_best is None) == (not inside)
     if inside:
