@@ -20,12 +20,13 @@ from .geo.landmask import LandMask
 from .geo.verify import land_crossings
 from .method_context import MethodContext, MethodResult, Progress
 from .risk_choice import risk_choice
+from .risk_front import RiskFront, front_first, front_statement
 from .route.encoding import gene_bounds
 from .route.environment import Environment
 from .route.evaluation import RouteEvaluation
 from .route.fast_eval import FastEvaluator, fast_evaluator
 from .route.generate import evaluate_genes
-from .route.member_eval import risk_evaluate
+from .route.member_eval import risk_evaluate_outcomes
 from .route.problem import RouteProblem
 from .route_check import CHECK_STEP_M
 
@@ -46,12 +47,16 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
     seeds = all_seeds(ctx)
     fast = fast_evaluator(p, env, ctx.land)
     risk = env.risk if fast is not None and fast.member_count > 1 else None
+    front = RiskFront(risk) if risk is not None else None
 
     def evaluate(x: np.ndarray) -> RouteEvaluation:
         """GA-loop evaluator: the compiled one when the environment allows it (on every
-        ensemble member, reduced by the risk measure, when a risk measure is set)."""
-        if risk is not None and fast is not None:
-            return risk_evaluate(fast, risk, x)
+        ensemble member, reduced by the risk measure, when a risk measure is set, each
+        candidate offered to the risk front)."""
+        if risk is not None and fast is not None and front is not None:
+            ev, out = risk_evaluate_outcomes(fast, risk, x)
+            front.offer(x, out, ev.objective)
+            return ev
         return fast.evaluate(x) if fast is not None else evaluate_genes(p, env, ctx.land, x)
 
     x_seed, sources = seed_genes(ctx, seeds, fast)
@@ -67,17 +72,16 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
     # the exact evaluator confirms bests of one forecast only (a risk-aware best is a
     # measure over members the exact evaluator does not see)
     best_src, confirmed = run_ga(ctx, ga, evaluate, fast is not None and risk is None, sources)
-    if risk is not None:  # the risk measure chooses, not the members' mean
+    if risk is not None and fast is not None and front is not None:
+        # the risk measure chooses, not the members' mean: the front's best within the
+        # bounds first (the GA's elitism keeps it too), then the final population
         pop = ga.pop
         assert pop is not None  # the loop ran at least one generation
-        best_x, final = risk_choice(p, env, ctx.land, pop, evaluate)
+        best_x, final = risk_choice(p, env, ctx.land, front_first(front, pop), evaluate)
         return MethodResult(final, best_src, mean_gens + ga.generation,
-                            mean_evals + ga.evaluations, best_x.copy(), notes)
+                            mean_evals + ga.evaluations, best_x.copy(),
+                            (*notes, *front_statement(fast, risk, front, best_x)))
     return dataclasses.replace(final_result(ctx, ga, confirmed, best_src), notes=notes)
-
-
-
-
 
 
 def with_mean_optimum(ctx: MethodContext, fast: FastEvaluator, x_seed: np.ndarray,
@@ -98,12 +102,6 @@ def with_mean_optimum(ctx: MethodContext, fast: FastEvaluator, x_seed: np.ndarra
     top = pop[:MEAN_PHASE_SEEDS]
     return (np.concatenate([top, x_seed]), [*["mean_forecast_ga"] * len(top), *sources],
             ga.generation, ga.evaluations)
-
-
-
-
-
-
 
 
 def initial_ga(ctx: MethodContext, x_seed: np.ndarray, offsets: np.ndarray) -> AskTellGA:

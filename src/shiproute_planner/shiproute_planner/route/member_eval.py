@@ -118,6 +118,12 @@ def risk_violation(out: MemberOutcomes, spec: RiskSpec, objective: np.ndarray) -
 def risk_evaluate(fast: FastEvaluator, spec: RiskSpec, x: np.ndarray) -> RouteEvaluation:
     """GA evaluation of genes `x` on every member: the objective is the risk measure of the
     members' objectives, the violation `risk_violation`; nodes and legs are member 0's."""
+    return risk_evaluate_outcomes(fast, spec, x)[0]
+
+
+def risk_evaluate_outcomes(fast: FastEvaluator, spec: RiskSpec, x: np.ndarray
+                           ) -> tuple[RouteEvaluation, MemberOutcomes]:
+    """`risk_evaluate` and the per-member outcomes it was reduced from (for the risk front)."""
     members = fast.member_count
     ev = fast.evaluate_members(x)
     weights = fast.member_weights
@@ -128,4 +134,4 @@ def risk_evaluate(fast: FastEvaluator, spec: RiskSpec, x: np.ndarray) -> RouteEv
     objective = risk_value(out.objective, weights, spec)
     return dataclasses.replace(base, fuel_t=weights @ out.fuel_t, flags=flags,
                                violation=risk_violation(out, spec, objective),
-                               objective=objective)
+                               objective=objective), out

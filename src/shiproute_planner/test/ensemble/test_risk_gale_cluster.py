@@ -64,16 +64,23 @@ def _plan(forecast: xr.Dataset, land_mask, **risk):
                        budget_s=1e6, max_generations=20, land=land_mask, seed=3, **risk)
 
 
+@pytest.fixture(scope="module")
+def gale_plans(land_mask):
+    """(risk-aware plan, plan on the members' mean) of the half-gale ensemble."""
+    forecast = _members([False, True] * 3, (GALE_LAT, GALE_LON))
+    risky = _plan(forecast, land_mask, risk="cvar:0.9", p_hs_max=0.1, p_late_max=0.5)
+    return risky, _plan(forecast, land_mask)
+
+
 @pytest.mark.slow
 def test_risk_aware_plan_goes_round_a_gale_half_the_members_put_on_the_great_circle(
-        land_mask):
+        gale_plans):
     """The gale members' 11 m sea is above the 8 m limit, so a route through the box meets
     it in exactly half the members' weight (0.5); one round it in none. The risk plan with
     P(Hs > limit) <= 0.1 must meet that bound (0 or one member would do; 0 is what going
-    round gives) and so lie below the mean plan, which sees a 6.5 m sea it may cross."""
-    forecast = _members([False, True] * 3, (GALE_LAT, GALE_LON))
-    risky = _plan(forecast, land_mask, risk="cvar:0.9", p_hs_max=0.1, p_late_max=0.5)
-    mean = _plan(forecast, land_mask)
+    round gives) and so lie below the mean plan, which sees a 6.5 m sea it may cross; it
+    states the trade-off it saw, from the through route's 0.5 down to 0."""
+    risky, mean = gale_plans
     a, b = risky.extra["ensemble"], mean.extra["ensemble"]
     assert a["members"] == b["members"] == 6
     assert a["p_hs_violation"] <= 0.1 + 1e-9
@@ -84,6 +91,25 @@ def test_risk_aware_plan_goes_round_a_gale_half_the_members_put_on_the_great_cir
     # the detour is made on time: P(late) within its bound
     assert a["p_late"] <= 0.5 + 1e-9
     assert not any("not met" in w for w in risky.warnings)
+    said = [w for w in risky.warnings if w.startswith("risk trade-off seen by the search")]
+    assert len(said) == 1 and "from 0.50 to 0.00 costs" in said[0]
+    assert "chosen at P(Hs > limit) 0.00" in said[0]
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason=(
+    "known miss (#19 check 1 on the independent case), on P90 fuel: measured (seed 3, 20 "
+    "generations) risk plan (P(Hs) 0.0, P90 143.0 t) vs mean plan (0.5, 113.3 t); the mean "
+    "plan's gale members burn less (108.9 t) than its calm ones (113.3 t): a 24 m/s "
+    "following gale and 11 m following sea are counted at the planned RPM, with no speed "
+    "reduction above the ship's Hs limit, so going round (+~30 t in every member) cannot pay"))
+def test_risk_aware_plan_also_has_lower_p90_fuel_than_the_mean_plan_round_the_gale(
+        gale_plans):
+    """Check 1 on the independent case: P90 fuel and P(Hs > limit) both below the mean plan's."""
+    risky, mean = gale_plans
+    a, b = risky.extra["ensemble"], mean.extra["ensemble"]
+    assert a["p_hs_violation"] < b["p_hs_violation"]
+    assert a["fuel_t"]["p90"] < b["fuel_t"]["p90"]
 
 
 def test_an_unattainable_chance_constraint_gives_a_flagged_best_effort_plan(land_mask):

@@ -83,6 +83,7 @@ def run(budget_s: float, risk: str, p_hs_max: float, p_late_max: float, seed: in
         "mean_plan_p_hs_violation": round(ens_mean["p_hs_violation"], 3),
         "mean_plan_p_late": round(ens_mean["p_late"], 3),
         "mean_plan_mean_fuel_t": round(ens_mean["fuel_t"]["mean"], 2),
+        "risk_tradeoff": [w for w in plan.warnings if w.startswith("risk trade-off")],
         "generations": plan.generations, "evaluations": plan.evaluations,
         "planner_rss_mb": round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, 1),
         "cycle_bytes": wire,
