@@ -16,6 +16,7 @@ import numpy as np
 from shiproute_core.units import M_S_PER_KNOT
 
 from ..geo.depth import Bathymetry
+from ..geo.depth_scan import capped_min_depth_m
 
 
 def barrass_squat_m(block_coefficient: float, stw_m_s: np.ndarray | float,
@@ -58,8 +59,10 @@ class UnderKeel:
         at the leg's required depth (a UKC >= 0 then reads 0: enough for a constraint and
         much cheaper in deep water). NaN where no grid covers the leg."""
         need = self.required_depth_m(stw_m_s, hs_m)
-        depth = self.bathymetry.segment_min_depth_m(
-            lon0, lat0, lon1, lat1, np.inf if exact else need)
+        if exact:
+            depth = self.bathymetry.segment_min_depth_m(lon0, lat0, lon1, lat1, np.inf)
+        else:  # same result, open water crossed in jumps, legs over the planner's threads
+            depth = capped_min_depth_m(self.bathymetry, lon0, lat0, lon1, lat1, need)
         return depth, depth - need
 
 
