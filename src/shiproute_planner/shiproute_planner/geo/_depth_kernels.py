@@ -203,8 +203,8 @@ def _cell_jump(lat: float, lon: float, cap: float, grids: np.ndarray, cell_min: 
         j = j % n_lon
     elif j < 1 or j >= n_lon - 1:
         return 1
-    if i < 1 or i >= n_lat - 1 or cell_min[i, j] < cap or cell_min[i, j] == 255:
-        return 1  # unknown neighbourhoods are walked: the plain walk may find a value there
+    if i < 1 or i >= n_lat - 1 or cell_min[i, j] < cap:
+        return 1  # (unknown neighbourhoods, 255, are crossed: no sample there is shallow)
     c = math.cos(math.radians(min(abs(lat) + dlat, 89.0)))
     jump = int(0.95 * min(dlat, dlon * c) / max(per_step, 1e-12))
     return max(1, min(jump, left))
