@@ -85,6 +85,17 @@ def cell_minimum(bathymetry: Bathymetry) -> np.ndarray:
         return _CELL_MIN[bathymetry]
 
 
+def prepare(bathymetry: Bathymetry, lowest_need_m: float, highest_need_m: float) -> None:
+    """Build ahead the rasters scans needing lowest..highest_need_m will use (the cell minima
+    and the clear distances of those levels), so a plan's search does not pay for them."""
+    cell_minimum(bathymetry)
+    for level in LEVELS_M:
+        if level >= lowest_need_m:
+            clear_raster(bathymetry, level)
+        if level >= highest_need_m:
+            break
+
+
 def capped_min_depth_m(bathymetry: Bathymetry, lon0: np.ndarray, lat0: np.ndarray,
                        lon1: np.ndarray, lat1: np.ndarray, cap_m: np.ndarray) -> np.ndarray:
     """Shallowest depth [m] along each great-circle leg, capped at its finite `cap_m` (the
