@@ -9,6 +9,7 @@ import os
 
 _ENV = "SHIPROUTE_PLANNER_THREADS"
 _override: int | None = None
+_DEFAULT = max(1, min(4, os.cpu_count() or 1))  # read once: a sysfs read per call adds up
 
 
 def planner_threads() -> int:
@@ -18,7 +19,7 @@ def planner_threads() -> int:
     text = os.environ.get(_ENV, "").strip()
     if text.isdigit() and int(text) >= 1:
         return int(text)
-    return max(1, min(4, os.cpu_count() or 1))
+    return _DEFAULT
 
 
 def set_planner_threads(n: int) -> None:

@@ -116,3 +116,95 @@ def segment_min_depth(lon0: np.ndarray, lat0: np.ndarray, lon1: np.ndarray,
             out[s] = best
         else:
             out[s] = cap if seen else math.nan
+
+
+@numba.njit(cache=True, nogil=True)
+def segment_min_depth_skip(lon0: np.ndarray, lat0: np.ndarray, lon1: np.ndarray,
+                           lat1: np.ndarray, cap_m: np.ndarray, data: np.ndarray,
+                           grids: np.ndarray, coarse: np.ndarray, block_deg: float,
+                           clear_deg: np.ndarray, clear_block_deg: float, threshold_m: float,
+                           cell_min: np.ndarray, out: np.ndarray) -> None:
+    """`segment_min_depth` with the same shallows for caps <= `threshold_m`, but open (or
+    unknown) water crossed in long jumps: `clear_deg` holds, per block of `clear_block_deg`,
+    a lower bound of the arc [deg] to the nearest `coarse` block known to be shallower than
+    the threshold, so no sample closer than that is shallower than the cap (a jump over known
+    water the plain walk would have met marks the leg `seen` only if it starts in it).
+    With one grid, `cell_min` (its shape, uint8) holds the floor of the shallowest known
+    depth [m] in each cell's 3 x 3 neighbourhood (255: none known, 254: 254 m or more); the
+    shelf walk then jumps up to a cell where the neighbourhood is at least the cap deep (a
+    (1, 1) array: no jumps). A dry sample (0 m) ends the leg's walk: nothing is shallower."""
+    n_blat, n_blon = coarse.shape
+    n_clat, n_clon = clear_deg.shape
+    for s in range(lon0.size):
+        cap = cap_m[s]
+        if not cap <= threshold_m:  # NaN or above the raster's threshold: the plain walk
+            segment_min_depth(lon0[s:s + 1], lat0[s:s + 1], lon1[s:s + 1], lat1[s:s + 1],
+                              cap_m[s:s + 1], data, grids, coarse, block_deg, out[s:s + 1])
+            continue
+        cell = _finest_cell_deg(lat0[s], lon0[s], lat1[s], lon1[s], grids)
+        if math.isnan(cell):
+            out[s] = math.nan
+            continue
+        ax, ay, az, bx, by, bz, arc = segment_ends(lat0[s], lon0[s], lat1[s], lon1[s])
+        n = max(1, int(math.ceil(arc / (0.125 * cell))))  # noqa: RUF046 - numba
+        step = arc / n
+        # the most arc one sample step covers: chord fractions run up to tan(h)/h faster
+        # than arc fractions mid-leg (h: half the leg's arc); legs over 120 deg jump nothing
+        half = math.radians(0.5 * arc)
+        per_step = step * (math.tan(half) / half if half > 1e-9 else 1.0) if arc < 120.0 \
+            else math.inf
+        best = math.inf
+        seen = False
+        k = 0
+        while k <= n:
+            lat, lon = chord_sample(ax, ay, az, bx, by, bz, k / n)
+            bi = min(max(int((lat + 90.0) / block_deg), 0), n_blat - 1)
+            bj = min(max(int(((lon + 180.0) % 360.0) / block_deg), 0), n_blon - 1)
+            c = coarse[bi, bj]
+            if c >= cap:
+                if c < math.inf:
+                    seen = True
+                ci = min(max(int((lat + 90.0) / clear_block_deg), 0), n_clat - 1)
+                cj = min(max(int(((lon + 180.0) % 360.0) / clear_block_deg), 0), n_clon - 1)
+                jump = int(clear_deg[ci, cj] / max(per_step, 1e-12))
+                if jump < 1:  # near shallows: the plain walk's block step
+                    co = math.cos(math.radians(min(abs(lat) + block_deg, 89.0)))
+                    jump = max(1, int(0.95 * block_deg * co / max(step, 1e-12)))
+                k += jump if k + jump <= n or k == n else n - k
+                continue
+            v = depth_at(lat, lon, data, grids)
+            if not math.isnan(v):
+                seen = True
+                if v < best:
+                    best = v
+                    if best <= 0.0:  # dry (grids read land as 0 m): nothing is shallower
+                        break
+            k += _cell_jump(lat, lon, cap, grids, cell_min, per_step, n - k)
+        if best < cap:
+            out[s] = best
+        else:
+            out[s] = cap if seen else math.nan
+
+
+@numba.njit(cache=True, nogil=True)
+def _cell_jump(lat: float, lon: float, cap: float, grids: np.ndarray, cell_min: np.ndarray,
+               per_step: float, left: int) -> int:
+    """Samples to move on from a shelf sample: 1, or (one grid, its cell's neighbourhood at
+    least `cap` deep) as many as stay within one cell of the sample, hence inside the
+    neighbourhood (never past the leg's last sample, always onto it)."""
+    n_lat, n_lon = cell_min.shape
+    if n_lat < 3 or left <= 1:
+        return 1
+    dlat, dlon = grids[0, DLAT], grids[0, DLON]
+    i = int(math.floor((lat - grids[0, LAT0]) / dlat + 0.5))  # noqa: RUF046 - numba
+    dl = (lon - grids[0, LON0] + 0.5 * dlon) % 360.0 - 0.5 * dlon
+    j = int(math.floor(dl / dlon + 0.5))  # noqa: RUF046 - numba
+    if grids[0, PERIODIC] > 0.5:
+        j = j % n_lon
+    elif j < 1 or j >= n_lon - 1:
+        return 1
+    if i < 1 or i >= n_lat - 1 or cell_min[i, j] < cap:
+        return 1  # (unknown neighbourhoods, 255, are crossed: no sample there is shallow)
+    c = math.cos(math.radians(min(abs(lat) + dlat, 89.0)))
+    jump = int(0.95 * min(dlat, dlon * c) / max(per_step, 1e-12))
+    return max(1, min(jump, left))

@@ -48,6 +48,16 @@ class Bathymetry:
             parts.append(f"{g.name} ({g.resolution_text}){note}")
         return "; ".join(parts)
 
+    @property
+    def kernel_grids(self) -> tuple[np.ndarray, np.ndarray]:
+        """(all grids' depths flattened, grid table) as `_depth_kernels` reads them."""
+        return self._data, self._table
+
+    @property
+    def block_minimum(self) -> tuple[np.ndarray, float]:
+        """(minimum known depth within one block of each block, +inf unknown; block [deg])."""
+        return self._coarse, BLOCK_DEG
+
     def depth_m(self, lon_deg: np.ndarray, lat_deg: np.ndarray) -> np.ndarray:
         """Depth [m, positive down] at points; NaN where no grid knows it; 0 where dry."""
         lat = np.ascontiguousarray(lat_deg, dtype=float).ravel()

@@ -12,6 +12,7 @@ import math
 import numpy as np
 from numba import njit
 
+from ..geo.clear_distance import clear_distance_deg  # noqa: F401 - the land scan's, kept here
 from ..ship import fast_kernel as fk
 
 # canonical variables in the order of the `chan`/`isdir` arrays handed to `sea_and_perform`
@@ -211,20 +212,3 @@ def coarse_land_raster(raster: np.ndarray, factor: int) -> np.ndarray:
                     shifted[-1] = any_land[-1]
             out |= shifted
     return np.ascontiguousarray(out)
-
-
-def clear_distance_deg(coarse: np.ndarray, coarse_deg: float, max_abs_lat_deg: float = 72.0
-                       ) -> np.ndarray:
-    """Lower bound of the arc distance [deg] from anywhere in each coarse cell to the nearest
-    flagged cell: Euclidean cell distance with longitude cells shrunk by cos(72 deg), minus
-    a cell diagonal; 0 poleward of `max_abs_lat_deg` (always sampled there)."""
-    from scipy.ndimage import distance_transform_edt
-
-    shrink = math.cos(math.radians(max_abs_lat_deg))
-    tiled = np.concatenate([coarse, coarse, coarse], axis=1)  # wrap in longitude
-    d = distance_transform_edt(~tiled, sampling=(1.0, shrink))[:, coarse.shape[1]:
-                                                                 2 * coarse.shape[1]]
-    out = np.maximum(d - 1.5, 0.0) * coarse_deg
-    lat = -90.0 + (np.arange(coarse.shape[0]) + 0.5) * coarse_deg
-    out[np.abs(lat) > max_abs_lat_deg - coarse_deg] = 0.0
-    return np.ascontiguousarray(out.astype(np.float64))

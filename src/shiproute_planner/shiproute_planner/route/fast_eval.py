@@ -12,15 +12,10 @@ the planner re-evaluates its final choice exactly.
 
 from __future__ import annotations
 
-import itertools
-import os
-from collections.abc import Callable
-from concurrent.futures import ThreadPoolExecutor
-
 import numpy as np
 
+from ..chunks import in_chunks
 from ..geo.landmask import LandMask
-from ..threads import planner_threads
 from . import _fast_kernels as fk
 from . import _route_kernel as rk
 from . import member_kernel as mk
@@ -38,21 +33,6 @@ _B_ROWS = {"engine_limit_exceeded": 0, "surf_riding": 1, "parametric_roll": 2,
 COARSE_FACTOR = 10  # 0.05 deg raster -> 0.5 deg near-land filter
 _COARSE: dict[int, tuple[np.ndarray, np.ndarray]] = {}
 MISS_BUFFER = 4096  # unresolved coastal cells one scan may report
-MIN_CHUNK = 16  # rows per thread below which one thread does it all
-N_THREADS = max(1, min(4, os.cpu_count() or 1))
-_POOL = ThreadPoolExecutor(max_workers=N_THREADS, thread_name_prefix="shiproute-eval")
-
-
-def in_chunks(n: int, work: Callable[[int, int], None]) -> None:
-    """Run work(a, b) over 0..n in one chunk per core (the kernels release the GIL)."""
-    k = max(1, min(planner_threads(), N_THREADS, n // MIN_CHUNK))
-    if k == 1:
-        work(0, n)
-        return
-    bounds = np.linspace(0, n, k + 1).astype(int)
-    futures = [_POOL.submit(work, int(a), int(b)) for a, b in itertools.pairwise(bounds)]
-    for f in futures:
-        f.result()
 
 
 class FastEvaluator:

@@ -16,6 +16,7 @@ import numpy as np
 from shiproute_core.units import M_S_PER_KNOT
 
 from ..geo.depth import Bathymetry
+from ..geo.depth_scan import capped_min_depth_m, prepare
 
 
 def barrass_squat_m(block_coefficient: float, stw_m_s: np.ndarray | float,
@@ -58,8 +59,10 @@ class UnderKeel:
         at the leg's required depth (a UKC >= 0 then reads 0: enough for a constraint and
         much cheaper in deep water). NaN where no grid covers the leg."""
         need = self.required_depth_m(stw_m_s, hs_m)
-        depth = self.bathymetry.segment_min_depth_m(
-            lon0, lat0, lon1, lat1, np.inf if exact else need)
+        if exact:
+            depth = self.bathymetry.segment_min_depth_m(lon0, lat0, lon1, lat1, np.inf)
+        else:  # same result, open water crossed in jumps, legs over the planner's threads
+            depth = capped_min_depth_m(self.bathymetry, lon0, lat0, lon1, lat1, need)
         return depth, depth - need
 
 
@@ -69,5 +72,11 @@ def under_keel_for_ship(spec, bathymetry: Bathymetry, margin_m: float = 1.0,
     from displacement / (rho Lwl B T_mean) with rho = 1.025 t/m3."""
     cond, hull = spec.condition, spec.hull
     cb = cond.displacement_t / 1.025 / (hull.lwl_m * hull.breadth_m * spec.mean_draft_m)
-    return UnderKeel(bathymetry, max(cond.draft_fore_m, cond.draft_aft_m), float(cb),
-                     margin_m, wave_allowance_per_hs)
+    uk = UnderKeel(bathymetry, max(cond.draft_fore_m, cond.draft_aft_m), float(cb),
+                   margin_m, wave_allowance_per_hs)
+    # the optimiser's scan rasters for what the ship needs in calm water up to full speed
+    # (25 kn) in 6 m seas, built once per bathymetry (a plan at sea may need more)
+    calm = float(uk.required_depth_m(np.zeros(1), np.zeros(1))[0])
+    rough = float(uk.required_depth_m(np.array([25.0 * M_S_PER_KNOT]), np.array([6.0]))[0])
+    prepare(bathymetry, calm, rough)
+    return uk

@@ -3,7 +3,8 @@
 Forecasts are sampled from half-precision storage, as in the planner node. Reports cold plan
 time (empty seed pool), warm re-plan time (previous plan shifted 6 h along,
 forecast switched to storm_march_cycle2), fuel of the plan, of the constant-RPM baseline and
-of a 20x-budget reference run, route evaluations per second, land crossings on a dense exact
+of a 20x-budget reference run, route evaluations per second (populations of 200 and of one
+GA generation's offspring, on `eval_threads` threads), land crossings on a dense exact
 check and ETA - RTA, and whether the cold plan kept its budget (with the phases' times).
 Forecast sampler, ship tables and land mask are built before timing.
 """
@@ -20,6 +21,7 @@ import numpy as np
 from shiproute_core.bench_report import print_figures
 from shiproute_core.geodesy import direct, inverse
 
+from ...ga.loop import GAConfig
 from ...geo.landmask import default_land_mask
 from ...geo.verify import land_crossings
 from ...plan_setup import make_environment
@@ -31,6 +33,7 @@ from ...route.fast_eval import fast_evaluator
 from ...route.generate import evaluate_genes
 from ...route.problem import RouteProblem
 from ...route.seeding import great_circle_track
+from ...threads import planner_threads
 
 DEPART = "2026-03-03T18:00Z"
 
@@ -146,6 +149,10 @@ def run(budget_s: float, warm_budget_s: float, ref_factor: float, seed: int) -> 
         "gap_to_reference_pct": round(100.0 * (cold.total_fuel_t - reference) / reference, 3),
         "route_evals_per_s": round(evals_per_s(env, land, problem), 1),
         "route_evals_per_s_without_land": round(evals_per_s(env, None, problem), 1),
+        # at the size of one GA generation (its offspring): per-call overheads weigh more
+        "route_evals_per_s_ga_population": round(evals_per_s(
+            env, land, problem, pop=GAConfig().offspring, reps=50), 1),
+        "eval_threads": planner_threads(),
         "route_evals_per_s_without_depth": round(evals_per_s(
             env, land, dataclasses.replace(problem, limits=_limits_of(cold, env, False))), 1),
         "depth": next((w for w in cold.warnings if w.startswith("depth")), ""),
