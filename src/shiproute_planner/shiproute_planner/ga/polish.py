@@ -34,6 +34,7 @@ class PolishConfig:
     line_steps: tuple[float, ...] = (0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0, 64.0)
     eta_margin_s: float = 120.0  # aim this far before the RTA (the exact evaluator differs)
     max_rounds: int = 40
+    modes: int = 0  # > 0: smooth moves of this many modes (route and RPM) instead of genes
 
 
 @dataclass(frozen=True)
@@ -57,32 +58,28 @@ def polish(x0: np.ndarray, evaluate: EvaluateFn, lo: np.ndarray, hi: np.ndarray,
     budget, `max_rounds` or no further gain. `evaluate(x)` returns (violation, objective,
     eta_s) arrays of the rows of `x`."""
     cfg = config or PolishConfig()
-    n = n_stages
-    genes = np.arange(0 if cfg.with_headings else n, 2 * n + 1)
-    step = np.where(genes < n, cfg.heading_step_deg, cfg.rpm_step)
+    moves = (smooth_moves(n_stages, cfg.modes, cfg.heading_step_deg, cfg.rpm_step)
+             if cfg.modes else gene_moves(n_stages, cfg))
     x = np.clip(np.asarray(x0, dtype=float), lo, hi)
     v, f, eta = (float(a[0]) for a in evaluate(x[None, :]))
     spent, rounds, scale = 1, 0, 1.0
     target = rta_s - cfg.eta_margin_s
+    alphas0 = np.asarray(cfg.line_steps)
     while rounds < cfg.max_rounds and time.perf_counter() < deadline_s:
-        if max_evaluations and spent + genes.size + len(cfg.line_steps) > max_evaluations:
+        if max_evaluations and spent + len(moves) + alphas0.size > max_evaluations:
             break
         rounds += 1
-        # forward differences, in units of each gene's step
-        probe = np.repeat(x[None, :], genes.size, axis=0)
-        probe[np.arange(genes.size), genes] += step
-        pv, pf, pe = evaluate(np.clip(probe, lo, hi))
-        spent += genes.size
+        # forward differences along each move (objective and ETA per unit move)
+        pv, pf, pe = evaluate(np.clip(x[None, :] + moves, lo, hi))
+        spent += len(moves)
         ok = (pv <= v) & np.isfinite(pf) & np.isfinite(pe)
         g_f = np.where(ok, pf - f, 0.0)
         g_t = np.where(ok, pe - eta, 0.0)
         direction = descent_direction(g_f, g_t, eta - target)
         if not np.any(direction):
             break
-        cand = np.repeat(x[None, :], len(cfg.line_steps), axis=0)
-        alphas = scale * np.asarray(cfg.line_steps)
-        cand[:, genes] += alphas[:, None] * (direction * step)[None, :]
-        cand = np.clip(cand, lo, hi)
+        alphas = scale * alphas0
+        cand = np.clip(x[None, :] + alphas[:, None] * (direction @ moves)[None, :], lo, hi)
         cv, cf, ce = evaluate(cand)
         spent += len(cand)
         k = int(deb_order(cv, cf)[0])
@@ -95,6 +92,40 @@ def polish(x0: np.ndarray, evaluate: EvaluateFn, lo: np.ndarray, hi: np.ndarray,
             if scale < 0.02:
                 break
     return PolishResult(x, v, f, spent, rounds)
+
+
+def gene_moves(n_stages: int, cfg: PolishConfig) -> np.ndarray:
+    """One move per gene (the heading genes only `with_headings`), one difference step long."""
+    n = n_stages
+    genes = np.arange(0 if cfg.with_headings else n, 2 * n + 1)
+    moves = np.zeros((genes.size, 2 * n + 1))
+    moves[np.arange(genes.size), genes] = np.where(genes < n, cfg.heading_step_deg,
+                                                   cfg.rpm_step)
+    return moves
+
+
+def smooth_moves(n_stages: int, modes: int, heading_step_deg: float,
+                 rpm_step: float) -> np.ndarray:
+    """Smooth whole-route moves: RPM profiles cos(pi m s / n) over the stages (m = 0 is the
+    common level) and sideways bulges sin(pi m k / n) of the nodes that rejoin the track at
+    the ends, as heading genes (the bulge's first difference as absolute heading offsets,
+    made relative). Few moves see through the stage-by-stage roughness of the weather and
+    cost one evaluation each."""
+    n = n_stages
+    s = np.arange(n + 1) / max(n, 1)
+    out = []
+    for m in range(modes + 1):
+        mv = np.zeros(2 * n + 1)
+        mv[n:] = rpm_step * np.cos(np.pi * m * s)
+        out.append(mv)
+    for m in range(1, modes + 1) if n > 1 else ():
+        bulge = heading_step_deg * np.sin(np.pi * m * s)
+        offset = np.diff(bulge)  # absolute heading offsets of stages 0..n-1
+        mv = np.zeros(2 * n + 1)
+        mv[0] = offset[0]
+        mv[1:n] = np.diff(offset)
+        out.append(mv)
+    return np.array(out)
 
 
 def descent_direction(g_f: np.ndarray, g_t: np.ndarray, eta_excess_s: float) -> np.ndarray:
