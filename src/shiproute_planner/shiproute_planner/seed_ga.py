@@ -196,9 +196,13 @@ def run_ga(ctx: MethodContext, ga: AskTellGA,
             ctx.progress(Progress(ctx.leg_index, ga.generation, ga.evaluations,
                                   f if v <= 0 else float("nan"), v, elapsed))
         if search_over(ctx, ga, elapsed, deadline_s):
-            if not whole.cancelled():
-                refine_best(whole, ga, evaluate, search_s)
-            return best_src, confirmed
+            if ctx is whole or whole.cancelled():
+                return best_src, confirmed
+            refine_best(whole, ga, evaluate, search_s)
+            # what the refinement left (it stops when it gains nothing) goes back to the GA
+            ctx, deadline_s = whole, search_s
+            if search_over(ctx, ga, time.perf_counter() - ctx.t_start, deadline_s):
+                return best_src, confirmed
 
 
 def final_result(ctx: MethodContext, ga: AskTellGA, confirmed: list[np.ndarray],
