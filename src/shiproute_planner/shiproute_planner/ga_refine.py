@@ -43,7 +43,10 @@ def refine_best(ctx: MethodContext, ga: AskTellGA,
 
     lo, hi = gene_bounds(p)
     x0 = ga.best[0]
-    cfg = PolishConfig(max_rounds=max_rounds) if max_rounds else PolishConfig()
+    # RPM genes only: the speed profile is where descent pays (fuel ~ convex in the stage
+    # speeds); heading descent finds corners between the evaluator's leg samples (a no-go
+    # or penalty zone is tested at 17 points per leg) and cuts them
+    cfg = PolishConfig(with_headings=False, max_rounds=max_rounds or PolishConfig.max_rounds)
     r = polish(x0, objective_of, lo, hi, p.n_stages, p.rta_s, ctx.t_start + deadline_s, left,
                cfg)
     ga.inject(r.x[None, :], np.array([r.violation]), np.array([r.objective]), r.evaluations)
