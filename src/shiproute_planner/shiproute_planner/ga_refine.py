@@ -34,8 +34,8 @@ def refine_best(ctx: MethodContext, ga: AskTellGA,
     from). None when no time or evaluation is left."""
     p = ctx.problem
     left = ctx.max_evaluations - ga.evaluations if ctx.max_evaluations else 0
-    if ctx.max_evaluations and left < 2:
-        return None
+    if (ctx.max_evaluations and left < 2) or ga.best[1] > 0:
+        return None  # no evaluations left, or no feasible best yet (feasibility is the GA's)
 
     def objective_of(x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         ev = evaluate(x)
