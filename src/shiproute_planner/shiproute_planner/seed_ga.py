@@ -15,6 +15,7 @@ from shiproute_core.flags import FLAG_LAND
 from .ga.islands import IslandGA
 from .ga.loop import AskTellGA, GAConfig, SeedGA
 from .ga.ranking import deb_order, is_better
+from .ga_refine import REFINE_EVERY, REFINE_ROUNDS, ga_share_of, refine_best
 from .ga_seeds import all_seeds, best_seeds_first, fresh_seeds_if_stale, seed_genes
 from .geo.landmask import LandMask
 from .geo.verify import land_crossings
@@ -168,7 +169,10 @@ def run_ga(ctx: MethodContext, ga: AskTellGA,
     criterion flips between the two evaluators)."""
     p = ctx.problem
     confirmed: list[np.ndarray] = []
-    deadline_s = search_deadline_s(ctx)
+    search_s = search_deadline_s(ctx)
+    # the loop's share of the search; the rest refines its best (ga_refine)
+    deadline_s, loop_evals = ga_share_of(ctx, search_s)
+    whole, ctx = ctx, dataclasses.replace(ctx, max_evaluations=loop_evals)
     merge_s = ctx.island_share * deadline_s
     best_src = "none"
     while True:
@@ -182,13 +186,21 @@ def run_ga(ctx: MethodContext, ga: AskTellGA,
             confirmed.append(ga.best[0].copy())
         if ga.generation == 0:
             best_src = first_best_source(ev, sources)
+        elif ga.generation % REFINE_EVERY == 0:  # memetic step: descend from the best
+            refine_best(ctx, ga, evaluate, deadline_s, REFINE_ROUNDS)
         _, v, f = ga.best
         elapsed = time.perf_counter() - ctx.t_start
         if ctx.progress is not None:
             ctx.progress(Progress(ctx.leg_index, ga.generation, ga.evaluations,
                                   f if v <= 0 else float("nan"), v, elapsed))
         if search_over(ctx, ga, elapsed, deadline_s):
-            return best_src, confirmed
+            if ctx is whole or whole.cancelled():
+                return best_src, confirmed
+            refine_best(whole, ga, evaluate, search_s)
+            # what the refinement left (it stops when it gains nothing) goes back to the GA
+            ctx, deadline_s = whole, search_s
+            if search_over(ctx, ga, time.perf_counter() - ctx.t_start, deadline_s):
+                return best_src, confirmed
 
 
 def final_result(ctx: MethodContext, ga: AskTellGA, confirmed: list[np.ndarray],

@@ -81,6 +81,13 @@ class IslandGA:
             if sl.stop > sl.start:
                 isl.tell(x[sl], violation[sl], objective[sl])
 
+    def inject(self, x: np.ndarray, violation: np.ndarray, objective: np.ndarray,
+               spent: int = 0) -> None:
+        """Merge genes evaluated outside the loop into the island holding the best."""
+        cand = [isl.best for isl in self.islands]
+        order = deb_order(np.array([c[1] for c in cand]), np.array([c[2] for c in cand]))
+        self.islands[int(order[0])].inject(x, violation, objective, spent)
+
     def merge(self) -> None:
         """Join the islands: one population of the best of all (Deb order), same config."""
         if self.merged or self.pop is None:  # nothing evaluated yet: nothing to merge

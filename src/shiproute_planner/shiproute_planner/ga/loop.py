@@ -55,6 +55,9 @@ class AskTellGA(Protocol):
 
     def stalled(self, generations: int, rel_tol: float = 1e-4) -> bool: ...
 
+    def inject(self, x: np.ndarray, violation: np.ndarray, objective: np.ndarray,
+               spent: int = 0) -> None: ...
+
 
 class SeedGA:
     """Ask/tell seed GA on genes in [lower, upper]; reproducible for a given Generator."""
@@ -135,6 +138,20 @@ class SeedGA:
         keep = deb_order(allv, allf)[: self.cfg.pop_size]
         self.pop, self.pop_v, self.pop_f = allx[keep], allv[keep], allf[keep]
         self.best_history.append((float(self.pop_v[0]), float(self.pop_f[0])))
+
+    def inject(self, x: np.ndarray, violation: np.ndarray, objective: np.ndarray,
+               spent: int = 0) -> None:
+        """Merge genes evaluated outside the loop (a local refinement that cost `spent`
+        evaluations, at least one per row) into the population without counting a
+        generation."""
+        assert self.pop is not None, "tell() has not been called yet"
+        self.evaluations += max(spent, len(x))
+        allx = np.concatenate([self.pop, x])
+        allv = np.concatenate([self.pop_v, violation])
+        allf = np.concatenate([self.pop_f, objective])
+        keep = deb_order(allv, allf)[: self.cfg.pop_size]
+        self.pop, self.pop_v, self.pop_f = allx[keep], allv[keep], allf[keep]
+        self.best_history[-1] = (float(self.pop_v[0]), float(self.pop_f[0]))
 
     @property
     def best(self) -> tuple[np.ndarray, float, float]:
