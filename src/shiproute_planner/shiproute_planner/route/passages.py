@@ -19,9 +19,11 @@ channel too narrow for it (Bosphorus, Dardanelles, an estuary) gets the largest 
 port only land blocks (harbour basins are narrower than any clearance); within
 `pilotage_nm` depth is the pilot's (dredged channels are finer than the grids), beyond it
 a cell shallower than the ship's required depth blocks, where a grid may decide (see
-`geo.nav_grid` for coarse grids near the coast). With no way through at any clearance the
-depth limit is dropped (stated), then the corridor is widened, and only then is the lane's
-own geometry kept (stated).
+`geo.nav_grid` for coarse grids near the coast). With no deep-enough way through at any
+clearance the corridor is widened first (the deep-water route of a coast with shoals runs
+farther off than the lane: west of the North Frisian Islands), then the depth limit is
+dropped (stated), and only when no corridor has any way through is the lane's own geometry
+kept (stated).
 """
 
 from __future__ import annotations
@@ -269,7 +271,8 @@ def compute_passage(lane_lon: np.ndarray, lane_lat: np.ndarray, rules: PassageRu
              *((w, rules.cell_nm) for w in rules.corridors_nm[1:])]
     found: Passage | None = None
     for corridor_nm, cell_nm in tries:
-        if found is not None and (cell_nm >= found.cell_nm or corridor_nm > found.corridor_nm):
+        if found is not None and _keeps_depth(found, rules) and (
+                cell_nm >= found.cell_nm or corridor_nm > found.corridor_nm):
             return found
         box = grid_box(lon_f, lane_lat, corridor_nm + 2.0, cell_nm)
         lon0, lat0, dlon, dlat, rows, cols = box
@@ -290,11 +293,20 @@ def compute_passage(lane_lon: np.ndarray, lane_lat: np.ndarray, rules: PassageRu
         p = Passage(p.lon_deg + shift, p.lat_deg, p.clearance_nm, p.depth_limited,
                     corridor_nm, p.cell_nm)
         if not _better(p, found):
-            return found
-        if p.clearance_nm >= rules.clearances_nm[0] or cell_nm <= rules.fine_cell_nm:
+            if found is not None and _keeps_depth(found, rules):
+                return found
+            continue  # no deep-enough way yet: a wider corridor may hold one
+        if _keeps_depth(p, rules) and (p.clearance_nm >= rules.clearances_nm[0]
+                                       or cell_nm <= rules.fine_cell_nm):
             return p
-        found = p  # narrow water: finer cells may leave a wider clearance
+        found = p  # narrow water: finer cells may leave a wider clearance; shallow water:
+        # a wider corridor may hold the deep-water route
     return found
+
+
+def _keeps_depth(p: Passage, rules: PassageRules) -> bool:
+    """True when `p` keeps the ship's depth limit, or there is none to keep."""
+    return p.depth_limited or rules.required_depth_m is None
 
 
 def _better(p: Passage, than: Passage | None) -> bool:
