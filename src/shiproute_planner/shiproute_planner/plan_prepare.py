@@ -24,6 +24,7 @@ from .plan_checks import zone_limits
 from .plan_setup import chosen_model, make_environment, route_limits, rta_warning_of
 from .request import ForecastInput, PlanOptions, ShipInput, VoyageRequest
 from .river_passages import river_calls, river_times
+from .shoal_passages import route_shoals
 from .route.canals import Canal, route_canals
 from .route.environment import Environment
 from .route.given_approach import Approach, load_approaches
@@ -169,6 +170,10 @@ def prepare_voyage(request: VoyageRequest, options: PlanOptions,
         ports, canal_legs, strait_legs, calls, strait_notes = route_straits(
             ports, canal_legs, calls, draft_m)
         warnings += strait_notes
+        ports, canal_legs, strait_legs, calls, shoal_notes = route_shoals(
+            ports, canal_legs, strait_legs, calls, lim.under_keel,
+            passage_rules(lim.under_keel).required_depth_m)
+        warnings += shoal_notes
         warnings.append(passages_note(passage_rules(lim.under_keel)))
     sched, rate = None, None
     sched_legs: list[LegSpec] = []

@@ -6,7 +6,8 @@ lane between them is only a guide: a corridor of `corridor_nm` round it bounds a
 depth), and the shortest path through navigable cells is found by Dijkstra on the grid
 (16 neighbours, so legs may run at 26.6-degree steps; diagonal moves may not cut a land
 corner). Water nearer land than `prefer_off_nm` costs a little more, so a passage keeps
-mid-channel where there is room. The path is straightened (a vertex is dropped while the
+mid-channel where there is room; with a depth limit, water of unknown depth beyond pilotage
+waters costs double, so a passage keeps to water known deep enough where there is some. The path is straightened (a vertex is dropped while the
 straight line between its neighbours stays in navigable cells) and checked against the land
 polygons every 0.4 cells. Where nothing fits at `cell_nm` (a river, sound or fjord narrower
 than a few cells), or only with less than the full clearance (a strait's narrows lose a cell
@@ -41,6 +42,12 @@ _MOVES = ((0, 1), (1, 0), (1, 1), (1, -1), (1, 2), (2, 1), (1, -2), (2, -1))
 _CROSSED = {(0, 1): (), (1, 0): (), (1, 1): ((0, 1), (1, 0)), (1, -1): ((0, -1), (1, 0)),
             (1, 2): ((0, 1), (1, 1)), (2, 1): ((1, 0), (1, 1)),
             (1, -2): ((0, -1), (1, -1)), (2, -1): ((1, 0), (1, -1))}
+
+
+#: extra cost per metre of water whose depth no grid decides (a coarse grid's coastal cells),
+#: for a ship with a depth limit: a passage keeps to water known deep enough where it can
+#: (the smeared band between a coast and its offshore banks is often shallower still)
+UNKNOWN_DEPTH_COST = 1.0
 
 
 @dataclass(frozen=True)
@@ -195,6 +202,9 @@ def solve_on_grid(grid: NavGrid, lane_lon: np.ndarray, lane_lat: np.ndarray,
             from_port > rules.pilotage_nm * M_PER_NM)
     prefer_m = rules.prefer_off_nm * M_PER_NM
     cost = 1.0 + 0.5 * np.clip(1.0 - grid.clearance_m / prefer_m, 0.0, 1.0)
+    if rules.required_depth_m is not None:  # known deep water before water of unknown depth
+        cost = cost + UNKNOWN_DEPTH_COST * (np.isnan(grid.depth_m)
+                                            & (from_port > rules.pilotage_nm * M_PER_NM))
     modes = ((False,) if rules.required_depth_m is None else
              (True, False) if shallow.any() else (True,))
     for use_depth in modes:

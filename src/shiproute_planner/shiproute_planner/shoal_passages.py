@@ -1,0 +1,117 @@
+"""Shoals on a sea lane as computed deep-water passages.
+
+The `searoute` lane is drawn for any ship and hugs coasts across banks a deep-draft ship must
+stay off (the North Frisian banks west of Sylt read 11-13 m in ETOPO5 on the lane Elbe ->
+Skagen). Where a leg's sea lane runs over water shallower than the ship needs (draft, squat
+at `SQUAT_SPEED_KN`, margin; only where a bathymetry grid decides: a coarse grid's coastal
+cells read unknown) for at least `SHALLOW_MIN_NM`, the stretch from `LEAD_NM` before the
+shoal to `LEAD_NM` after it becomes a passage of its own, computed on the navigable-water
+grid like a strait's (`route.passages`: full-resolution land, clearance, the ship's depth,
+the corridor widened before the depth limit is given up) between two gates on the lane; the
+optimiser plans the open sea on either side. Pilotage waters (`PORT_SKIP_NM` round each
+port) are left to the port's approach.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from shiproute_core.geodesy import densify_track, inverse, wrap_lon
+from shiproute_core.units import M_PER_NM
+
+from .straits import Strait
+
+SHALLOW_MIN_NM = 1.0  # a shoal shorter than this along the lane is left to the optimiser
+LEAD_NM = 30.0  # gates this far before and after the shoal along the lane
+PORT_SKIP_NM = 10.0  # pilotage waters round each port: the approach's business
+STEP_M = 0.5 * M_PER_NM  # lane sampling
+
+
+def shoal_stretches(dist_m: np.ndarray, depth_m: np.ndarray, need_m: float
+                    ) -> list[tuple[float, float]]:
+    """(start, end) [m along the lane] of the gated stretches: shoals (depth known and below
+    `need_m` over >= `SHALLOW_MIN_NM`) outside the ports' pilotage waters, each widened by
+    `LEAD_NM` and merged where they overlap, clipped to the pilotage limits."""
+    lo, hi = PORT_SKIP_NM * M_PER_NM, float(dist_m[-1]) - PORT_SKIP_NM * M_PER_NM
+    shallow = np.isfinite(depth_m) & (depth_m < need_m) & (dist_m > lo) & (dist_m < hi)
+    out: list[tuple[float, float]] = []
+    k = 0
+    while k < shallow.size:
+        if not shallow[k]:
+            k += 1
+            continue
+        m = k
+        while m + 1 < shallow.size and shallow[m + 1]:
+            m += 1
+        if dist_m[m] - dist_m[k] >= SHALLOW_MIN_NM * M_PER_NM - 1.0:
+            a = max(float(dist_m[k]) - LEAD_NM * M_PER_NM, lo)
+            b = min(float(dist_m[m]) + LEAD_NM * M_PER_NM, hi)
+            if out and a <= out[-1][1]:
+                out[-1] = (out[-1][0], max(out[-1][1], b))
+            elif b > a:
+                out.append((a, b))
+        k = m + 1
+    return out
+
+
+def _lane_of(a, b) -> tuple[np.ndarray, np.ndarray] | None:
+    """The sea lane between two ports, densified to `STEP_M` (continuous longitudes)."""
+    from .geo.sea_lanes import searoute_coords
+
+    coords = searoute_coords(round(float(wrap_lon(a.lon_deg)), 4), round(a.lat_deg, 4),
+                              round(float(wrap_lon(b.lon_deg)), 4), round(b.lat_deg, 4))
+    if coords is None or len(coords) < 2:
+        return None
+    lon, lat = densify_track(np.unwrap(coords[:, 0], period=360.0), coords[:, 1], STEP_M)
+    return np.asarray(lon, dtype=float), np.asarray(lat, dtype=float)
+
+
+def route_shoals(ports: list, canal_legs: dict, strait_legs: dict, via_rta: list,
+                 under_keel, need_m: float | None) -> tuple[list, dict, dict, list, list[str]]:
+    """Ports with shoal gates inserted where the sea lane of an open-sea leg (not a canal or
+    strait) crosses known water shallower than `need_m`; returns (ports, canal legs and
+    strait legs re-indexed (shoal passages join the strait legs), via RTAs aligned to the
+    new ports, notes for the plan). Nothing changes without a depth limit."""
+    from .geo.ports import Port
+
+    if under_keel is None or need_m is None:
+        return ports, canal_legs, strait_legs, via_rta, []
+    rtas = list(via_rta) + [None] * (len(ports) - 2 - len(via_rta))
+    out, out_rta, canals, straits, notes = [ports[0]], [], {}, {}, []
+    for k in range(len(ports) - 1):
+        a, b = ports[k], ports[k + 1]
+        here = len(out) - 1
+        if k in canal_legs:
+            canals[here] = canal_legs[k]
+        elif k in strait_legs:
+            straits[here] = strait_legs[k]
+        else:
+            lane = _lane_of(a, b)
+            if lane is not None:
+                lon, lat = lane
+                _, seg = inverse(lon[:-1], lat[:-1], lon[1:], lat[1:])
+                dist = np.concatenate([[0.0], np.cumsum(seg)])
+                depth = np.asarray(under_keel.bathymetry.depth_m(lon, lat), dtype=float)
+                for s0, s1 in shoal_stretches(dist, depth, need_m):
+                    i0, i1 = (int(np.searchsorted(dist, s)) for s in (s0, s1))
+                    i1 = min(max(i1, i0 + 1), lon.size - 1)
+                    shoal = (dist >= s0) & (dist <= s1) & (depth < need_m)
+                    j = int(np.flatnonzero(shoal)[np.argmin(depth[shoal])]) if shoal.any() \
+                        else (i0 + i1) // 2
+                    name = (f"deep-water passage past the shoal at {lat[j]:.2f}, "
+                            f"{float(wrap_lon(lon[j])):.2f} ({depth[j]:.0f} m on the sea lane)")
+                    straits[len(out)] = (Strait(name, ((lat[i0], lon[i0]), (lat[i1], lon[i1]))),
+                                         lon[i0:i1 + 1].copy(), lat[i0:i1 + 1].copy())
+                    out.append(Port(f"{name} gate", "", float(lat[i0]),
+                                    float(wrap_lon(lon[i0]))))
+                    out.append(Port(f"{name} gate", "", float(lat[i1]),
+                                    float(wrap_lon(lon[i1]))))
+                    out_rta += [None, None]
+                    notes.append(f"the sea lane {a.name} -> {b.name} crosses water shallower "
+                                 f"than the ship's {need_m:.1f} m ({depth[j]:.0f} m at "
+                                 f"{lat[j]:.2f}, {float(wrap_lon(lon[j])):.2f}): a "
+                                 f"deep-water passage is computed over "
+                                 f"{(s1 - s0) / M_PER_NM:.0f} NM there")
+        out.append(b)
+        if k < len(ports) - 2:
+            out_rta.append(rtas[k])
+    return out, canals, straits, out_rta, notes
