@@ -176,6 +176,19 @@ def _straighten(free: np.ndarray, cells: np.ndarray, max_cells: float) -> np.nda
     return cells[keep]
 
 
+def _sight(free: np.ndarray, unknown: np.ndarray, cells: np.ndarray) -> np.ndarray:
+    """Cells a straightened leg may cross: free ones, but water of unknown depth only next
+    to the path (straightening must not cut back into what the path kept out of)."""
+    if not unknown.any():
+        return free
+    from scipy import ndimage
+
+    near = np.zeros(free.shape, dtype=bool)
+    near[cells[:, 0], cells[:, 1]] = True
+    near = ndimage.binary_dilation(near, iterations=1)
+    return free & (~unknown | near)
+
+
 def _nearest_free(free: np.ndarray, i: int, j: int) -> tuple[int, int] | None:
     """The free cell nearest (i, j) (in cells), None if there is none."""
     fi, fj = np.nonzero(free)
@@ -202,9 +215,11 @@ def solve_on_grid(grid: NavGrid, lane_lon: np.ndarray, lane_lat: np.ndarray,
             from_port > rules.pilotage_nm * M_PER_NM)
     prefer_m = rules.prefer_off_nm * M_PER_NM
     cost = 1.0 + 0.5 * np.clip(1.0 - grid.clearance_m / prefer_m, 0.0, 1.0)
-    if rules.required_depth_m is not None:  # known deep water before water of unknown depth
-        cost = cost + UNKNOWN_DEPTH_COST * (np.isnan(grid.depth_m)
-                                            & (from_port > rules.pilotage_nm * M_PER_NM))
+    unknown = np.zeros(grid.shape, dtype=bool)
+    if rules.required_depth_m is not None and UNKNOWN_DEPTH_COST > 0:
+        # known deep water before water of unknown depth
+        unknown = np.isnan(grid.depth_m) & (from_port > rules.pilotage_nm * M_PER_NM)
+        cost = cost + UNKNOWN_DEPTH_COST * unknown
     modes = ((False,) if rules.required_depth_m is None else
              (True, False) if shallow.any() else (True,))
     for use_depth in modes:
@@ -222,7 +237,8 @@ def solve_on_grid(grid: NavGrid, lane_lon: np.ndarray, lane_lat: np.ndarray,
                                    goal)
             if cells is None:
                 continue
-            cells = _straighten(free, cells, 20.0 / (60.0 * grid.dlat_deg))
+            cells = _straighten(_sight(free, unknown, cells), cells,
+                                20.0 / (60.0 * grid.dlat_deg))
             lon, lat = grid.centre(cells[:, 0], cells[:, 1])
             lon = np.concatenate([lane_lon[:1], lon, lane_lon[-1:]])
             lat = np.concatenate([lane_lat[:1], lat, lane_lat[-1:]])
