@@ -24,13 +24,13 @@ from .plan_checks import zone_limits
 from .plan_setup import chosen_model, make_environment, route_limits, rta_warning_of
 from .request import ForecastInput, PlanOptions, ShipInput, VoyageRequest
 from .river_passages import river_calls, river_times
-from .shoal_passages import route_shoals
 from .route.canals import Canal, route_canals
 from .route.environment import Environment
 from .route.given_approach import Approach, load_approaches
 from .route.problem import RouteLimits
 from .route.risk import RiskSpec, parse_risk
 from .ship.spec import ShipSpec
+from .shoal_passages import route_shoals
 from .straits import route_straits
 from .voyage.legs import voyage_schedule
 from .voyage.port_calls import PortCall

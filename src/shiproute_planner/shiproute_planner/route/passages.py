@@ -7,10 +7,11 @@ depth), and the shortest path through navigable cells is found by Dijkstra on th
 (16 neighbours, so legs may run at 26.6-degree steps; diagonal moves may not cut a land
 corner). Water nearer land than `prefer_off_nm` costs a little more, so a passage keeps
 mid-channel where there is room; with a depth limit, water of unknown depth beyond pilotage
-waters costs double, so a passage keeps to water known deep enough where there is some. The path is straightened (a vertex is dropped while the
-straight line between its neighbours stays in navigable cells) and checked against the land
-polygons every 0.4 cells. Where nothing fits at `cell_nm` (a river, sound or fjord narrower
-than a few cells), or only with less than the full clearance (a strait's narrows lose a cell
+waters costs double, so a passage keeps to water known deep enough where there is some.
+The path is straightened (a vertex is dropped while the straight line between its
+neighbours stays in navigable cells, not cutting back into unknown depth) and checked
+against the land polygons every 0.4 cells. Where nothing fits at `cell_nm` (a river,
+sound or fjord narrower than a few cells), or only with less than the full clearance (a strait's narrows lose a cell
 of width to each rasterised shore), the grid is refined to `fine_cell_nm` before the corridor
 is widened, and the finer passage is kept when it leaves more clearance.
 
