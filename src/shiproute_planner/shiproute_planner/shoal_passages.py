@@ -30,7 +30,9 @@ def shoal_stretches(dist_m: np.ndarray, depth_m: np.ndarray, need_m: float
                     ) -> list[tuple[float, float]]:
     """(start, end) [m along the lane] of the gated stretches: shoals (depth known and below
     `need_m` over >= `SHALLOW_MIN_NM`) outside the ports' pilotage waters, each widened by
-    `LEAD_NM` and merged where they overlap, clipped to the pilotage limits."""
+    `LEAD_NM` and merged where they overlap, clipped to the pilotage limits. A stretch whose
+    gate would lie on known shallow water (a shoal reaching into a port's approach) is left
+    to the port's approach passage, computed with the same depth limit."""
     lo, hi = PORT_SKIP_NM * M_PER_NM, float(dist_m[-1]) - PORT_SKIP_NM * M_PER_NM
     shallow = np.isfinite(depth_m) & (depth_m < need_m) & (dist_m > lo) & (dist_m < hi)
     out: list[tuple[float, float]] = []
@@ -50,7 +52,10 @@ def shoal_stretches(dist_m: np.ndarray, depth_m: np.ndarray, need_m: float
             elif b > a:
                 out.append((a, b))
         k = m + 1
-    return out
+    gate_depth = [depth_m[np.clip(np.searchsorted(dist_m, (a, b)), 0, dist_m.size - 1)]
+                  for a, b in out]
+    return [ab for ab, d in zip(out, gate_depth, strict=True)
+            if not np.any(np.isfinite(d) & (d < need_m))]
 
 
 def _lane_of(a, b) -> tuple[np.ndarray, np.ndarray] | None:

@@ -12,8 +12,9 @@ The path is straightened (a vertex is dropped while the straight line between it
 neighbours stays in navigable cells, not cutting back into unknown depth) and checked
 against the land polygons every 0.4 cells. Where nothing fits at `cell_nm` (a river,
 sound or fjord narrower than a few cells), or only with less than the full clearance (a
-strait's narrows lose a cell of width to each rasterised shore), the grid is refined to `fine_cell_nm` before the corridor
-is widened, and the finer passage is kept when it leaves more clearance.
+strait's narrows lose a cell of width to each rasterised shore), the grid is refined to
+`fine_cell_nm` before the corridor is widened, and the finer passage is kept when it leaves
+more clearance.
 
 Clearance: the passage keeps `clearances_nm[0]` (0.5 NM) from land where it can; a strait or
 channel too narrow for it (Bosphorus, Dardanelles, an estuary) gets the largest clearance of
