@@ -3,13 +3,13 @@
 The `searoute` lane is drawn for any ship and hugs coasts across banks a deep-draft ship must
 stay off (the North Frisian banks west of Sylt read 11-13 m in ETOPO5 on the lane Elbe ->
 Skagen). Where a leg's sea lane runs over water shallower than the ship needs (draft, squat
-at `SQUAT_SPEED_KN`, margin; only where a bathymetry grid decides: a coarse grid's coastal
-cells read unknown) for at least `SHALLOW_MIN_NM`, the stretch from `LEAD_NM` before the
-shoal to `LEAD_NM` after it becomes a passage of its own, computed on the navigable-water
-grid like a strait's (`route.passages`: full-resolution land, clearance, the ship's depth,
-the corridor widened before the depth limit is given up) between two gates on the lane; the
-optimiser plans the open sea on either side. Pilotage waters (`PORT_SKIP_NM` round each
-port) are left to the port's approach.
+at 12 kn, margin) for at least `SHALLOW_MIN_NM`, where the navigable-water grid trusts the
+depth (`trusted_depth_m`: a coarse grid's cells near the coast read unknown), the stretch
+from `LEAD_NM` before the shoal to `LEAD_NM` after it becomes a passage of its own, computed
+on the navigable-water grid like a strait's (`route.passages`: full-resolution land,
+clearance, the ship's depth, the corridor widened before the depth limit is given up)
+between two gates on the lane; the optimiser plans the open sea on either side. Pilotage
+waters (`PORT_SKIP_NM` round each port) are left to the port's approach.
 """
 
 from __future__ import annotations
@@ -22,6 +22,7 @@ from .straits import Strait
 
 SHALLOW_MIN_NM = 1.0  # a shoal shorter than this along the lane is left to the optimiser
 LEAD_NM = 30.0  # gates this far before and after the shoal along the lane
+MIN_LEAD_NM = 10.0  # a gate nearer its shoal than this (pilotage limits) leaves no room
 PORT_SKIP_NM = 10.0  # pilotage waters round each port: the approach's business
 STEP_M = 0.5 * M_PER_NM  # lane sampling
 
@@ -31,11 +32,12 @@ def shoal_stretches(dist_m: np.ndarray, depth_m: np.ndarray, need_m: float
     """(start, end) [m along the lane] of the gated stretches: shoals (depth known and below
     `need_m` over >= `SHALLOW_MIN_NM`) outside the ports' pilotage waters, each widened by
     `LEAD_NM` and merged where they overlap, clipped to the pilotage limits. A stretch whose
-    gate would lie on known shallow water (a shoal reaching into a port's approach) is left
-    to the port's approach passage, computed with the same depth limit."""
+    gate would lie on known shallow water or nearer its shoal than `MIN_LEAD_NM` (a shoal
+    reaching into a port's approach: no room to steer round it from the gate) is left to the
+    port's approach passage, computed with the same depth limit."""
     lo, hi = PORT_SKIP_NM * M_PER_NM, float(dist_m[-1]) - PORT_SKIP_NM * M_PER_NM
     shallow = np.isfinite(depth_m) & (depth_m < need_m) & (dist_m > lo) & (dist_m < hi)
-    out: list[tuple[float, float]] = []
+    found: list[tuple[float, float, float, float]] = []  # gate, shoal start, end, gate
     k = 0
     while k < shallow.size:
         if not shallow[k]:
@@ -44,18 +46,23 @@ def shoal_stretches(dist_m: np.ndarray, depth_m: np.ndarray, need_m: float
         m = k
         while m + 1 < shallow.size and shallow[m + 1]:
             m += 1
-        if dist_m[m] - dist_m[k] >= SHALLOW_MIN_NM * M_PER_NM - 1.0:
-            a = max(float(dist_m[k]) - LEAD_NM * M_PER_NM, lo)
-            b = min(float(dist_m[m]) + LEAD_NM * M_PER_NM, hi)
-            if out and a <= out[-1][1]:
-                out[-1] = (out[-1][0], max(out[-1][1], b))
+        s0, s1 = float(dist_m[k]), float(dist_m[m])
+        if s1 - s0 >= SHALLOW_MIN_NM * M_PER_NM - 1.0:
+            a = max(s0 - LEAD_NM * M_PER_NM, lo)
+            b = min(s1 + LEAD_NM * M_PER_NM, hi)
+            if found and a <= found[-1][3]:
+                found[-1] = (found[-1][0], found[-1][1], s1, max(found[-1][3], b))
             elif b > a:
-                out.append((a, b))
+                found.append((a, s0, s1, b))
         k = m + 1
-    gate_depth = [depth_m[np.clip(np.searchsorted(dist_m, (a, b)), 0, dist_m.size - 1)]
-                  for a, b in out]
-    return [ab for ab, d in zip(out, gate_depth, strict=True)
-            if not np.any(np.isfinite(d) & (d < need_m))]
+    out = []
+    room = MIN_LEAD_NM * M_PER_NM - 1.0
+    for a, s0, s1, b in found:
+        gate_depth = depth_m[np.clip(np.searchsorted(dist_m, (a, b)), 0, dist_m.size - 1)]
+        if s0 - a >= room and b - s1 >= room and not np.any(np.isfinite(gate_depth)
+                                                            & (gate_depth < need_m)):
+            out.append((a, b))
+    return out
 
 
 def _lane_of(a, b) -> tuple[np.ndarray, np.ndarray] | None:
@@ -68,6 +75,41 @@ def _lane_of(a, b) -> tuple[np.ndarray, np.ndarray] | None:
         return None
     lon, lat = densify_track(np.unwrap(coords[:, 0], period=360.0), coords[:, 1], STEP_M)
     return np.asarray(lon, dtype=float), np.asarray(lat, dtype=float)
+
+
+def trusted_depth_m(bathymetry, lon: np.ndarray, lat: np.ndarray, polygons=None
+                    ) -> np.ndarray:
+    """Depth [m] at lane points as the navigable-water grid trusts it (`geo.nav_grid`): where
+    only coarse grids answer, NaN nearer the full-resolution coast than
+    `COARSE_TRUST_CELLS` of their cells (the coastline decides there, and the passage
+    would not see the shoal either)."""
+    import shapely
+
+    from .geo.nav_grid import COARSE_TRUST_CELLS, M_PER_DEG_LAT, coarse_only, land_in_box
+    from .route.passages import best_land_polygons
+
+    depth = np.asarray(bathymetry.depth_m(lon, lat), dtype=float)
+    coarse = [g.cell_deg for g in bathymetry.grids if g.is_coarse]
+    check = np.isfinite(depth) & coarse_only(bathymetry, lon, lat) if coarse else \
+        np.zeros(depth.shape, dtype=bool)
+    if not check.any():
+        return depth
+    trust_deg = COARSE_TRUST_CELLS * max(coarse)
+    c_lon, c_lat = wrap_lon(lon[check]), lat[check]
+    pad_lat = trust_deg + 0.1
+    pad_lon = pad_lat / max(float(np.cos(np.radians(np.max(np.abs(c_lat))))), 0.1)
+    parts = land_in_box(polygons if polygons is not None else best_land_polygons(),
+                        float(np.min(c_lon)) - pad_lon, float(np.min(c_lat)) - pad_lat,
+                        float(np.max(c_lon)) + pad_lon, float(np.max(c_lat)) + pad_lat)
+    if not parts:
+        return depth
+    scale = np.cos(np.radians(float(np.mean(c_lat))))  # local frame: degrees of latitude
+    land = shapely.transform(shapely.union_all(parts), lambda xy: xy * [scale, 1.0])
+    dist_deg = shapely.distance(shapely.points(c_lon * scale, c_lat), land)
+    near = np.zeros(depth.shape, dtype=bool)
+    near[np.flatnonzero(check)] = dist_deg * M_PER_DEG_LAT < trust_deg * M_PER_DEG_LAT
+    depth[near] = np.nan
+    return depth
 
 
 def route_shoals(ports: list, canal_legs: dict, strait_legs: dict, via_rta: list,
@@ -95,7 +137,7 @@ def route_shoals(ports: list, canal_legs: dict, strait_legs: dict, via_rta: list
                 lon, lat = lane
                 _, seg = inverse(lon[:-1], lat[:-1], lon[1:], lat[1:])
                 dist = np.concatenate([[0.0], np.cumsum(seg)])
-                depth = np.asarray(under_keel.bathymetry.depth_m(lon, lat), dtype=float)
+                depth = trusted_depth_m(under_keel.bathymetry, lon, lat)
                 for s0, s1 in shoal_stretches(dist, depth, need_m):
                     i0, i1 = (int(np.searchsorted(dist, s)) for s in (s0, s1))
                     i1 = min(max(i1, i0 + 1), lon.size - 1)

@@ -25,9 +25,13 @@ def test_stretches_lead_merge_and_leave_pilotage_waters_alone():
     assert got == [pytest.approx((100.5 - LEAD_NM, 151.5 + LEAD_NM))]
     assert PORT_SKIP_NM > 5.0
     assert shoal_stretches(dist, np.full(dist.size, 40.0), 14.0) == []
-    # a shoal reaching into the port's approach: its gate would be on 6 m, so the approach
-    # passage (same depth limit, computed from the port) keeps it
+    # a shoal reaching into the port's approach: its gate would be on 6 m or 2 NM from it,
+    # so the approach passage (same depth limit, computed from the port) keeps it
     depth[dist < 40 * M_PER_NM] = 6.0
+    got = [(a / M_PER_NM, b / M_PER_NM) for a, b in shoal_stretches(dist, depth, 14.0)]
+    assert got == [pytest.approx((100.5 - LEAD_NM, 151.5 + LEAD_NM))]
+    depth[dist < 40 * M_PER_NM] = 40.0
+    depth[(dist > 12 * M_PER_NM) & (dist < 20 * M_PER_NM)] = 6.0  # gate at 10 NM, on 40 m
     got = [(a / M_PER_NM, b / M_PER_NM) for a, b in shoal_stretches(dist, depth, 14.0)]
     assert got == [pytest.approx((100.5 - LEAD_NM, 151.5 + LEAD_NM))]
 
