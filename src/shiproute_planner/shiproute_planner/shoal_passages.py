@@ -15,6 +15,7 @@ waters (`PORT_SKIP_NM` round each port) are left to the port's approach.
 from __future__ import annotations
 
 import numpy as np
+from shapely.errors import ShapelyError
 from shiproute_core.geodesy import densify_track, inverse, wrap_lon
 from shiproute_core.units import M_PER_NM
 
@@ -104,8 +105,10 @@ def trusted_depth_m(bathymetry, lon: np.ndarray, lat: np.ndarray, polygons=None
     if not parts:
         return depth
     scale = np.cos(np.radians(float(np.mean(c_lat))))  # local frame: degrees of latitude
-    land = shapely.transform(shapely.union_all(parts), lambda xy: xy * [scale, 1.0])
-    dist_deg = shapely.distance(shapely.points(c_lon * scale, c_lat), land)
+    # per part, no union: GSHHG rings are not validated (`land_in_box`), distance needs none
+    land = shapely.transform(np.asarray(parts, dtype=object), lambda xy: xy * [scale, 1.0])
+    pts = shapely.points(c_lon * scale, c_lat)
+    dist_deg = np.min(shapely.distance(pts[:, None], land[None, :]), axis=1)
     near = np.zeros(depth.shape, dtype=bool)
     near[np.flatnonzero(check)] = dist_deg * M_PER_DEG_LAT < trust_deg * M_PER_DEG_LAT
     depth[near] = np.nan
@@ -137,7 +140,12 @@ def route_shoals(ports: list, canal_legs: dict, strait_legs: dict, via_rta: list
                 lon, lat = lane
                 _, seg = inverse(lon[:-1], lat[:-1], lon[1:], lat[1:])
                 dist = np.concatenate([[0.0], np.cumsum(seg)])
-                depth = trusted_depth_m(under_keel.bathymetry, lon, lat)
+                try:
+                    depth = trusted_depth_m(under_keel.bathymetry, lon, lat)
+                except (ValueError, OSError, MemoryError, ShapelyError) as exc:
+                    notes.append(f"shoals on the sea lane {a.name} -> {b.name} not checked "
+                                 f"({exc}); the optimiser's depth constraint alone applies")
+                    depth = np.full(lon.shape, np.nan)
                 for s0, s1 in shoal_stretches(dist, depth, need_m):
                     i0, i1 = (int(np.searchsorted(dist, s)) for s in (s0, s1))
                     i1 = min(max(i1, i0 + 1), lon.size - 1)
