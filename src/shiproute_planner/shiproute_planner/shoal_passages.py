@@ -78,41 +78,48 @@ def _lane_of(a, b) -> tuple[np.ndarray, np.ndarray] | None:
     return np.asarray(lon, dtype=float), np.asarray(lat, dtype=float)
 
 
-def trusted_depth_m(bathymetry, lon: np.ndarray, lat: np.ndarray, polygons=None
-                    ) -> np.ndarray:
-    """Depth [m] at lane points as the navigable-water grid trusts it (`geo.nav_grid`): where
-    only coarse grids answer, NaN nearer the full-resolution coast than
-    `COARSE_TRUST_CELLS` of their cells (the coastline decides there, and the passage
-    would not see the shoal either)."""
-    import shapely
-
-    from .geo.nav_grid import COARSE_TRUST_CELLS, M_PER_DEG_LAT, coarse_only, land_in_box
-    from .route.passages import best_land_polygons
+def trusted_depth_m(bathymetry, lon: np.ndarray, lat: np.ndarray, need_m: float,
+                    polygons=None) -> np.ndarray:
+    """Depth [m] at lane points as the navigable-water grid trusts it (`geo.nav_grid`): a
+    point shallower than `need_m` where only coarse grids answer reads NaN when it lies
+    nearer the full-resolution coast than `COARSE_TRUST_CELLS` of their cells (the coastline
+    decides there, and the passage would not see the shoal either)."""
+    from .geo.nav_grid import COARSE_TRUST_CELLS, coarse_only
 
     depth = np.asarray(bathymetry.depth_m(lon, lat), dtype=float)
     coarse = [g.cell_deg for g in bathymetry.grids if g.is_coarse]
-    check = np.isfinite(depth) & coarse_only(bathymetry, lon, lat) if coarse else \
-        np.zeros(depth.shape, dtype=bool)
-    if not check.any():
+    if not coarse:
         return depth
+    check = np.flatnonzero(np.isfinite(depth) & (depth < need_m)
+                           & coarse_only(bathymetry, lon, lat))
     trust_deg = COARSE_TRUST_CELLS * max(coarse)
-    c_lon, c_lat = wrap_lon(lon[check]), lat[check]
-    pad_lat = trust_deg + 0.1
-    pad_lon = pad_lat / max(float(np.cos(np.radians(np.max(np.abs(c_lat))))), 0.1)
+    # runs of nearby points share one small box of land (a lane's shoals lie in a few places)
+    breaks = np.flatnonzero(np.diff(check) > 100) + 1
+    for run in np.split(check, breaks) if check.size else []:
+        depth[run[_near_coast(lon[run], lat[run], trust_deg, polygons)]] = np.nan
+    return depth
+
+
+def _near_coast(lon: np.ndarray, lat: np.ndarray, within_deg: float, polygons) -> np.ndarray:
+    """True where a point lies nearer full-resolution land than `within_deg` (of latitude)."""
+    import shapely
+
+    from .geo.nav_grid import land_in_box
+    from .route.passages import best_land_polygons
+
+    c_lon = np.asarray(wrap_lon(lon), dtype=float)
+    pad_lat = within_deg + 0.05
+    pad_lon = pad_lat / max(float(np.cos(np.radians(np.max(np.abs(lat))))), 0.1)
     parts = land_in_box(polygons if polygons is not None else best_land_polygons(),
-                        float(np.min(c_lon)) - pad_lon, float(np.min(c_lat)) - pad_lat,
-                        float(np.max(c_lon)) + pad_lon, float(np.max(c_lat)) + pad_lat)
+                        float(np.min(c_lon)) - pad_lon, float(np.min(lat)) - pad_lat,
+                        float(np.max(c_lon)) + pad_lon, float(np.max(lat)) + pad_lat)
     if not parts:
-        return depth
-    scale = np.cos(np.radians(float(np.mean(c_lat))))  # local frame: degrees of latitude
+        return np.zeros(lon.shape, dtype=bool)
+    scale = np.cos(np.radians(float(np.mean(lat))))  # local frame: degrees of latitude
     # per part, no union: GSHHG rings are not validated (`land_in_box`), distance needs none
     land = shapely.transform(np.asarray(parts, dtype=object), lambda xy: xy * [scale, 1.0])
-    pts = shapely.points(c_lon * scale, c_lat)
-    dist_deg = np.min(shapely.distance(pts[:, None], land[None, :]), axis=1)
-    near = np.zeros(depth.shape, dtype=bool)
-    near[np.flatnonzero(check)] = dist_deg * M_PER_DEG_LAT < trust_deg * M_PER_DEG_LAT
-    depth[near] = np.nan
-    return depth
+    pts = shapely.points(c_lon * scale, lat)
+    return np.min(shapely.distance(pts[:, None], land[None, :]), axis=1) < within_deg
 
 
 def route_shoals(ports: list, canal_legs: dict, strait_legs: dict, via_rta: list,
@@ -141,7 +148,7 @@ def route_shoals(ports: list, canal_legs: dict, strait_legs: dict, via_rta: list
                 _, seg = inverse(lon[:-1], lat[:-1], lon[1:], lat[1:])
                 dist = np.concatenate([[0.0], np.cumsum(seg)])
                 try:
-                    depth = trusted_depth_m(under_keel.bathymetry, lon, lat)
+                    depth = trusted_depth_m(under_keel.bathymetry, lon, lat, need_m)
                 except (ValueError, OSError, MemoryError, ShapelyError) as exc:
                     notes.append(f"shoals on the sea lane {a.name} -> {b.name} not checked "
                                  f"({exc}); the optimiser's depth constraint alone applies")
