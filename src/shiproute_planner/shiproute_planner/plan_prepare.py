@@ -30,6 +30,7 @@ from .route.given_approach import Approach, load_approaches
 from .route.problem import RouteLimits
 from .route.risk import RiskSpec, parse_risk
 from .ship.spec import ShipSpec
+from .shoal_passages import route_shoals
 from .straits import route_straits
 from .voyage.legs import voyage_schedule
 from .voyage.port_calls import PortCall
@@ -169,6 +170,10 @@ def prepare_voyage(request: VoyageRequest, options: PlanOptions,
         ports, canal_legs, strait_legs, calls, strait_notes = route_straits(
             ports, canal_legs, calls, draft_m)
         warnings += strait_notes
+        ports, canal_legs, strait_legs, calls, shoal_notes = route_shoals(
+            ports, canal_legs, strait_legs, calls, lim.under_keel,
+            passage_rules(lim.under_keel).required_depth_m)
+        warnings += shoal_notes
         warnings.append(passages_note(passage_rules(lim.under_keel)))
     sched, rate = None, None
     sched_legs: list[LegSpec] = []

@@ -71,8 +71,10 @@ GATE_NAMES = frozenset(f"{s.name} gate" for s in STRAITS)
 
 
 def is_gate(port) -> bool:
-    """True for a strait gate inserted by `route_straits` (open water: no approach)."""
-    return port.locode == "" and port.name in GATE_NAMES
+    """True for a gate inserted by `route_straits` or `shoal_passages.route_shoals` (open
+    water: no approach)."""
+    return port.locode == "" and (port.name in GATE_NAMES
+                                  or port.name.startswith("deep-water passage past"))
 
 
 def straits_on_lane(lon_deg: np.ndarray, lat_deg: np.ndarray
@@ -182,9 +184,14 @@ def sail_strait(env, leg: tuple, depart_s: float, limits, stage_s: float,
     from .route.problem import RouteProblem
 
     strait, lane_lon, lane_lat = leg
+    rpm = sea_rpm if sea_rpm is not None else 0.5 * (limits.rpm_min + limits.rpm_max)
+    rpm = float(np.clip(rpm, limits.rpm_min, limits.rpm_max))
     rules = dataclasses.replace(passage_rules(limits.under_keel),
                                 clearances_nm=strait.clearances_nm, berth_nm=0.0,
                                 pilotage_nm=0.0)
+    if rules.required_depth_m is not None:  # the squat of the speed it is sailed at
+        rules = dataclasses.replace(rules, required_depth_m=max(
+            rules.required_depth_m, _depth_needed_at(env, limits.under_keel, rpm)))
     notes = []
     try:
         p = cached_passage(lane_lon, lane_lat, rules)
@@ -201,14 +208,26 @@ def sail_strait(env, leg: tuple, depart_s: float, limits, stage_s: float,
                      f"{strait_length_nm(lon, lat):.0f} NM, keeps >= {p.clearance_nm:g} NM "
                      "from land" + ("" if p.depth_limited or rules.required_depth_m is None
                                     else "; depth not limiting (no deep-enough way found)"))
-    rpm = sea_rpm if sea_rpm is not None else 0.5 * (limits.rpm_min + limits.rpm_max)
-    rpm = float(np.clip(rpm, limits.rpm_min, limits.rpm_max))
     ev = sail_approach(env, Approach(np.asarray(lon, dtype=float),
                                      np.asarray(lat, dtype=float)), rpm, depart_s, limits)
     problem = RouteProblem(float(lon[0]), float(lat[0]), float(lon[-1]), float(lat[-1]),
                            depart_s, depart_s + 30 * 86400.0, limits, stage_s=stage_s,
                            dep_name=f"{strait.name} gate", arr_name=f"{strait.name} gate")
     return ev, rpm, problem, notes
+
+
+def _depth_needed_at(env, under_keel, rpm: float) -> float:
+    """Water depth [m] the ship needs at `rpm` in calm water (draft, squat, margin); the
+    passage's depth limit at the 12-kn default when the model cannot say."""
+    from .ship import SeaState
+
+    try:
+        perf = env.model.evaluate(np.array([rpm]), np.zeros(1), SeaState.calm((1,)))
+        stw = np.asarray(perf.stw_m_s, dtype=float)
+    except (ValueError, ArithmeticError, AttributeError, TypeError):
+        return 0.0
+    need = under_keel.required_depth_m(stw, np.zeros(1))
+    return float(need[0]) if np.isfinite(need[0]) else 0.0
 
 
 def strait_length_nm(lon: np.ndarray, lat: np.ndarray) -> float:

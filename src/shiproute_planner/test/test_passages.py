@@ -129,7 +129,10 @@ def test_shoal_on_a_fine_grid_is_passed_round():
     assert np.max(np.abs(plain.lon_deg)) < 0.25 * NM_LON
 
 
-def test_coarse_grid_shallows_next_to_the_coast_do_not_block_far_ones_do():
+def test_coarse_grid_shallows_next_to_the_coast_do_not_block_far_ones_do(monkeypatch):
+    # unknown water at no extra cost here (the preference for known deep water is tested in
+    # route/test_passage_deep_water.py): the band must not block, whichever way is cheaper
+    monkeypatch.setattr("shiproute_planner.route.passages.UNKNOWN_DEPTH_COST", 0.0)
     # coast: land west of 0.2 W; a coarse (5 arc-minute) grid reads 5 m in its cell column
     # 1.5-6.5 NM off it (smeared coastal cells: ETOPO5 off Santos, Mumbai) and 5 m far off
     # in the lane's way (a bank the grid may decide on)

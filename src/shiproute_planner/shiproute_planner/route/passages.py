@@ -6,12 +6,15 @@ lane between them is only a guide: a corridor of `corridor_nm` round it bounds a
 depth), and the shortest path through navigable cells is found by Dijkstra on the grid
 (16 neighbours, so legs may run at 26.6-degree steps; diagonal moves may not cut a land
 corner). Water nearer land than `prefer_off_nm` costs a little more, so a passage keeps
-mid-channel where there is room. The path is straightened (a vertex is dropped while the
-straight line between its neighbours stays in navigable cells) and checked against the land
-polygons every 0.4 cells. Where nothing fits at `cell_nm` (a river, sound or fjord narrower
-than a few cells), or only with less than the full clearance (a strait's narrows lose a cell
-of width to each rasterised shore), the grid is refined to `fine_cell_nm` before the corridor
-is widened, and the finer passage is kept when it leaves more clearance.
+mid-channel where there is room; with a depth limit, water of unknown depth beyond pilotage
+waters costs double, so a passage keeps to water known deep enough where there is some.
+The path is straightened (a vertex is dropped while the straight line between its
+neighbours stays in navigable cells, not cutting back into unknown depth) and checked
+against the land polygons every 0.4 cells. Where nothing fits at `cell_nm` (a river,
+sound or fjord narrower than a few cells), or only with less than the full clearance (a
+strait's narrows lose a cell of width to each rasterised shore), the grid is refined to
+`fine_cell_nm` before the corridor is widened, and the finer passage is kept when it leaves
+more clearance.
 
 Clearance: the passage keeps `clearances_nm[0]` (0.5 NM) from land where it can; a strait or
 channel too narrow for it (Bosphorus, Dardanelles, an estuary) gets the largest clearance of
@@ -19,9 +22,11 @@ channel too narrow for it (Bosphorus, Dardanelles, an estuary) gets the largest 
 port only land blocks (harbour basins are narrower than any clearance); within
 `pilotage_nm` depth is the pilot's (dredged channels are finer than the grids), beyond it
 a cell shallower than the ship's required depth blocks, where a grid may decide (see
-`geo.nav_grid` for coarse grids near the coast). With no way through at any clearance the
-depth limit is dropped (stated), then the corridor is widened, and only then is the lane's
-own geometry kept (stated).
+`geo.nav_grid` for coarse grids near the coast). With no deep-enough way through at any
+clearance the corridor is widened first (the deep-water route of a coast with shoals runs
+farther off than the lane: west of the North Frisian Islands), then the depth limit is
+dropped (stated), and only when no corridor has any way through is the lane's own geometry
+kept (stated).
 """
 
 from __future__ import annotations
@@ -39,6 +44,12 @@ _MOVES = ((0, 1), (1, 0), (1, 1), (1, -1), (1, 2), (2, 1), (1, -2), (2, -1))
 _CROSSED = {(0, 1): (), (1, 0): (), (1, 1): ((0, 1), (1, 0)), (1, -1): ((0, -1), (1, 0)),
             (1, 2): ((0, 1), (1, 1)), (2, 1): ((1, 0), (1, 1)),
             (1, -2): ((0, -1), (1, -1)), (2, -1): ((1, 0), (1, -1))}
+
+
+#: extra cost per metre of water whose depth no grid decides (a coarse grid's coastal cells),
+#: for a ship with a depth limit: a passage keeps to water known deep enough where it can
+#: (the smeared band between a coast and its offshore banks is often shallower still)
+UNKNOWN_DEPTH_COST = 1.0
 
 
 @dataclass(frozen=True)
@@ -167,6 +178,19 @@ def _straighten(free: np.ndarray, cells: np.ndarray, max_cells: float) -> np.nda
     return cells[keep]
 
 
+def _sight(free: np.ndarray, unknown: np.ndarray, cells: np.ndarray) -> np.ndarray:
+    """Cells a straightened leg may cross: free ones, but water of unknown depth only next
+    to the path (straightening must not cut back into what the path kept out of)."""
+    if not unknown.any():
+        return free
+    from scipy import ndimage
+
+    near = np.zeros(free.shape, dtype=bool)
+    near[cells[:, 0], cells[:, 1]] = True
+    near = ndimage.binary_dilation(near, iterations=1)
+    return free & (~unknown | near)
+
+
 def _nearest_free(free: np.ndarray, i: int, j: int) -> tuple[int, int] | None:
     """The free cell nearest (i, j) (in cells), None if there is none."""
     fi, fj = np.nonzero(free)
@@ -193,6 +217,11 @@ def solve_on_grid(grid: NavGrid, lane_lon: np.ndarray, lane_lat: np.ndarray,
             from_port > rules.pilotage_nm * M_PER_NM)
     prefer_m = rules.prefer_off_nm * M_PER_NM
     cost = 1.0 + 0.5 * np.clip(1.0 - grid.clearance_m / prefer_m, 0.0, 1.0)
+    unknown = np.zeros(grid.shape, dtype=bool)
+    if rules.required_depth_m is not None and UNKNOWN_DEPTH_COST > 0:
+        # known deep water before water of unknown depth
+        unknown = np.isnan(grid.depth_m) & (from_port > rules.pilotage_nm * M_PER_NM)
+        cost = cost + UNKNOWN_DEPTH_COST * unknown
     modes = ((False,) if rules.required_depth_m is None else
              (True, False) if shallow.any() else (True,))
     for use_depth in modes:
@@ -210,7 +239,8 @@ def solve_on_grid(grid: NavGrid, lane_lon: np.ndarray, lane_lat: np.ndarray,
                                    goal)
             if cells is None:
                 continue
-            cells = _straighten(free, cells, 20.0 / (60.0 * grid.dlat_deg))
+            cells = _straighten(_sight(free, unknown, cells), cells,
+                                20.0 / (60.0 * grid.dlat_deg))
             lon, lat = grid.centre(cells[:, 0], cells[:, 1])
             lon = np.concatenate([lane_lon[:1], lon, lane_lon[-1:]])
             lat = np.concatenate([lane_lat[:1], lat, lane_lat[-1:]])
@@ -269,7 +299,8 @@ def compute_passage(lane_lon: np.ndarray, lane_lat: np.ndarray, rules: PassageRu
              *((w, rules.cell_nm) for w in rules.corridors_nm[1:])]
     found: Passage | None = None
     for corridor_nm, cell_nm in tries:
-        if found is not None and (cell_nm >= found.cell_nm or corridor_nm > found.corridor_nm):
+        if found is not None and _keeps_depth(found, rules) and (
+                cell_nm >= found.cell_nm or corridor_nm > found.corridor_nm):
             return found
         box = grid_box(lon_f, lane_lat, corridor_nm + 2.0, cell_nm)
         lon0, lat0, dlon, dlat, rows, cols = box
@@ -290,11 +321,20 @@ def compute_passage(lane_lon: np.ndarray, lane_lat: np.ndarray, rules: PassageRu
         p = Passage(p.lon_deg + shift, p.lat_deg, p.clearance_nm, p.depth_limited,
                     corridor_nm, p.cell_nm)
         if not _better(p, found):
-            return found
-        if p.clearance_nm >= rules.clearances_nm[0] or cell_nm <= rules.fine_cell_nm:
+            if found is not None and _keeps_depth(found, rules):
+                return found
+            continue  # no deep-enough way yet: a wider corridor may hold one
+        if _keeps_depth(p, rules) and (p.clearance_nm >= rules.clearances_nm[0]
+                                       or cell_nm <= rules.fine_cell_nm):
             return p
-        found = p  # narrow water: finer cells may leave a wider clearance
+        found = p  # narrow water: finer cells may leave a wider clearance; shallow water:
+        # a wider corridor may hold the deep-water route
     return found
+
+
+def _keeps_depth(p: Passage, rules: PassageRules) -> bool:
+    """True when `p` keeps the ship's depth limit, or there is none to keep."""
+    return p.depth_limited or rules.required_depth_m is None
 
 
 def _better(p: Passage, than: Passage | None) -> bool:

@@ -49,6 +49,23 @@ def _peak_rss_mb() -> float:
     return float("nan")
 
 
+def _where(plan, leg: int) -> str:
+    """Which part of a plan a leg belongs to (for finding the cause of a violation): an
+    optimised span, a fixed passage (canal) or a computed coastal/strait passage, with the
+    port or gate it follows."""
+    last = ""
+    for w in plan.waypoints[:leg + 1]:
+        last = w.port or last
+    kind = "coastal or strait passage"
+    for a, b in plan.optimised_spans:
+        if a <= leg < b:
+            kind = "optimised span" + (" (first/last leg: seam)" if leg in (a, b - 1) else "")
+    for a, b in plan.extra.get("fixed_passages", ()):
+        if a <= leg < b:
+            kind = "canal"
+    return f"{kind} after {last}" if last else kind
+
+
 def run(budget_s: float, only: list[str]) -> dict:
     """Plan and check every lane; the JSON-able result."""
     from ...cli.check import land_test
@@ -93,6 +110,10 @@ def run(budget_s: float, only: list[str]) -> dict:
             infeasible_reasons=list(plan.infeasible_reasons),
             land_legs_full_res=[(v.leg, round(v.lat_deg, 3), round(v.lon_deg, 3),
                                  round(v.value, 2)) for v in land],
+            land_where=sorted({f"leg {v.leg}: {_where(plan, v.leg)}" for v in land}),
+            flagged_legs=[f"leg {k} ({w.lat_deg:.3f}, {w.lon_deg:.3f}) flags "
+                          f"{w.constraint_flags} ukc {w.ukc_m:.1f} m: {_where(plan, k)}"
+                          for k, w in enumerate(plan.waypoints[:-1]) if w.constraint_flags][:12],
             # checked: every planned leg's depth known, or named by the plan as crossing
             # coarse coastal cells (no UKC constraint there: the coastline decides)
             depth_checked=with_depth and not bool(np.any(unknown & ~near_coast)),
