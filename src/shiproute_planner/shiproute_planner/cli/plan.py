@@ -20,6 +20,7 @@ from ..objectives import (
 from ..plan_request import build_request, duration_s, run_request
 from ..ship.fuel import CO2_FACTOR_T_PER_T
 from .option_ranges import PLAN_OPTIONS, check_options, risk_option
+from .warm_up import warm_up, warm_up_note
 
 
 def parse_duration_s(text: str) -> float:
@@ -180,6 +181,8 @@ def main(argv: list[str]) -> int:
             bathymetry=args.bathymetry, default_bathymetry=not args.no_default_bathymetry,
             ukc_margin_m=args.ukc_margin, zones=args.zones, clearance_nm=args.clearance_nm,
             approaches_given=args.approach, risk=risk)
+        warm_s = warm_up(req, keywords)
+        print(warm_up_note(warm_s), file=sys.stderr)
         if req.objective == "front":
             from .plan_front import run_front
 
@@ -187,6 +190,7 @@ def main(argv: list[str]) -> int:
         plan = run_request(req, env_forecast, seed_pool_dir=args.seed_pool, progress=_progress,
                            **keywords)
         print(file=sys.stderr)
+        plan.extra.setdefault("timing_s", {})["process_warm_up"] = round(warm_s, 3)
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)
         stem = args.name or re.sub(r"[^A-Za-z0-9]+", "_", "_".join(plan.ports)).strip("_")
