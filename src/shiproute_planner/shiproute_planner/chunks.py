@@ -20,7 +20,9 @@ _POOL: ThreadPoolExecutor | None = None
 
 
 def _pool() -> ThreadPoolExecutor:
-    """The process's pool, made on first use."""
+    """This module's pool, made on first use. Not `ship.fast`'s: a chunk may call the fast
+    ship model, which fans out on its own pool; one shared pool could leave every worker
+    waiting on work queued behind it."""
     global _POOL
     with _LOCK:
         if _POOL is None:

@@ -10,30 +10,22 @@ from pathlib import Path
 import numpy as np
 import pytest
 from shiproute_core.flags import FLAG_DEPTH, FLAG_LAND
-from shiproute_core.geodesy import inverse
 from shiproute_planner.depth_setup import depth_limits
+from shiproute_planner.experiments.bench.planner import ga_like_population
 from shiproute_planner.geo.bathymetry import default_depth_files
 from shiproute_planner.plan_setup import make_environment, route_limits, to_posix_s
-from shiproute_planner.route.encoding import clip_genes, gene_bounds, join_genes
 from shiproute_planner.route.fast_eval import fast_evaluator
 from shiproute_planner.route.generate import evaluate_genes
 from shiproute_planner.route.problem import RouteProblem
-from shiproute_planner.route.seeding import great_circle_track
 
 SKERKI = Path(__file__).parents[1] / "data" / "skerki_etopo2022_30s.nc"
 
 
 def _genes(problem: RouteProblem, pop: int, rng: np.random.Generator, noise_deg: float
            ) -> np.ndarray:
-    """GA-like genes: great-circle headings per stage with noise, RPMs round a random level."""
-    lo, hi = gene_bounds(problem)
-    n = problem.n_stages
-    g_lon, g_lat = great_circle_track(problem, n + 1)
-    az, _ = inverse(g_lon[:-1], g_lat[:-1], g_lon[1:], g_lat[1:])
-    rpm = rng.uniform(lo[n], hi[n], (pop, 1)) + rng.normal(0.0, 3.0, (pop, n + 1))
-    x = join_genes(np.repeat(az[None, :], pop, axis=0), np.clip(rpm, lo[n], hi[n]))
-    x[:, :n] += rng.normal(0.0, noise_deg, (pop, n))
-    return clip_genes(problem, x)
+    """GA-like genes (the planner bench's): great-circle headings with noise, RPMs round a
+    random level."""
+    return ga_like_population(problem, pop, rng, noise_deg)
 
 
 def _leg_bits(ev, bit: int) -> np.ndarray:

@@ -49,8 +49,9 @@ def _position_after(plan, hours: float) -> tuple[float, float, float]:
     return float(plat), float(plon), now
 
 
-def ga_like_population(problem: RouteProblem, pop: int, rng: np.random.Generator) -> np.ndarray:
-    """Genes like a GA population: great-circle headings per stage with 2-degree noise and
+def ga_like_population(problem: RouteProblem, pop: int, rng: np.random.Generator,
+                       noise_deg: float = 2.0) -> np.ndarray:
+    """Genes like a GA population: great-circle headings per stage with `noise_deg` noise and
     random RPMs around a random level (random first headings +-150 deg would mostly sail into
     the Arctic, which measures nothing the GA spends time on)."""
     lo, hi = gene_bounds(problem)
@@ -59,7 +60,7 @@ def ga_like_population(problem: RouteProblem, pop: int, rng: np.random.Generator
     az, _ = inverse(g_lon[:-1], g_lat[:-1], g_lon[1:], g_lat[1:])
     rpm = rng.uniform(lo[n], hi[n], (pop, 1)) + rng.normal(0.0, 3.0, (pop, n + 1))
     x = join_genes(np.repeat(az[None, :], pop, axis=0), np.clip(rpm, lo[n], hi[n]))
-    x[:, :n] += rng.normal(0.0, 2.0, (pop, n))
+    x[:, :n] += rng.normal(0.0, noise_deg, (pop, n))
     return clip_genes(problem, x)
 
 
