@@ -13,6 +13,7 @@ resolution).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -189,9 +190,11 @@ def sail_strait(env, leg: tuple, depart_s: float, limits, stage_s: float,
     rules = dataclasses.replace(passage_rules(limits.under_keel),
                                 clearances_nm=strait.clearances_nm, berth_nm=0.0,
                                 pilotage_nm=0.0)
-    if rules.required_depth_m is not None:  # the squat of the speed it is sailed at
+    if rules.required_depth_m is not None:  # the squat of the speed it is sailed at,
+        # rounded up to whole metres: the computed passage is cached by its rules, and a
+        # plan on a new forecast sails the strait at a slightly other RPM
         rules = dataclasses.replace(rules, required_depth_m=max(
-            rules.required_depth_m, _depth_needed_at(env, limits.under_keel, rpm)))
+            rules.required_depth_m, math.ceil(_depth_needed_at(env, limits.under_keel, rpm))))
     notes = []
     try:
         p = cached_passage(lane_lon, lane_lat, rules)
