@@ -65,6 +65,31 @@ def _finest_cell_deg(lat0: float, lon0: float, lat1: float, lon1: float,
 
 
 @numba.njit(cache=True, nogil=True)
+def _block_of(lat: float, lon: float, block_deg: float, n_rows: int, n_cols: int):
+    """(row, column) of a global block raster (row 0 at 90 S, column 0 at 180 W)."""
+    i = min(max(int((lat + 90.0) / block_deg), 0), n_rows - 1)
+    j = min(max(int(((lon + 180.0) % 360.0) / block_deg), 0), n_cols - 1)
+    return i, j
+
+
+@numba.njit(cache=True, nogil=True)
+def _block_samples(lat: float, block_deg: float, step: float) -> int:
+    """Samples in 0.95 of a block, the longitude shrunk by the cosine of the most poleward
+    latitude one block on (a jump in arc would leave the neighbourhood towards the poles)."""
+    c = math.cos(math.radians(min(abs(lat) + block_deg, 89.0)))
+    return max(1, int(0.95 * block_deg * c / max(step, 1e-12)))
+
+
+@numba.njit(cache=True, nogil=True)
+def _capped_minimum(best: float, cap: float, seen: bool) -> float:
+    """A leg's answer: its minimum below the cap, the cap when only depths >= cap were
+    known, NaN when no depth was."""
+    if best < cap:
+        return best
+    return cap if seen else math.nan
+
+
+@numba.njit(cache=True, nogil=True)
 def segment_min_depth(lon0: np.ndarray, lat0: np.ndarray, lon1: np.ndarray,
                       lat1: np.ndarray, cap_m: np.ndarray, data: np.ndarray,
                       grids: np.ndarray, coarse: np.ndarray, block_deg: float,
@@ -94,16 +119,12 @@ def segment_min_depth(lon0: np.ndarray, lat0: np.ndarray, lon1: np.ndarray,
         k = 0
         while k <= n:
             lat, lon = chord_sample(ax, ay, az, bx, by, bz, k / n)
-            bi = min(max(int((lat + 90.0) / block_deg), 0), n_blat - 1)
-            bj = min(max(int(((lon + 180.0) % 360.0) / block_deg), 0), n_blon - 1)
+            bi, bj = _block_of(lat, lon, block_deg, n_blat, n_blon)
             if coarse[bi, bj] >= cap:
                 if coarse[bi, bj] < math.inf:
                     seen = True  # known to be at least the cap here
-                # the block value covers the block and its neighbours: jump 0.95 block in
-                # latitude, in longitude shrunk by the cosine of the most poleward latitude
-                # one block on (a jump in arc would leave the neighbourhood towards the poles)
-                c = math.cos(math.radians(min(abs(lat) + block_deg, 89.0)))
-                skip = max(1, int(0.95 * block_deg * c / max(step, 1e-12)))
+                # the block value covers the block and its neighbours
+                skip = _block_samples(lat, block_deg, step)
                 k += skip if k + skip <= n or k == n else n - k
                 continue
             v = depth_at(lat, lon, data, grids)
@@ -112,10 +133,7 @@ def segment_min_depth(lon0: np.ndarray, lat0: np.ndarray, lon1: np.ndarray,
                 if v < best:
                     best = v
             k += 1
-        if best < cap:
-            out[s] = best
-        else:
-            out[s] = cap if seen else math.nan
+        out[s] = _capped_minimum(best, cap, seen)
 
 
 @numba.njit(cache=True, nogil=True)
@@ -158,18 +176,15 @@ def segment_min_depth_skip(lon0: np.ndarray, lat0: np.ndarray, lon1: np.ndarray,
         k = 0
         while k <= n:
             lat, lon = chord_sample(ax, ay, az, bx, by, bz, k / n)
-            bi = min(max(int((lat + 90.0) / block_deg), 0), n_blat - 1)
-            bj = min(max(int(((lon + 180.0) % 360.0) / block_deg), 0), n_blon - 1)
+            bi, bj = _block_of(lat, lon, block_deg, n_blat, n_blon)
             c = coarse[bi, bj]
             if c >= cap:
                 if c < math.inf:
                     seen = True
-                ci = min(max(int((lat + 90.0) / clear_block_deg), 0), n_clat - 1)
-                cj = min(max(int(((lon + 180.0) % 360.0) / clear_block_deg), 0), n_clon - 1)
+                ci, cj = _block_of(lat, lon, clear_block_deg, n_clat, n_clon)
                 jump = int(clear_deg[ci, cj] / max(per_step, 1e-12))
                 if jump < 1:  # near shallows: the plain walk's block step
-                    co = math.cos(math.radians(min(abs(lat) + block_deg, 89.0)))
-                    jump = max(1, int(0.95 * block_deg * co / max(step, 1e-12)))
+                    jump = _block_samples(lat, block_deg, step)
                 k += jump if k + jump <= n or k == n else n - k
                 continue
             v = depth_at(lat, lon, data, grids)
@@ -180,10 +195,7 @@ def segment_min_depth_skip(lon0: np.ndarray, lat0: np.ndarray, lon1: np.ndarray,
                     if best <= 0.0:  # dry (grids read land as 0 m): nothing is shallower
                         break
             k += _cell_jump(lat, lon, cap, grids, cell_min, per_step, n - k)
-        if best < cap:
-            out[s] = best
-        else:
-            out[s] = cap if seen else math.nan
+        out[s] = _capped_minimum(best, cap, seen)
 
 
 @numba.njit(cache=True, nogil=True)
