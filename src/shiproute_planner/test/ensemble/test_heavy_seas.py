@@ -127,3 +127,40 @@ def test_propeller_law_recovery_is_within_its_bound_of_an_exact_re_solve(sea, de
     assert float(p1.engine_load[0]) <= 1.0  # the speed-up stays within MCR here
     exact = float(p1.fuel_t_per_h[0]) * t_r * (1.0 - delay_share) / H
     assert k**-2 * 0.95 <= exact / approx <= k * 1.05
+
+
+def test_member_above_the_limit_everywhere_heaves_to_and_cannot_make_the_rta(
+        over_limit_members, land_mask):
+    """Busan -> Long Beach on two members: a 5 m/s breeze with a 1.5 m sea, and a 9 m sea
+    (above the 4,600 TEU ship's 8 m limit) over the whole grid. In the second every stage in
+    the forecast is spent hove to: days lost on a 13-day RTA that no speed up to MCR makes
+    good, so the member is late for every candidate (at MCR on what is left); the calm member
+    never heaves to."""
+    from shiproute_planner.plan_setup import make_environment, route_limits, to_posix_s
+    from shiproute_planner.route.encoding import gene_bounds, join_genes
+    from shiproute_planner.route.fast_eval import fast_evaluator
+    from shiproute_planner.route.member_eval import risk_evaluate_outcomes
+    from shiproute_planner.route.risk import RiskSpec
+    from shiproute_planner.route.seeding import great_circle_track
+    from shiproute_weather.sampling.sampler import ForecastSampler
+
+    sampler = ForecastSampler(over_limit_members, member_dtype=np.float32)
+    env, spec = make_environment("container_4600teu", sampler)
+    d = to_posix_s("2026-03-03T18:00Z")
+    problem = RouteProblem(129.5, 34.8, -118.5, 33.5, d, d + 13 * 86400.0, route_limits(spec))
+    n = problem.n_stages
+    lo, hi = gene_bounds(problem)
+    g_lon, g_lat = great_circle_track(problem, n + 1)
+    az = np.degrees(np.arctan2(np.diff(g_lon), np.diff(g_lat)))  # roughly east: no land
+    rpm = np.linspace(lo[n] + 0.3 * (hi[n] - lo[n]), hi[n], 8)[:, None] * np.ones(n + 1)
+    x = join_genes(np.repeat(az[None, :], 8, axis=0), rpm)
+    fast = fast_evaluator(problem, env, land_mask)
+    _, out = risk_evaluate_outcomes(fast, RiskSpec(), x)
+    voyage = out.voyage
+    assert voyage is not None
+    heave = voyage.heave_to_s.reshape(2, -1)
+    assert np.all(heave[0] == 0.0)
+    assert np.all(heave[1] >= 5 * 86400.0)  # the grid spans more than 5 days of the voyage
+    assert np.all(voyage.unrecoverable.reshape(2, -1)[1]) and np.all(out.late[1])
+    assert np.all(out.probability(out.late) >= 0.5)  # at least that member's weight
+    assert np.all(out.hs_exceeded[1]) and not np.any(out.hs_exceeded[0])

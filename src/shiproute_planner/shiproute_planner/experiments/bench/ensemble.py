@@ -2,14 +2,15 @@
 `storm_march_ensemble` scenario.
 
 Plans once on every member with a risk measure (default cvar:0.9, P(Hs > limit) <= 0.1,
-P(late) <= 0.5: as often late as a plan on the mean forecast is) and once on the members'
-mean forecast alone; both plans are then sailed on the same members (the plan's `ensemble`
+P(late) <= 0.5: late being a delay even MCR cannot make up) and once on the members' mean
+forecast alone; both plans are then sailed on the same members (the plan's `ensemble`
 block), with heave-to above the ship's wave limit and the fuel to still meet the RTA
-(`route.heavy_seas`). Reports the cold plan time of the risk-aware plan (the sampler is packed before the
-timing, `load_and_pack_s`; land mask, sea lanes and the first use of the kernels are inside
-it, as for a first plan), its P90 fuel and P(Hs > limit), the same of the mean plan, the
-process's peak RSS and the 16-bit packed wire size of the whole cycle
-(`shiproute_weather.wire.packing`: codes + offset and scale per field and valid time).
+(`route.heavy_seas`). Reports the cold plan time of the risk-aware plan (the sampler is
+packed before the timing, `load_and_pack_s`; land mask, sea lanes and the first use of the
+kernels are inside it, as for a first plan), its P90 fuel and P(Hs > limit), the same of
+the mean plan, how often each heaves to, the process's peak RSS and the 16-bit packed wire
+size of the whole cycle (`shiproute_weather.wire.packing`: codes + offset and scale per
+field and valid time).
 """
 
 from __future__ import annotations
