@@ -164,3 +164,47 @@ def test_member_above_the_limit_everywhere_heaves_to_and_cannot_make_the_rta(
     assert np.all(voyage.unrecoverable.reshape(2, -1)[1]) and np.all(out.late[1])
     assert np.all(out.probability(out.late) >= 0.5)  # at least that member's weight
     assert np.all(out.hs_exceeded[1]) and not np.any(out.hs_exceeded[0])
+
+
+@pytest.mark.parametrize("late_share", [0.04, 0.1])
+def test_voyage_recovery_is_within_its_bound_of_a_re_solve_of_the_rpms(head_sea_forecast,
+                                                                       late_share):
+    """A whole voyage, Busan -> Long Beach in a uniform 12 m/s head wind and 4 m head sea,
+    sailed at one RPM that makes it late by `late_share` of its time under way: the
+    approximation (fuel x k^2, k = T / (T - D)) against the exact re-solve, the same genes
+    with every RPM scaled (bisection) until the compiled route model arrives on the RTA.
+    Same physics bound as the ship-model test: [k^-2, k] and 5 %."""
+    from shiproute_planner.plan_setup import make_environment, route_limits, to_posix_s
+    from shiproute_planner.route.encoding import join_genes
+    from shiproute_planner.route.fast_eval import fast_evaluator
+    from shiproute_planner.route.seeding import great_circle_track
+    from shiproute_weather.sampling.sampler import ForecastSampler
+
+    env, spec = make_environment("container_4600teu", ForecastSampler(head_sea_forecast))
+    d = to_posix_s("2026-03-03T18:00Z")
+    base = RouteProblem(129.5, 34.8, -118.5, 33.5, d, d + 13 * 86400.0, route_limits(spec))
+    n = base.n_stages
+    g_lon, g_lat = great_circle_track(base, n + 1)
+    az = np.degrees(np.arctan2(np.diff(g_lon) * np.cos(np.radians(g_lat[:-1])), np.diff(g_lat)))
+
+    def sail(problem: RouteProblem, rpm: float) -> RouteEvaluation:
+        x = join_genes(az[None, :n], np.full((1, n + 1), rpm))
+        return fast_evaluator(problem, env, None).evaluate(x)
+
+    ev = sail(base, 70.0)
+    under_way = float(ev.eta_s[0]) - d
+    rta = d + under_way * (1.0 - late_share)
+    problem = RouteProblem(129.5, 34.8, -118.5, 33.5, d, rta, route_limits(spec), n_stages=n)
+    ev = sail(problem, 70.0)
+    approx = member_voyage(problem, ev, HEAVE)
+    assert approx.heave_to_s[0] == 0.0 and not approx.unrecoverable[0]
+    assert approx.fuel_t[0] > ev.fuel_t[0]  # the recovery is counted
+    lo, hi = 70.0, 70.0 * 1.4
+    for _ in range(40):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if sail(problem, mid).eta_s[0] > rta else (lo, mid)
+    exact = sail(problem, hi)
+    assert abs(float(exact.eta_s[0]) - rta) < 600.0
+    k = under_way / (under_way - (float(ev.eta_s[0]) - rta))
+    ratio = float(exact.fuel_t[0]) / float(approx.fuel_t[0])
+    assert k**-2 * 0.95 <= ratio <= k * 1.05
