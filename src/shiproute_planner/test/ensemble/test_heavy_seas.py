@@ -208,3 +208,27 @@ def test_voyage_recovery_is_within_its_bound_of_a_re_solve_of_the_rpms(head_sea_
     k = under_way / (under_way - (float(ev.eta_s[0]) - rta))
     ratio = float(exact.fuel_t[0]) / float(approx.fuel_t[0])
     assert k**-2 * 0.95 <= ratio <= k * 1.05
+
+
+def test_plan_states_heave_to_and_added_fuel_in_its_warning_and_summary():
+    """Four equal members, two hove to (12 h, 24 h) with 40 t and 100 t added: P(heave-to)
+    0.50, mean added fuel (40 + 100) / 4 = 35.0 t, worst 24 h and 100.0 t."""
+    from shiproute_planner.ensemble_report import heavy_seas_sentence, summary_lines
+    from shiproute_planner.route.heavy_seas import HEAVY_SEAS_MODEL
+
+    w = np.full(4, 0.25)
+    heavy = {"model": HEAVY_SEAS_MODEL, "p_heave_to": 0.5, "heave_to_h": [0.0, 12.0, 0.0, 24.0],
+             "added_fuel_t": [0.0, 40.0, 0.0, 100.0], "p_rta_unrecoverable": 0.25}
+    said = heavy_seas_sentence(heavy, w)
+    assert "P(heave-to) 0.50" in said and "hove to up to 24 h and up to 100.0 t added" in said
+    assert "mean fuel added by heave-to and RTA recovery 35.0 t" in said
+    assert "P(RTA not recoverable even at MCR) 0.25" in said and HEAVY_SEAS_MODEL in said
+    spread = {"min": [1.0], "median": [2.0], "max": [9.0]}
+    block = {"members": 4, "kind": "ensemble", "risk_measure": "cvar:0.9", "weights": list(w),
+             "fuel_t": {"p10": 1.0, "p50": 2.0, "p90": 3.0, "mean": 2.0},
+             "eta_s": {"p10": 0.0, "p50": 0.0, "p90": 0.0}, "p_hs_violation": 0.5,
+             "p_late": 0.25, "p_any_violation": 0.5, "heavy_seas": heavy,
+             "legs": {"hs_m": spread, "wind_speed_m_s": spread}}
+    line = [x for x in summary_lines(block) if "heavy seas" in x]
+    assert line == ["  heavy seas P(heave-to) 0.50, fuel added to meet the RTA mean 35.0 t, "
+                    "P(RTA not recoverable) 0.25"]
