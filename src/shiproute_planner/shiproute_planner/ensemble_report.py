@@ -6,7 +6,9 @@ the member's difference on those legs (port approaches, straits and canals as pl
 Stated: P10/P50/P90 of fuel and ETA (the smallest member value whose cumulative weight
 reaches the level), the probability (member weight) of each constraint being violated, per
 leg the members' min/median/max of Hs and wind speed, which risk measure chose the plan and
-how many members it saw.
+how many members it saw. Every member is sailed with heave-to above the ship's wave limit
+and the fuel to still meet the RTA (`route.heavy_seas`), stated in the `heavy_seas` block and
+a warning: fuel quantiles include it, lateness is what even MCR cannot make up.
 """
 
 from __future__ import annotations
@@ -24,6 +26,7 @@ from .route.encoding import join_genes
 from .route.environment import Environment
 from .route.evaluation import RouteEvaluation
 from .route.fast_eval import fast_evaluator
+from .route.heavy_seas import HEAVY_SEAS_MODEL
 from .route.member_eval import CHANCE_TOLERANCE, SEA_KEEPING, member_outcomes
 from .route.problem import RouteProblem
 from .route.risk import RiskSpec, weighted_quantile
@@ -86,6 +89,8 @@ def ensemble_block(plan: RoutePlan, env: Environment, land: LandMask | None,
     flags = np.zeros(m_count, dtype=np.uint32)
     hs = np.full((m_count, max(n_wp - 1, 0)), np.nan)
     wind = hs.copy()
+    heave_s, recovery_t = np.zeros(m_count), np.zeros(m_count)
+    unrecoverable = np.zeros(m_count, dtype=bool)
     spans = plan.optimised_spans or ((0, n_wp - 1),)
     for leg, (a, b) in zip(legs, spans, strict=False):
         fast = fast_evaluator(leg.problem, env, land)
@@ -96,7 +101,11 @@ def ensemble_block(plan: RoutePlan, env: Environment, land: LandMask | None,
             return None, [f"ensemble spread not evaluated: {why}; the plan was made on the "
                           "members' mean forecast"]
         ev = fast.evaluate_members(genes[None, :])
-        out = member_outcomes(leg.problem, ev, m_count, w)
+        out = member_outcomes(leg.problem, ev, m_count, w, fast)
+        if out.voyage is not None:
+            heave_s += out.voyage.heave_to_s
+            recovery_t += out.voyage.heave_to_fuel_t + out.voyage.recovery_fuel_t
+            unrecoverable |= out.voyage.unrecoverable
         fuel += out.fuel_t[:, 0] - float(leg.exact.fuel_t[0])
         eta += out.eta_s[:, 0] - float(leg.exact.eta_s[0])
         flags |= ev.flags & ~np.uint32(FLAG_RTA)
@@ -123,6 +132,10 @@ def ensemble_block(plan: RoutePlan, env: Environment, land: LandMask | None,
         "p_any_violation": float(w @ (flags != 0)),
         "p_violated": p_violated,
         "legs": {"hs_m": _spread(hs, w), "wind_speed_m_s": _spread(wind, w)},
+        "heavy_seas": {"model": HEAVY_SEAS_MODEL, "p_heave_to": float(w @ (heave_s > 0)),
+                       "heave_to_h": (heave_s / 3600.0).tolist(),
+                       "added_fuel_t": recovery_t.tolist(),
+                       "p_rta_unrecoverable": float(w @ unrecoverable)},
     }
     how = ("planned on the members' mean forecast (no risk measure asked)" if risk is None
            else f"planned on risk measure {risk.label} with P(Hs > limit) <= "
@@ -131,8 +144,21 @@ def ensemble_block(plan: RoutePlan, env: Environment, land: LandMask | None,
     said = [f"ensemble of {m_count} members ({members.kind}): " + how
             + f"; fuel P10/P50/P90 {block['fuel_t']['p10']:.1f}/{block['fuel_t']['p50']:.1f}/"
             f"{block['fuel_t']['p90']:.1f} t, P(Hs > limit) {block['p_hs_violation']:.2f}, "
-            f"P(late) {block['p_late']:.2f}"]
+            f"P(late) {block['p_late']:.2f}", heavy_seas_sentence(block["heavy_seas"], w)]
     return block, said + unmet_chance_constraints(block, risk)
+
+
+def heavy_seas_sentence(heavy: dict[str, Any], w: np.ndarray) -> str:
+    """The plan's sentence on how its members were sailed in seas above the limit."""
+    hours = np.asarray(heavy["heave_to_h"])
+    added = np.asarray(heavy["added_fuel_t"])
+    hit = hours > 0
+    worst = (f"; where it does, hove to up to {hours.max():.0f} h and up to "
+             f"{added.max():.1f} t added" if hit.any() else "")
+    return (f"members sailed with heavy-seas physics ({heavy['model']}): P(heave-to) "
+            f"{heavy['p_heave_to']:.2f}{worst}; mean fuel added by heave-to and RTA recovery "
+            f"{float(w @ added):.1f} t; P(RTA not recoverable even at MCR) "
+            f"{heavy['p_rta_unrecoverable']:.2f}")
 
 
 def unmet_chance_constraints(block: dict[str, Any], risk: RiskSpec | None) -> list[str]:
@@ -196,6 +222,12 @@ def summary_lines(block: dict[str, Any]) -> list[str]:
         f"  P(viol.) Hs > limit {block['p_hs_violation']:.2f}, late {block['p_late']:.2f}, "
         f"any constraint {block['p_any_violation']:.2f}",
     ]
+    heavy = block.get("heavy_seas")
+    if heavy is not None:
+        added = np.asarray(heavy["added_fuel_t"], dtype=float)
+        lines.append(f"  heavy seas P(heave-to) {heavy['p_heave_to']:.2f}, fuel added to meet "
+                     f"the RTA mean {float(np.asarray(block['weights']) @ added):.1f} t, "
+                     f"P(RTA not recoverable) {heavy['p_rta_unrecoverable']:.2f}")
     if worst_leg is not None:
         k = int(worst_leg)
         w = block["legs"]["wind_speed_m_s"]

@@ -89,8 +89,8 @@ def build_parser() -> argparse.ArgumentParser:
                     help="with --risk: largest accepted probability of meeting Hs above the "
                          "ship's limit (0..1, default 0)")
     ap.add_argument("--p-late-max", type=float, default=None, metavar="P",
-                    help="with --risk: largest accepted probability of arriving late "
-                         "(0..1, default 0)")
+                    help="with --risk: largest accepted probability of arriving late even "
+                         "at MCR after heave-to in seas above the limit (0..1, default 0)")
     ap.add_argument("--method", default="seed_ga", help="planning method (see --list-methods)")
     ap.add_argument("--budget", default=None,
                     help="wall time (3s) or route evaluations (4000ev: reproducible); "

@@ -5,7 +5,9 @@ here the member rows are split into per-member outcomes (objective, fuel, ETA, t
 and lateness parts of the violation, the other weather-decided limits and everything else)
 and reduced: the objective by the risk measure, Hs, sea-keeping and lateness as chance
 constraints (`route.risk`), the rest (land, depth, zones, turns) as the members' weighted
-mean of their violations (any member on land keeps a candidate infeasible).
+mean of their violations (any member on land keeps a candidate infeasible). Each member's
+fuel, ETA and objective count heave-to above the ship's wave limit and the fuel to still
+meet the RTA (`route.heavy_seas`); lateness is then what even MCR cannot make up.
 """
 
 from __future__ import annotations
@@ -28,8 +30,9 @@ from shiproute_core.flags import (
     FLAG_WIND_LIMIT,
 )
 
-from .evaluation import RouteEvaluation
+from .evaluation import RouteEvaluation, objective_of
 from .fast_eval import FastEvaluator
+from .heavy_seas import MemberVoyage, heave_to_of, member_voyage
 from .problem import RouteProblem
 from .risk import RiskSpec, risk_value
 
@@ -56,6 +59,7 @@ class MemberOutcomes:
     late_amount: np.ndarray  # violation share of lateness
     other_violation: np.ndarray  # land, depth, zones, heading, RPM range (0 if only weather)
     sea_keeping: np.ndarray  # bool: a `SEA_KEEPING` limit exceeded on some leg
+    voyage: MemberVoyage | None = None  # heave-to and RTA recovery, rows member-major
 
     def probability(self, event: np.ndarray) -> np.ndarray:
         """Weighted share of members where `event` (M, pop) holds."""
@@ -63,8 +67,10 @@ class MemberOutcomes:
 
 
 def member_outcomes(problem: RouteProblem, ev: RouteEvaluation, members: int,
-                    weights: np.ndarray) -> MemberOutcomes:
-    """Split a member-major evaluation (M * pop rows) into per-member outcomes."""
+                    weights: np.ndarray, fast: FastEvaluator | None = None) -> MemberOutcomes:
+    """Split a member-major evaluation (M * pop rows) into per-member outcomes; with the
+    evaluator `fast` (its ship model) fuel, ETA and objective count heave-to and RTA
+    recovery (`route.heavy_seas`), as every plan sailed on members is judged."""
     shape = (members, -1)
     active = ev.legs["duration_s"] > 0
     limit = problem.limits.max_hs_m
@@ -74,18 +80,25 @@ def member_outcomes(problem: RouteProblem, ev: RouteEvaluation, members: int,
         excess = np.maximum(0.0, np.nan_to_num(ev.legs["hs_m"]) - limit) / max(limit, 1e-9)
         hs_excess = np.where(active, excess, 0.0).sum(axis=1)
     late_h = np.maximum(0.0, ev.eta_s - problem.rta_s) / 3600.0
+    other = np.maximum(ev.violation - hs_excess - np.where(late_h > 0, 1.0 + late_h, 0.0), 0.0)
+    fuel, eta, objective, voyage = ev.fuel_t, ev.eta_s, ev.objective, None
+    if fast is not None:
+        voyage = member_voyage(problem, ev, heave_to_of(fast.env.model.ship))
+        fuel, eta = voyage.fuel_t, voyage.eta_s
+        objective = objective + (objective_of(problem, fuel, ev.distance_m, eta)
+                                 - objective_of(problem, ev.fuel_t, ev.distance_m, ev.eta_s))
+        late_h = np.maximum(0.0, eta - problem.rta_s) / 3600.0
     late_amount = np.where(late_h > 0, 1.0 + late_h, 0.0)
-    other = np.maximum(ev.violation - hs_excess - late_amount, 0.0)
     leg_or = np.bitwise_or.reduce(ev.leg_flags, axis=1)
     # what only the weather of a member decides is a chance event, not a hard violation
     other = np.where((leg_or & ~(SEA_KEEPING | np.uint32(FLAG_WAVE_LIMIT | FLAG_RTA))) != 0,
                      other, 0.0)
     hs_hit = (leg_or & np.uint32(FLAG_WAVE_LIMIT)) != 0
-    return MemberOutcomes(weights, ev.objective.reshape(shape), ev.fuel_t.reshape(shape),
-                          ev.eta_s.reshape(shape), hs_hit.reshape(shape),
+    return MemberOutcomes(weights, objective.reshape(shape), fuel.reshape(shape),
+                          eta.reshape(shape), hs_hit.reshape(shape),
                           (late_h > 0).reshape(shape), hs_excess.reshape(shape),
                           late_amount.reshape(shape), other.reshape(shape),
-                          ((leg_or & SEA_KEEPING) != 0).reshape(shape))
+                          ((leg_or & SEA_KEEPING) != 0).reshape(shape), voyage)
 
 
 def chance_excess(out: MemberOutcomes, spec: RiskSpec) -> dict[str, np.ndarray]:
@@ -127,7 +140,7 @@ def risk_evaluate_outcomes(fast: FastEvaluator, spec: RiskSpec, x: np.ndarray
     members = fast.member_count
     ev = fast.evaluate_members(x)
     weights = fast.member_weights
-    out = member_outcomes(fast.problem, ev, members, weights)
+    out = member_outcomes(fast.problem, ev, members, weights, fast)
     pop = len(x)
     base = ev.take(np.arange(pop))
     flags = np.bitwise_or.reduce(ev.flags.reshape(members, pop), axis=0)

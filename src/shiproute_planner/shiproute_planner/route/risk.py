@@ -5,8 +5,10 @@ a risk measure reduces them to the one number the GA minimises: `mean` (expected
 `cvar:ALPHA` (conditional value at risk: the expected value of the worst 1 - ALPHA share of
 the members' probability, Rockafellar & Uryasev, J. Risk 2(3), 2000) or `worst` (the maximum).
 Chance constraints bound the probability (member weight) that the route meets a significant
-wave height above the ship's limit anywhere along it, and that it arrives late:
-P <= p_max, with p_max = 0 (the default) asking it of every member.
+wave height above the ship's limit anywhere along it, and that it arrives late (a member's
+delay counted after heave-to and the propeller-law recovery of `route.heavy_seas`, so late
+means even MCR cannot make the RTA): P <= p_max, with p_max = 0 (the default) asking it of
+every member.
 """
 
 from __future__ import annotations

@@ -38,3 +38,16 @@ def ensemble(winds_m_s: list[float], hs_m: list[float]) -> xr.Dataset:
 def two_members() -> xr.Dataset:
     """Member 0: 5 m/s westerly, 1.5 m sea; member 1: 18 m/s easterly, 5 m sea."""
     return ensemble([5.0, -18.0], [1.5, 5.0])
+
+
+@pytest.fixture(scope="session")
+def over_limit_members() -> xr.Dataset:
+    """Member 0: 5 m/s westerly, 1.5 m sea; member 1: 18 m/s westerly, 9 m sea (above the
+    4,600 TEU ship's 8 m limit)."""
+    return ensemble([5.0, 18.0], [1.5, 9.0])
+
+
+@pytest.fixture(scope="session")
+def head_sea_forecast() -> xr.Dataset:
+    """One deterministic forecast: 12 m/s from the east, 4 m sea from the east, everywhere."""
+    return ensemble([-12.0], [4.0]).isel(member=0).drop_vars("member_label")

@@ -28,10 +28,11 @@ def _ensemble_sampler():
 def storm_plans(land_mask):
     """(risk-aware plan, plan on the members' mean) of the 20-member storm scenario.
 
-    cvar:0.9 weighs the worst 10 % of the members' fuel; P(Hs > limit) <= 0.1 asks the route
-    to keep under the ship's 8 m limit in all but two of the 20 members; P(late) <= 0.5 asks
-    it to be on time at least as often as a plan timed to the RTA on the mean forecast is
-    (half the members are worse than their mean)."""
+    cvar:0.9 weighs the worst 10 % of the members' fuel (the P90 the check compares lies at
+    its edge); P(Hs > limit) <= 0.1 asks the route to keep under the ship's 8 m limit in all
+    but two of the 20 members, so the P90 member is one that never heaves to; P(late) <= 0.5
+    (late: a delay even MCR cannot make up) is left as loose as a coin toss so that the
+    comparison is won on fuel and seas, not on lateness bought with a tighter bound."""
     sampler = _ensemble_sampler()
     kw = dict(budget_s=1e6, max_generations=25, land=land_mask, seed=0,
               default_bathymetry=True)
@@ -73,22 +74,23 @@ def test_risk_aware_plan_meets_high_seas_less_often_and_states_every_missed_boun
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason=(
-    "known miss (#19 check 1), on P90 fuel: measured with the risk front (every candidate the "
-    "risk GA evaluates on the 20 members, best cvar:0.9 per exposure), seed 0, 25 and 60 "
-    "generations: no route below the mean plan's P(Hs > limit) 0.75 comes within ~20 t of "
-    "the best 0.75 route at P90, while the mean plan lies only ~10 t above that route. "
-    "(P(Hs), P90 t) of whole plans, 25 gen: mean plan (0.75, 636.3); risk plan asking 1.0 "
-    "(0.75, 621.4), 0.7 (0.70, 640.9), 0.5 (0.50, 651.8), 0.1 (0.15, 660.5); 60 gen: mean "
-    "(0.75, 627.3), asking 1.0 (0.75, 616.6), 0.7 (0.65, 636.0). The members' fuel counts "
-    "a stage in seas above the ship's limit as sailed at the planned RPM (no voluntary speed "
-    "reduction): the storm members are not dearer enough for a detour to pay at P90"))
 def test_risk_aware_plan_has_lower_p90_fuel_and_hs_risk_than_the_mean_plan(storm_plans):
-    """The issue's check 1: over the same members, P90 fuel and P(Hs > limit) both lower."""
+    """The issue's check 1: over the same members, P90 fuel and P(Hs > limit) both lower.
+
+    Both plans are sailed on the members with the same heavy-seas physics (heave-to above
+    the 8 m limit, then the fuel to still meet the RTA, `route.heavy_seas`), stated in both;
+    the mean plan meets seas above the limit in most members and pays for it there."""
     risky, mean = storm_plans
     a, b = risky.extra["ensemble"], mean.extra["ensemble"]
     assert a["p_hs_violation"] < b["p_hs_violation"]
     assert a["fuel_t"]["p90"] < b["fuel_t"]["p90"]
+    for block in (a, b):
+        heavy = block["heavy_seas"]
+        assert "hove to" in heavy["model"] and "propeller law" in heavy["model"]
+        # a member hove to is one that meets seas above the limit, and only such a one
+        assert heavy["p_heave_to"] == pytest.approx(block["p_hs_violation"])
+    assert all(any("members sailed with heavy-seas physics" in w for w in p.warnings)
+               for p in (risky, mean))
 
 
 @pytest.mark.parametrize("extra, words", [

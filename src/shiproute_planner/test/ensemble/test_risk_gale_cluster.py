@@ -97,12 +97,6 @@ def test_risk_aware_plan_goes_round_a_gale_half_the_members_put_on_the_great_cir
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason=(
-    "known miss (#19 check 1 on the independent case), on P90 fuel: measured (seed 3, 20 "
-    "generations) risk plan (P(Hs) 0.0, P90 143.0 t) vs mean plan (0.5, 113.3 t); the mean "
-    "plan's gale members burn less (108.9 t) than its calm ones (113.3 t): a 24 m/s "
-    "following gale and 11 m following sea are counted at the planned RPM, with no speed "
-    "reduction above the ship's Hs limit, so going round (+~30 t in every member) cannot pay"))
 def test_risk_aware_plan_also_has_lower_p90_fuel_than_the_mean_plan_round_the_gale(
         gale_plans):
     """Check 1 on the independent case: P90 fuel and P(Hs > limit) both below the mean plan's."""

@@ -2,13 +2,15 @@
 `storm_march_ensemble` scenario.
 
 Plans once on every member with a risk measure (default cvar:0.9, P(Hs > limit) <= 0.1,
-P(late) <= 0.5: as often late as a plan on the mean forecast is) and once on the members'
-mean forecast alone; both plans are then sailed on the same members (the plan's `ensemble`
-block). Reports the cold plan time of the risk-aware plan (the sampler is packed before the
-timing, `load_and_pack_s`; land mask, sea lanes and the first use of the kernels are inside
-it, as for a first plan), its P90 fuel and P(Hs > limit), the same of the mean plan, the
-process's peak RSS and the 16-bit packed wire size of the whole cycle
-(`shiproute_weather.wire.packing`: codes + offset and scale per field and valid time).
+P(late) <= 0.5: late being a delay even MCR cannot make up) and once on the members' mean
+forecast alone; both plans are then sailed on the same members (the plan's `ensemble`
+block), with heave-to above the ship's wave limit and the fuel to still meet the RTA
+(`route.heavy_seas`). Reports the cold plan time of the risk-aware plan (the sampler is
+packed before the timing, `load_and_pack_s`; land mask, sea lanes and the first use of the
+kernels are inside it, as for a first plan), its P90 fuel and P(Hs > limit), the same of
+the mean plan, how often each heaves to, the process's peak RSS and the 16-bit packed wire
+size of the whole cycle (`shiproute_weather.wire.packing`: codes + offset and scale per
+field and valid time).
 """
 
 from __future__ import annotations
@@ -83,6 +85,9 @@ def run(budget_s: float, risk: str, p_hs_max: float, p_late_max: float, seed: in
         "mean_plan_p_hs_violation": round(ens_mean["p_hs_violation"], 3),
         "mean_plan_p_late": round(ens_mean["p_late"], 3),
         "mean_plan_mean_fuel_t": round(ens_mean["fuel_t"]["mean"], 2),
+        "p_heave_to": round(ens["heavy_seas"]["p_heave_to"], 3),
+        "mean_plan_p_heave_to": round(ens_mean["heavy_seas"]["p_heave_to"], 3),
+        "heavy_seas_model": ens["heavy_seas"]["model"],
         "risk_tradeoff": [w for w in plan.warnings if w.startswith("risk trade-off")],
         "generations": plan.generations, "evaluations": plan.evaluations,
         "planner_rss_mb": round(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024, 1),
