@@ -113,3 +113,44 @@ def test_repeated_cycles_keep_one_cycle_in_memory(tmp_path: Path) -> None:
         f"MB (one cycle on the wire: {wire_mb:.1f} MB)")
     assert end - r1 <= DRIFT_MB, f"after {LATER_LOADS} loads {end:.1f} MB vs R1 {r1:.1f} MB"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a.nc", "b.nc"]  # spool unlinked
+
+
+def test_republished_cycle_comes_from_the_spool(tmp_path: Path) -> None:
+    """publish_period_s > 0: the cycle in force is sent again from its spool file, byte-equal
+    slices of the same publication, each round stamped anew."""
+    from rclpy.serialization import serialize_message
+    from shiproute_core.topics import FORECAST_SLICES
+    from shiproute_weather.ros.node import latched
+
+    from shiproute_msgs.msg import ForecastSlice
+
+    src = tmp_path / "small.nc"
+    ds = small_canonical(3, cycle_id="rep-1")
+    ds.to_netcdf(src)
+    dom = random_domain_id()
+    with RosProcess.script("shiproute_weather_node", "--ros-args",
+                           "-p", f"forecast_files:=['{src}']", "-p", "publish_period_s:=0.5",
+                           "-p", f"spool_dir:={tmp_path}",
+                           domain_id=dom, name="weather") as node, ros_context(dom) as ctx:
+        node.wait_for_line(r"published cycle rep-1", timeout_s=60)
+        peer = rclpy.create_node("weather_republish_test", context=ctx)
+        got: list[ForecastSlice] = []
+        peer.create_subscription(ForecastSlice, FORECAST_SLICES, got.append, latched(50))
+        executor = SingleThreadedExecutor(context=ctx)
+        executor.add_node(peer)
+        try:
+            spin_until(executor, lambda: len({(m.header.stamp.sec, m.header.stamp.nanosec)
+                                               for m in got}) >= 3, 30, "three rounds")
+        finally:
+            executor.shutdown()
+            peer.destroy_node()
+    rounds: dict[tuple[int, int], list[ForecastSlice]] = {}
+    for m in got:
+        rounds.setdefault((m.header.stamp.sec, m.header.stamp.nanosec), []).append(m)
+    complete = [sorted(r, key=lambda m: m.slice_index) for r in rounds.values() if len(r) == 3]
+    assert len(complete) >= 2
+    assert {m.publication_id for r in complete for m in r} == {complete[0][0].publication_id}
+    for a, b in zip(complete[0], complete[1], strict=True):
+        a.header.stamp = b.header.stamp
+        assert serialize_message(a) == serialize_message(b)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["small.nc"]
