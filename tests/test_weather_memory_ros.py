@@ -29,9 +29,10 @@ pytestmark = pytest.mark.ros
 rclpy = pytest.importorskip("rclpy")
 pytest.importorskip("shiproute_msgs.msg")
 
+from diagnostic_msgs.msg import DiagnosticArray  # noqa: E402
 from rclpy.executors import SingleThreadedExecutor  # noqa: E402
 from rosproc import RosProcess, random_domain_id, ros_context, spin_until  # noqa: E402
-from shiproute_core.topics import FORECAST_LOAD  # noqa: E402
+from shiproute_core.topics import DIAGNOSTICS, FORECAST_LOAD  # noqa: E402
 from shiproute_weather.ingest.stream import BLOCK_TIMES  # noqa: E402
 from weather_fixtures import small_canonical  # noqa: E402
 
@@ -86,6 +87,10 @@ def test_repeated_cycles_keep_one_cycle_in_memory(tmp_path: Path) -> None:
         executor = SingleThreadedExecutor(context=ctx)
         executor.add_node(peer)
         client = peer.create_client(LoadForecast, FORECAST_LOAD)
+        diag: dict[str, str] = {}
+        peer.create_subscription(DiagnosticArray, DIAGNOSTICS, lambda m: diag.update(
+            {kv.key: kv.value for st in m.status if st.name.startswith("shiproute_weather")
+             for kv in st.values}), 10)
         try:
             def load(path: Path) -> None:
                 fut = client.call_async(LoadForecast.Request(paths=[str(path)]))
@@ -103,6 +108,8 @@ def test_repeated_cycles_keep_one_cycle_in_memory(tmp_path: Path) -> None:
                 load(a if k % 2 == 0 else b)
             time.sleep(1.0)
             peak, end = _status_mb(pid, "VmHWM"), _status_mb(pid, "VmRSS")
+            diag.clear()
+            spin_until(executor, lambda: "resident_mb" in diag, 10, "weather diagnostics")
         finally:
             executor.shutdown()
             peer.destroy_node()
@@ -113,6 +120,10 @@ def test_repeated_cycles_keep_one_cycle_in_memory(tmp_path: Path) -> None:
         f"MB (one cycle on the wire: {wire_mb:.1f} MB)")
     assert end - r1 <= DRIFT_MB, f"after {LATER_LOADS} loads {end:.1f} MB vs R1 {r1:.1f} MB"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a.nc", "b.nc"]  # spool unlinked
+    # the node states its memory and its queue: one load at a time, none waiting now
+    assert diag["loads_waiting"] == "0"
+    assert abs(float(diag["resident_mb"]) - end) <= DRIFT_MB
+    assert float(diag["resident_peak_mb"]) >= float(diag["resident_mb"])
 
 
 def test_republished_cycle_comes_from_the_spool(tmp_path: Path) -> None:

@@ -47,7 +47,7 @@ from .convert import (
     cycle_to_msg,
     slice_to_msg,
 )
-from .heap import return_freed_memory, return_large_blocks_at_once
+from .heap import resident_memory_mb, return_freed_memory, return_large_blocks_at_once
 from .spool import SliceSpool, publish_spooled, spool_slice
 
 DIAG_NAME = "shiproute_weather: forecast"
@@ -148,7 +148,8 @@ class WeatherNode(Node):
         if self.publish_period_s > 0:
             self.create_timer(self.publish_period_s, self._republish, callback_group=timers)
 
-        self.lock = threading.Lock()
+        self.lock = threading.Lock()  # state, diagnostics and the cycle in force
+        self.publish_lock = threading.Lock()  # one publication (or re-publication) at a time
         # each load is one publication: (this process's session, load number); subscribers
         # assemble slices per publication, so a reload is new and a restart never merges
         self.session = uuid.uuid4().hex[:12]
@@ -301,12 +302,13 @@ class WeatherNode(Node):
         kept for re-publication (publish_period_s > 0) or closed."""
         if self.publish_period_s <= 0:
             self._fresh_slice_publisher()
-        with self.lock:  # a re-publication of the previous cycle is not interleaved
+        with self.publish_lock:  # a re-publication of the previous cycle is not interleaved
             cycle.header.stamp = self.get_clock().now().to_msg()  # publication time
             self.cycle_pub.publish(cycle)
             publish_spooled(self.slice_pub, spool, self.get_clock().now().to_msg())
-            previous = self.current
-            self.current = (cycle, spool) if self.publish_period_s > 0 else None
+            with self.lock:
+                previous = self.current
+                self.current = (cycle, spool) if self.publish_period_s > 0 else None
         if previous is not None:
             previous[1].close()
         if self.publish_period_s <= 0:
@@ -345,6 +347,10 @@ class WeatherNode(Node):
 
     def _publish_diagnostics(self) -> None:
         with self.lock:
+            # loads run one at a time in arrival order; the ones behind it wait (none is
+            # dropped), so memory never holds two cycles being loaded
+            self.state["loads_waiting"] = str(self.requests.qsize())
+            self.state.update(resident_memory_mb())
             status = DiagnosticStatus(level=self.level, name=DIAG_NAME, message=self.message,
                                       hardware_id="shiproute_weather",
                                       values=[KeyValue(key=k, value=v)
