@@ -339,11 +339,17 @@ class WeatherNode(Node):
         return False, "", str(exc)
 
     def _republish(self) -> None:
-        with self.lock:
-            if self.current is not None:
-                self.cycle_pub.publish(self.current[0])
-                publish_spooled(self.slice_pub, self.current[1],
-                                 self.get_clock().now().to_msg())
+        with self.publish_lock:  # the spool in force is not closed while it is read
+            with self.lock:
+                current = self.current
+            if current is None:
+                return
+            try:
+                self.cycle_pub.publish(current[0])
+                publish_spooled(self.slice_pub, current[1], self.get_clock().now().to_msg())
+            except Exception as exc:  # a failed round must not end the node; the next may work
+                self.get_logger().error(f"re-publication of cycle {current[0].cycle_id} "
+                                        f"failed: {exc}")
 
     def _publish_diagnostics(self) -> None:
         with self.lock:
