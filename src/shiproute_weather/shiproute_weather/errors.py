@@ -72,3 +72,7 @@ class PackingError(WeatherError):
 
 class ForecastCoverageError(WeatherError):
     """A forecast does not cover the time (or place) it is asked for at all."""
+
+
+class SpoolError(WeatherError):
+    """The weather node's slice spool cannot store or give back a slice (disk full, short read)."""

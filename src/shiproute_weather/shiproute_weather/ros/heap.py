@@ -1,4 +1,5 @@
-"""Give freed heap memory back to the OS (glibc), so a node loading cycle after cycle stays flat.
+"""Give freed heap memory back to the OS (glibc), so a node loading cycle after cycle stays flat;
+and say how much the process holds.
 
 A load holds the decoded dataset (~180 MB float32 for the 16-day storm cycle) and its encoded
 slices for a moment; glibc keeps freed blocks in the heap otherwise, and by its dynamic mmap
@@ -39,3 +40,17 @@ def return_freed_memory() -> None:
     if libc is not None:
         with contextlib.suppress(AttributeError):
             libc.malloc_trim(0)
+
+
+def resident_memory_mb() -> dict[str, str]:
+    """This process's resident memory now and at its peak [MiB] (Linux VmRSS, VmHWM), as
+    diagnostics values; empty where /proc is absent."""
+    keys = {"VmRSS:": "resident_mb", "VmHWM:": "resident_peak_mb"}
+    out: dict[str, str] = {}
+    with contextlib.suppress(OSError, ValueError, IndexError), \
+            open("/proc/self/status") as f:
+        for line in f:
+            name = keys.get(line.split(":", 1)[0] + ":")
+            if name is not None:
+                out[name] = f"{int(line.split()[1]) / 1024:.1f}"
+    return out

@@ -46,9 +46,9 @@ from .convert import (
     check_encoding,
     cycle_to_msg,
     slice_to_msg,
-    wire_bytes,
 )
-from .heap import return_freed_memory, return_large_blocks_at_once
+from .heap import resident_memory_mb, return_freed_memory, return_large_blocks_at_once
+from .spool import SliceSpool, publish_spooled, spool_slice
 
 DIAG_NAME = "shiproute_weather: forecast"
 
@@ -131,6 +131,10 @@ class WeatherNode(Node):
             self.set_parameters([Parameter("slice_encoding", value=DEFAULT_SLICE_ENCODING)])
         self.add_on_set_parameters_callback(self._on_set_parameters)
         self.publish_period_s = float(p("publish_period_s", 0.0).value)
+        self.spool_dir = str(p("spool_dir", "", ParameterDescriptor(
+            description="directory of the unlinked file holding a cycle's encoded slices "
+                        "between load and publication (one cycle's wire bytes on disk; "
+                        "'' = the system's temporary directory)")).value)
 
         self.cycle_pub = self.create_publisher(ForecastCycle, FORECAST_CYCLE, latched(1))
         self.slice_pub = self.create_publisher(ForecastSlice, FORECAST_SLICES,
@@ -144,7 +148,8 @@ class WeatherNode(Node):
         if self.publish_period_s > 0:
             self.create_timer(self.publish_period_s, self._republish, callback_group=timers)
 
-        self.lock = threading.Lock()
+        self.lock = threading.Lock()  # state, diagnostics and the cycle in force
+        self.publish_lock = threading.Lock()  # one publication (or re-publication) at a time
         # each load is one publication: (this process's session, load number); subscribers
         # assemble slices per publication, so a reload is new and a restart never merges
         self.session = uuid.uuid4().hex[:12]
@@ -159,7 +164,8 @@ class WeatherNode(Node):
                                       "loads_refused_last_reason": "none"}
         self.level = DiagnosticStatus.WARN
         self.message = "no forecast cycle loaded yet"
-        self.current: tuple[ForecastCycle, list[ForecastSlice]] | None = None
+        # the cycle in force and its spooled slices, kept only to re-publish them
+        self.current: tuple[ForecastCycle, SliceSpool] | None = None
         self.requests: queue.Queue[LoadRequest | None] = queue.Queue()
         self.worker = threading.Thread(target=self._work, name="forecast-loader", daemon=True)
         self.worker.start()
@@ -237,42 +243,38 @@ class WeatherNode(Node):
 
     def _load(self, req: LoadRequest) -> tuple[bool, str, str]:
         t0 = time.monotonic()
+        publication = f"{self.session}-{self.loads + 1}"
+        encoding = str(self.get_parameter("slice_encoding").value)
+        spool: SliceSpool | None = None
         try:
             if not req.paths:
                 raise WeatherError("no paths given")
-            # the whole cycle is encoded before it is announced: an encoding failure leaves
-            # the last good cycle in force, and the announcement is followed by slices at
-            # the transport's pace (no encoding sits in between)
-            encoding = str(self.get_parameter("slice_encoding").value)
+            # the whole cycle is encoded (to the spool file) before it is announced: a failure
+            # leaves the last good cycle in force, and the announcement is followed by slices
+            # at the transport's pace (no encoding sits in between)
             cfg = (self.cfg_base if req.labels is None
                    else replace(self.cfg_base, member_labels=req.labels))
-            info, kept, notes, how = load_cycle(req.paths, cfg, req.members or (),
-                                                lambda s: slice_to_msg(s, None, encoding))
-            nbytes = max((wire_bytes(m) for m in kept), default=0)
-            total_bytes = sum(wire_bytes(m) for m in kept)
+            spool = SliceSpool(self.spool_dir)
+            info, sizes, notes, how = load_cycle(
+                req.paths, cfg, req.members or (),
+                lambda s: spool_slice(spool, slice_to_msg(s, None, encoding), publication))
+            nbytes, total_bytes = max(sizes, default=0), sum(sizes)
             budget = wire_summary(info, total_bytes, nbytes, encoding, cfg)
             cycle = cycle_to_msg(info)
         except Exception as exc:  # a bad file must never stop the node
+            if spool is not None:
+                spool.close()
             return self._failed(req, exc)
         self.loads += 1
-        publication = f"{self.session}-{self.loads}"
         cycle.publication_id = publication
-        if self.publish_period_s <= 0:
-            self._fresh_slice_publisher()
-        cycle.header.stamp = self.get_clock().now().to_msg()  # publication time
-        self.cycle_pub.publish(cycle)
-        stamp = self.get_clock().now().to_msg()
-        for k, m in enumerate(kept):
-            m.header.stamp = stamp
-            m.publication_id = publication
-            self.slice_pub.publish(m)
-            if self.publish_period_s <= 0:
-                kept[k] = None  # in the DDS history now: free it
-        if self.publish_period_s <= 0:
-            kept = []
+        try:
+            self._publish_cycle(cycle, spool)
+        except Exception as exc:  # e.g. the spool file unreadable: the node keeps serving
+            spool.close()
+            return self._failed(req, WeatherError(f"cycle {info.cycle_id} publication "
+                                                  f"{publication} not completed: {exc}"))
         dt = time.monotonic() - t0
         with self.lock:
-            self.current = (cycle, kept) if self.publish_period_s > 0 else None
             n = int(self.state["cycles_published"]) + 1
             self.state.update(cycle_id=info.cycle_id, slices=str(info.slice_count),
                               members=str(info.member_count),
@@ -286,13 +288,31 @@ class WeatherNode(Node):
             self.level = DiagnosticStatus.WARN if notes else DiagnosticStatus.OK
             self.message = f"serving cycle {info.cycle_id} ({info.slice_count} slices, " \
                            f"{info.member_count} member(s))"
-        return_freed_memory()  # the loaded dataset and encoded slices: back to the OS
+        return_freed_memory()  # the decoded blocks and encoding buffers: back to the OS
         self.get_logger().info(f"published cycle {info.cycle_id}: {info.slice_count} slices "
                                f"of {info.member_count} member(s) "
                                f"({encoding}, {nbytes} B of field values each) in {dt:.2f} s "
                                f"from {req.paths}")
         self._publish_diagnostics()
         return True, info.cycle_id, "; ".join(notes)
+
+    def _publish_cycle(self, cycle: ForecastCycle, spool: SliceSpool) -> None:
+        """Announce the cycle, then publish its spooled slices one at a time (each slice's
+        bytes live only until the middleware has copied them into its history). The spool is
+        kept for re-publication (publish_period_s > 0) or closed."""
+        if self.publish_period_s <= 0:
+            self._fresh_slice_publisher()
+        with self.publish_lock:  # a re-publication of the previous cycle is not interleaved
+            cycle.header.stamp = self.get_clock().now().to_msg()  # publication time
+            self.cycle_pub.publish(cycle)
+            publish_spooled(self.slice_pub, spool, self.get_clock().now().to_msg())
+            with self.lock:
+                previous = self.current
+                self.current = (cycle, spool) if self.publish_period_s > 0 else None
+        if previous is not None:
+            previous[1].close()
+        if self.publish_period_s <= 0:
+            spool.close()
 
     def _fresh_slice_publisher(self) -> None:
         """Replace the slice publisher before a new cycle goes out: its transient-local history
@@ -319,15 +339,24 @@ class WeatherNode(Node):
         return False, "", str(exc)
 
     def _republish(self) -> None:
-        with self.lock:
-            current = self.current
-        if current is not None:
-            self.cycle_pub.publish(current[0])
-            for m in current[1]:
-                self.slice_pub.publish(m)
+        with self.publish_lock:  # the spool in force is not closed while it is read
+            with self.lock:
+                current = self.current
+            if current is None:
+                return
+            try:
+                self.cycle_pub.publish(current[0])
+                publish_spooled(self.slice_pub, current[1], self.get_clock().now().to_msg())
+            except Exception as exc:  # a failed round must not end the node; the next may work
+                self.get_logger().error(f"re-publication of cycle {current[0].cycle_id} "
+                                        f"failed: {exc}")
 
     def _publish_diagnostics(self) -> None:
         with self.lock:
+            # loads run one at a time in arrival order; the ones behind it wait (none is
+            # dropped), so memory never holds two cycles being loaded
+            self.state["loads_waiting"] = str(self.requests.qsize())
+            self.state.update(resident_memory_mb())
             status = DiagnosticStatus(level=self.level, name=DIAG_NAME, message=self.message,
                                       hardware_id="shiproute_weather",
                                       values=[KeyValue(key=k, value=v)
