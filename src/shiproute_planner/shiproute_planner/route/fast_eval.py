@@ -21,7 +21,8 @@ from . import _route_kernel as rk
 from . import member_kernel as mk
 from .encoding import split_genes
 from .environment import PERF_FIELDS, Environment
-from .evaluation import RouteEvaluation, clear_ports, finish
+from .evaluation import RouteEvaluation
+from .fast_finish import Ends, finish_fast
 from .problem import RouteProblem
 
 # out_f rows / out_b rows of ship.fast_kernel.evaluate_kernel -> PERF_FIELDS
@@ -158,7 +159,8 @@ class FastEvaluator:
         legs["duration_s"] = duration
         legs["fuel_t"] = legs["fuel_t_per_h"] * duration / 3600.0
         legs["turn_deg"] = np.zeros((pop, m))
-        return finish(p, self.land, lon, lat, t, legs, self._land_samples(lon, lat, distance))
+        scan = None if self.land is None else self._land_verdicts
+        return finish_fast(p, lon, lat, t, legs, scan)
 
     def sail_stage(self, lon: np.ndarray, lat: np.ndarray, t: np.ndarray, rpm: np.ndarray,
                    heading_deg: np.ndarray, duration_s: float
@@ -182,13 +184,11 @@ class FastEvaluator:
                         self.problem.depart_s, *self._weather, self._limits, *self._ship, eta)
         return eta
 
-    def _land_samples(self, lon, lat, distance) -> np.ndarray | None:
-        """Land samples per leg from the compiled scan (`ga_land_hits`); coastal cells it
-        meets for the first time are resolved exactly and their legs scanned again."""
-        if self.land is None:
-            return None
-        ends = clear_ports(self.problem, lon, lat, distance)
-        return self.segment_land_samples(*ends).reshape(distance.shape)
+    def _land_verdicts(self, ends: Ends) -> np.ndarray:
+        """Land samples per leg (ends (pop, m) with the ports cut off) from the compiled scan
+        (`ga_land_hits`); coastal cells it meets for the first time are resolved exactly and
+        their legs scanned again."""
+        return self.segment_land_samples(*ends).reshape(ends[0].shape)
 
     def segment_land_samples(self, lon0: np.ndarray, lat0: np.ndarray, lon1: np.ndarray,
                              lat1: np.ndarray) -> np.ndarray:
