@@ -4,9 +4,9 @@ with the per-call overheads removed.
 One compiled call (`_route_kernel.generate_routes`) generates a whole population: per stage
 the weather package's trilinear kernel, the sea state, the ship model's kernel and a geodesic
 step (RK4 on the WGS 84 geodesic ODE instead of pyproj). Land: a coarse (0.5 deg, dilated)
-raster clears open-ocean legs; the rest are sampled at the exact scan's points against the
-0.05-deg raster with coastal cells counted as land (`_route_kernel.ga_land_hits`), so a leg the
-GA calls clear is clear to the exact test too. Agreement with the exact evaluator is tested;
+raster clears open-ocean legs (`coarse_land`); the rest are sampled at the exact scan's points
+against the 0.05-deg raster with coastal cells counted as land (`_route_kernel.ga_land_hits`),
+so a leg the GA calls clear is clear to the exact test too. Agreement with the exact evaluator is tested;
 the planner re-evaluates its final choice exactly.
 """
 
@@ -15,6 +15,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..chunks import in_chunks
+from ..geo.clear_distance import banded_clear_distance_deg
 from ..geo.landmask import LandMask
 from . import _fast_kernels as fk
 from . import _route_kernel as rk
@@ -68,12 +69,7 @@ class FastEvaluator:
             self._members = env.sampler.members
         self._coarse = None
         if land is not None:
-            key = id(land)
-            self._coarse_deg = land.cell_deg * COARSE_FACTOR
-            if key not in _COARSE:
-                coarse = fk.coarse_land_raster(np.asarray(land.raster), COARSE_FACTOR)
-                _COARSE[key] = (coarse, fk.clear_distance_deg(coarse, self._coarse_deg))
-            self._coarse, self._clear = _COARSE[key]
+            self._coarse, self._clear, self._coarse_deg = coarse_land(land)
             self._raster = np.asarray(land.raster)
             self._sea_dist = np.asarray(land.sea_distance_cells)
 
@@ -221,6 +217,25 @@ class FastEvaluator:
                 fine.add(np.concatenate(misses))
             todo = todo[got < 0]
         return out
+
+
+def coarse_land(land: LandMask) -> tuple[np.ndarray, np.ndarray, float]:
+    """The land scan's near-land filter of `land` (built once per mask): the coarse raster
+    (`COARSE_FACTOR` cells, land or coast in or next to a block), per block the arc [deg] to
+    the nearest flagged block, the larger of the polar-shrink bound and each latitude band's
+    (`geo.clear_distance`; about 1.4 times the polar jumps along mid-latitude routes, the
+    same samples decide), and the block size [deg]."""
+    key = id(land)
+    coarse_deg = land.cell_deg * COARSE_FACTOR
+    if key not in _COARSE:
+        coarse = fk.coarse_land_raster(np.asarray(land.raster), COARSE_FACTOR)
+        # both are lower bounds of the arc to land: so is the larger (the banded one is
+        # capped at its reach, the polar one is not)
+        clear = np.maximum(banded_clear_distance_deg(coarse, coarse_deg),
+                           fk.clear_distance_deg(coarse, coarse_deg))
+        _COARSE[key] = (coarse, np.ascontiguousarray(clear))
+    coarse, clear = _COARSE[key]
+    return coarse, clear, coarse_deg
 
 
 def fast_evaluator(problem: RouteProblem, env: Environment,
