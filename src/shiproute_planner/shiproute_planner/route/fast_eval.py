@@ -6,8 +6,9 @@ the weather package's trilinear kernel, the sea state, the ship model's kernel a
 step (RK4 on the WGS 84 geodesic ODE instead of pyproj). Land: a coarse (0.5 deg, dilated)
 raster clears open-ocean legs (`coarse_land`); the rest are sampled at the exact scan's points
 against the 0.05-deg raster with coastal cells counted as land (`_route_kernel.ga_land_hits`),
-so a leg the GA calls clear is clear to the exact test too. Agreement with the exact evaluator is tested;
-the planner re-evaluates its final choice exactly.
+so a leg the GA calls clear is clear to the exact test too. Agreement with the exact evaluator
+is tested; the planner re-evaluates its final choice exactly. Constraints and totals:
+`fast_finish` (compiled, the same bits as `evaluation.finish`).
 """
 
 from __future__ import annotations
