@@ -24,7 +24,7 @@ from . import member_kernel as mk
 from .encoding import split_genes
 from .environment import PERF_FIELDS, Environment
 from .evaluation import RouteEvaluation
-from .fast_finish import Ends, finish_fast
+from .fast_finish import Ends, Work, finish_fast
 from .problem import RouteProblem
 
 # out_f rows / out_b rows of ship.fast_kernel.evaluate_kernel -> PERF_FIELDS
@@ -181,42 +181,49 @@ class FastEvaluator:
                         self.problem.depart_s, *self._weather, self._limits, *self._ship, eta)
         return eta
 
-    def _land_verdicts(self, ends: Ends) -> np.ndarray:
+    def _land_verdicts(self, ends: Ends, alongside: Work | None = None) -> np.ndarray:
         """Land samples per leg (ends (pop, m) with the ports cut off) from the compiled scan
         (`ga_land_hits`); coastal cells it meets for the first time are resolved exactly and
-        their legs scanned again."""
-        return self.segment_land_samples(*ends).reshape(ends[0].shape)
+        their legs scanned again. `alongside`: other work over the same legs, run with the
+        first scan on the same threads."""
+        return self.segment_land_samples(*ends, alongside=alongside).reshape(ends[0].shape)
 
     def segment_land_samples(self, lon0: np.ndarray, lat0: np.ndarray, lon1: np.ndarray,
-                             lat1: np.ndarray) -> np.ndarray:
+                             lat1: np.ndarray, alongside: Work | None = None) -> np.ndarray:
         """The GA's land verdict (samples on land, 0 = clear) of great-circle segments
-        (flattened); needs a land mask."""
+        (flattened); needs a land mask. `alongside(a, b)`: work on segments a..b run in the
+        first pass's threads (one fan-out for both)."""
         land = self.land
         assert land is not None, "FastEvaluator built without a land mask"
         ends = [np.ascontiguousarray(e, dtype=float).ravel() for e in (lon0, lat0, lon1, lat1)]
         out = np.empty(ends[0].size, dtype=np.int64)
         fine = land.fine_coast
         todo = np.arange(out.size)
+        first = True
         while todo.size:
-            x0, y0, x1, y1 = (e[todo] for e in ends)
+            x0, y0, x1, y1 = ends if first else [e[todo] for e in ends]
             got = np.empty(todo.size, dtype=np.int64)
             misses: list[np.ndarray] = []
 
             def scan(a: int, b: int, x0: np.ndarray = x0, y0: np.ndarray = y0,
                      x1: np.ndarray = x1, y1: np.ndarray = y1, got: np.ndarray = got,
-                     misses: list[np.ndarray] = misses) -> None:
+                     misses: list[np.ndarray] = misses, extra: Work | None = alongside
+                     ) -> None:
                 buf = np.empty(MISS_BUFFER, dtype=np.int64)
                 n = rk.ga_land_hits(x0[a:b], y0[a:b], x1[a:b], y1[a:b], self._coarse,
                                     self._clear, self._coarse_deg, self._raster, self._sea_dist,
                                     land.cell_deg, self.problem.land_spacing_deg,
                                     fine.keys, fine.fine, buf, got[a:b])
                 misses.append(buf[:n])
+                if extra is not None:
+                    extra(a, b)
 
             in_chunks(todo.size, scan)
             out[todo] = got
             if any(m.size for m in misses):
                 fine.add(np.concatenate(misses))
             todo = todo[got < 0]
+            first, alongside = False, None
         return out
 
 

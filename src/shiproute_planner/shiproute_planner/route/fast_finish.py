@@ -16,11 +16,15 @@ import numpy as np
 
 from shiproute_core import flags as fl
 
+from ..chunks import in_chunks
+from ..geo.depth_scan import MIN_CHUNK as DEPTH_MIN_CHUNK
+from ..geo.depth_scan import capped_scan
 from . import _finish_kernel as kf
 from .evaluation import PILOTAGE_DEPTH_M, RouteEvaluation, finish, objective_of
 from .problem import RouteLimits, RouteProblem
 
 Ends = tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]
+Work = Callable[[int, int], None]  # work on legs a..b of a flattened population
 _BITS = np.array([fl.FLAG_LAND, fl.FLAG_SLAMMING, fl.FLAG_DECK_WETNESS,
                   fl.FLAG_PROPELLER_EMERGENCE, fl.FLAG_HEADING_CHANGE, fl.FLAG_RPM_RANGE,
                   fl.FLAG_WAVE_LIMIT, fl.FLAG_WIND_LIMIT, fl.FLAG_IMO_SURF_RIDING,
@@ -60,27 +64,36 @@ def _limit_vectors(limits: RouteLimits, with_ukc: bool) -> tuple[np.ndarray, np.
 
 def finish_fast(problem: RouteProblem, lon: np.ndarray, lat: np.ndarray, time_s: np.ndarray,
                 legs: dict[str, np.ndarray],
-                land_samples: Callable[[Ends], np.ndarray] | None) -> RouteEvaluation:
-    """`finish(problem, land, lon, lat, time_s, legs, land_samples(ends))` where `ends` are
-    the legs with `problem.port_clearance_m` cut off at the ports (None: no land check)."""
+                land_samples: Callable[[Ends, Work | None], np.ndarray] | None
+                ) -> RouteEvaluation:
+    """`finish(problem, land, lon, lat, time_s, legs, land_samples(ends, None))` where `ends`
+    are the legs with `problem.port_clearance_m` cut off at the ports (None: no land check).
+    The depth scan is handed to `land_samples` as work to run on the same threads."""
     distance = legs["distance_m"]
     if problem.limits.zones is not None:
         samples = None if land_samples is None else land_samples(
-            port_cut_ends(problem, lon, lat, distance, problem.port_clearance_m))
+            port_cut_ends(problem, lon, lat, distance, problem.port_clearance_m), None)
         return finish(problem, None, lon, lat, time_s, legs, samples)
     active = legs["duration_s"] > 0
+    under_keel = problem.limits.under_keel
+    depth_scan: Work | None = None
+    if under_keel is not None:  # not in the pilotage waters next to ports and approach ends
+        # `UnderKeel.leg_clearance` (capped) with its scan run alongside the land scan
+        ends = port_cut_ends(problem, lon, lat, distance, PILOTAGE_DEPTH_M)
+        need = under_keel.required_depth_m(legs["stw_m_s"], legs["hs_m"])
+        depth, depth_scan = capped_scan(under_keel.bathymetry, *ends, need)
     if land_samples is None:
         legs["land_samples"] = np.zeros(active.shape, dtype=np.int64)
+        if depth_scan is not None:
+            in_chunks(depth.size, depth_scan, DEPTH_MIN_CHUNK)
     else:
         ends = port_cut_ends(problem, lon, lat, distance, problem.port_clearance_m)
-        legs["land_samples"] = np.where(active, land_samples(ends), 0)
-    under_keel = problem.limits.under_keel
+        legs["land_samples"] = np.where(active, land_samples(ends, depth_scan), 0)
     ukc = None
-    if under_keel is not None:  # not in the pilotage waters next to ports and approach ends
-        ends = port_cut_ends(problem, lon, lat, distance, PILOTAGE_DEPTH_M)
-        depth, ukc = under_keel.leg_clearance(*ends, legs["stw_m_s"], legs["hs_m"])
+    if under_keel is not None:
+        depth = depth.reshape(active.shape)
         legs["min_depth_m"] = np.where(active, depth, np.nan)
-        legs["ukc_m"] = ukc = np.where(active, ukc, np.nan)
+        legs["ukc_m"] = ukc = np.where(active, depth - need, np.nan)
     shape = active.shape
     leg_f = np.empty((kf.N_LEG_F, *shape))
     for row, key in ((kf.F_SLAM, "p_slamming"), (kf.F_WET, "p_deck_wetness"),

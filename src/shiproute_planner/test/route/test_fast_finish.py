@@ -1,6 +1,7 @@
-"""The fast evaluator's compiled finish against `evaluation.finish`, the numpy reference every
-other evaluator uses: the same RouteEvaluation bit for bit (flags, violations, totals,
-objective, leg arrays), on a real population and on legs full of edge values."""
+"""The fast evaluator's compiled finish (its depth scan run on the land scan's threads)
+against `evaluation.finish`, the numpy reference every other evaluator uses: the same
+RouteEvaluation bit for bit (flags, violations, totals, objective, leg arrays), on a real
+population and on legs full of edge values."""
 
 from __future__ import annotations
 
@@ -8,7 +9,9 @@ import dataclasses
 
 import numpy as np
 import pytest
+from shiproute_planner.depth_setup import depth_limits
 from shiproute_planner.experiments.bench.planner import ga_like_population
+from shiproute_planner.geo.bathymetry import default_depth_files
 from shiproute_planner.plan_setup import make_environment, route_limits, to_posix_s
 from shiproute_planner.route.environment import PERF_FIELDS
 from shiproute_planner.route.evaluation import RouteEvaluation, clear_ports, finish
@@ -33,19 +36,6 @@ def _assert_same(a: RouteEvaluation, b: RouteEvaluation) -> None:
             assert np.array_equal(x, y, equal_nan=True), f.name
 
 
-class _ShallowSeas:
-    """Depth provider for the UKC terms: depths and clearances drawn at random, with NaN
-    (no grid) and negative clearances (too shallow), as `UnderKeel.leg_clearance` returns."""
-
-    def __init__(self, rng: np.random.Generator) -> None:
-        self.rng = rng
-
-    def leg_clearance(self, lon0, lat0, lon1, lat1, stw_m_s, hs_m):
-        depth = self.rng.uniform(0.0, 40.0, lon0.shape)
-        depth[self.rng.random(lon0.shape) < 0.2] = np.nan
-        return depth, depth - 20.0
-
-
 def _problem(limits) -> RouteProblem:
     d = to_posix_s("2026-03-03T18:00Z")
     return RouteProblem(129.9, 34.9, -118.9, 33.4, d, d + 13 * 86400.0, limits)
@@ -68,15 +58,17 @@ def test_compiled_port_cuts_are_clear_ports():
 
 
 @pytest.mark.filterwarnings("ignore:overflow encountered:RuntimeWarning")
+@pytest.mark.skipif(not default_depth_files(), reason="ETOPO5 (ferret-datasets) not installed")
 def test_compiled_finish_is_finish_on_edge_values():
     """Every constraint switched on, legs with NaN, inf, inactive legs, RPMs out of range,
-    nodes beyond the latitude bound, shallow and unknown depths, late arrivals."""
+    nodes beyond the latitude bound, legs over shelves, land and open ocean (UKC from the
+    global ETOPO5 grid), late arrivals."""
     _, spec = make_environment("container_4600teu", None)
     rng = np.random.default_rng(5)
+    limits, _ = depth_limits(route_limits(spec), spec, None, True, 1.0)
     limits = dataclasses.replace(
-        route_limits(spec), max_hs_m=6.0, max_wind_m_s=20.0, lat_bound_deg=60.0,
-        imo_checks=("surf_riding", "parametric_roll", "synchronous_roll", "high_wave_group"),
-        under_keel=_ShallowSeas(rng))
+        limits, max_hs_m=6.0, max_wind_m_s=20.0, lat_bound_deg=60.0,
+        imo_checks=("surf_riding", "parametric_roll", "synchronous_roll", "high_wave_group"))
     p = _problem(limits)
     pop, m = 120, 9
     legs = {k: rng.uniform(0.0, 0.3, (pop, m)) for k in PERF_FIELDS}
@@ -95,22 +87,24 @@ def test_compiled_finish_is_finish_on_edge_values():
     legs["distance_m"] = rng.uniform(0.0, 5e5, (pop, m))
     legs["fuel_t"] = rng.uniform(0.0, 50.0, (pop, m))
     lon = p.dep_lon_deg + np.cumsum(rng.uniform(0.0, 5.0, (pop, m + 1)), axis=1)
-    lat = rng.uniform(-75.0, 75.0, (pop, m + 1))
+    lat = np.clip(rng.uniform(-65.0, 65.0, (pop, 1)) + np.cumsum(
+        rng.normal(0.0, 2.0, (pop, m + 1)), axis=1), -80.0, 80.0)
     lon[:, 0], lat[:, 0] = p.dep_lon_deg, p.dep_lat_deg
     t = p.depart_s + np.cumsum(rng.uniform(0.0, 2.0 * 86400.0, (pop, m + 1)), axis=1)
     samples = rng.integers(0, 3, (pop, m)) * (rng.random((pop, m)) < 0.2)
     seen = []
 
-    def scan(ends):
+    def scan(ends, alongside):
         seen.append(ends)
+        if alongside is not None:  # the depth scan, run by the land scan's threads
+            alongside(0, ends[0].size)
         return samples
 
-    # the depth provider draws at random: the same draws for both
-    limits.under_keel.rng = np.random.default_rng(9)
     a = finish(p, None, lon, lat, t, {k: v.copy() for k, v in legs.items()}, samples)
-    limits.under_keel.rng = np.random.default_rng(9)
     b = finish_fast(p, lon, lat, t, {k: v.copy() for k, v in legs.items()}, scan)
     _assert_same(a, b)
+    ukc = b.legs["ukc_m"]
+    assert (ukc < 0).any() and (ukc == 0).any() and np.isnan(ukc[b.legs["duration_s"] > 0]).any()
     assert (b.leg_flags == 0).any() and (b.leg_flags != 0).mean() > 0.5
     assert (b.violation == 1e12).any() and (b.violation < 1e12).any()  # inf -> 1e12
     ref = clear_ports(p, lon, lat, legs["distance_m"])
