@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import threading
 import weakref
+from collections.abc import Callable
 
 import numpy as np
 
@@ -96,19 +97,22 @@ def prepare(bathymetry: Bathymetry, lowest_need_m: float, highest_need_m: float)
             break
 
 
-def capped_min_depth_m(bathymetry: Bathymetry, lon0: np.ndarray, lat0: np.ndarray,
-                       lon1: np.ndarray, lat1: np.ndarray, cap_m: np.ndarray) -> np.ndarray:
-    """Shallowest depth [m] along each great-circle leg, capped at its finite `cap_m` (the
-    depth the leg needs); NaN where no grid covers the leg. Shapes as the inputs."""
+def capped_scan(bathymetry: Bathymetry, lon0: np.ndarray, lat0: np.ndarray,
+                lon1: np.ndarray, lat1: np.ndarray, cap_m: np.ndarray
+                ) -> tuple[np.ndarray, Callable[[int, int], None] | None]:
+    """`capped_min_depth_m` as a job: the flat output and the work that fills legs a..b of
+    it (None: the plain walk has filled it already), for a caller that runs it over its own
+    threads together with other per-leg work."""
     shape = np.shape(lon0)
     x0, y0, x1, y1 = (np.ascontiguousarray(a, dtype=float).ravel()
                       for a in (lon0, lat0, lon1, lat1))
     cap = np.ascontiguousarray(np.broadcast_to(cap_m, shape), dtype=float).ravel()
-    out = np.empty(x0.size)
     finite = cap[np.isfinite(cap)]
     level = level_for(float(finite.max())) if finite.size else None
     if level is None:  # nothing to jump with: the plain walk
-        return bathymetry.segment_min_depth_m(lon0, lat0, lon1, lat1, cap_m)
+        plain = bathymetry.segment_min_depth_m(lon0, lat0, lon1, lat1, cap_m)
+        return np.asarray(plain, dtype=float).ravel(), None
+    out = np.empty(x0.size)
     clear = clear_raster(bathymetry, level)
     data, table = bathymetry.kernel_grids
     coarse, block_deg = bathymetry.block_minimum
@@ -119,5 +123,14 @@ def capped_min_depth_m(bathymetry: Bathymetry, lon0: np.ndarray, lat0: np.ndarra
                                   coarse, block_deg, clear, CLEAR_FACTOR * block_deg, level,
                                   cell_min, out[a:b])
 
-    in_chunks(out.size, scan, MIN_CHUNK)
-    return out.reshape(shape)
+    return out, scan
+
+
+def capped_min_depth_m(bathymetry: Bathymetry, lon0: np.ndarray, lat0: np.ndarray,
+                       lon1: np.ndarray, lat1: np.ndarray, cap_m: np.ndarray) -> np.ndarray:
+    """Shallowest depth [m] along each great-circle leg, capped at its finite `cap_m` (the
+    depth the leg needs); NaN where no grid covers the leg. Shapes as the inputs."""
+    out, scan = capped_scan(bathymetry, lon0, lat0, lon1, lat1, cap_m)
+    if scan is not None:
+        in_chunks(out.size, scan, MIN_CHUNK)
+    return out.reshape(np.shape(lon0))

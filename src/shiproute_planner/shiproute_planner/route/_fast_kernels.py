@@ -12,7 +12,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ..geo.clear_distance import clear_distance_deg  # noqa: F401 - the land scan's, kept here
+from ..geo.clear_distance import clear_distance_deg  # noqa: F401 - polar-shrink reference
 from ..ship import fast_kernel as fk
 
 # canonical variables in the order of the `chan`/`isdir` arrays handed to `sea_and_perform`

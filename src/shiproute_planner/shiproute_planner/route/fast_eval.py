@@ -4,10 +4,11 @@ with the per-call overheads removed.
 One compiled call (`_route_kernel.generate_routes`) generates a whole population: per stage
 the weather package's trilinear kernel, the sea state, the ship model's kernel and a geodesic
 step (RK4 on the WGS 84 geodesic ODE instead of pyproj). Land: a coarse (0.5 deg, dilated)
-raster clears open-ocean legs; the rest are sampled at the exact scan's points against the
-0.05-deg raster with coastal cells counted as land (`_route_kernel.ga_land_hits`), so a leg the
-GA calls clear is clear to the exact test too. Agreement with the exact evaluator is tested;
-the planner re-evaluates its final choice exactly.
+raster clears open-ocean legs (`coarse_land`); the rest are sampled at the exact scan's points
+against the 0.05-deg raster with coastal cells counted as land (`_route_kernel.ga_land_hits`),
+so a leg the GA calls clear is clear to the exact test too. Agreement with the exact evaluator
+is tested; the planner re-evaluates its final choice exactly. Constraints and totals:
+`fast_finish` (compiled, the same bits as `evaluation.finish`).
 """
 
 from __future__ import annotations
@@ -15,13 +16,15 @@ from __future__ import annotations
 import numpy as np
 
 from ..chunks import in_chunks
+from ..geo.clear_distance import banded_clear_distance_deg
 from ..geo.landmask import LandMask
 from . import _fast_kernels as fk
 from . import _route_kernel as rk
 from . import member_kernel as mk
 from .encoding import split_genes
 from .environment import PERF_FIELDS, Environment
-from .evaluation import RouteEvaluation, clear_ports, finish
+from .evaluation import RouteEvaluation
+from .fast_finish import Ends, Work, finish_fast
 from .problem import RouteProblem
 
 # out_f rows / out_b rows of ship.fast_kernel.evaluate_kernel -> PERF_FIELDS
@@ -67,12 +70,7 @@ class FastEvaluator:
             self._members = env.sampler.members
         self._coarse = None
         if land is not None:
-            key = id(land)
-            self._coarse_deg = land.cell_deg * COARSE_FACTOR
-            if key not in _COARSE:
-                coarse = fk.coarse_land_raster(np.asarray(land.raster), COARSE_FACTOR)
-                _COARSE[key] = (coarse, fk.clear_distance_deg(coarse, self._coarse_deg))
-            self._coarse, self._clear = _COARSE[key]
+            self._coarse, self._clear, self._coarse_deg = coarse_land(land)
             self._raster = np.asarray(land.raster)
             self._sea_dist = np.asarray(land.sea_distance_cells)
 
@@ -158,7 +156,8 @@ class FastEvaluator:
         legs["duration_s"] = duration
         legs["fuel_t"] = legs["fuel_t_per_h"] * duration / 3600.0
         legs["turn_deg"] = np.zeros((pop, m))
-        return finish(p, self.land, lon, lat, t, legs, self._land_samples(lon, lat, distance))
+        scan = None if self.land is None else self._land_verdicts
+        return finish_fast(p, lon, lat, t, legs, scan)
 
     def sail_stage(self, lon: np.ndarray, lat: np.ndarray, t: np.ndarray, rpm: np.ndarray,
                    heading_deg: np.ndarray, duration_s: float
@@ -182,45 +181,69 @@ class FastEvaluator:
                         self.problem.depart_s, *self._weather, self._limits, *self._ship, eta)
         return eta
 
-    def _land_samples(self, lon, lat, distance) -> np.ndarray | None:
-        """Land samples per leg from the compiled scan (`ga_land_hits`); coastal cells it
-        meets for the first time are resolved exactly and their legs scanned again."""
-        if self.land is None:
-            return None
-        ends = clear_ports(self.problem, lon, lat, distance)
-        return self.segment_land_samples(*ends).reshape(distance.shape)
+    def _land_verdicts(self, ends: Ends, alongside: Work | None = None) -> np.ndarray:
+        """Land samples per leg (ends (pop, m) with the ports cut off) from the compiled scan
+        (`ga_land_hits`); coastal cells it meets for the first time are resolved exactly and
+        their legs scanned again. `alongside`: other work over the same legs, run with the
+        first scan on the same threads."""
+        return self.segment_land_samples(*ends, alongside=alongside).reshape(ends[0].shape)
 
     def segment_land_samples(self, lon0: np.ndarray, lat0: np.ndarray, lon1: np.ndarray,
-                             lat1: np.ndarray) -> np.ndarray:
+                             lat1: np.ndarray, alongside: Work | None = None) -> np.ndarray:
         """The GA's land verdict (samples on land, 0 = clear) of great-circle segments
-        (flattened); needs a land mask."""
+        (flattened); needs a land mask. `alongside(a, b)`: work on segments a..b run in the
+        first pass's threads (one fan-out for both)."""
         land = self.land
         assert land is not None, "FastEvaluator built without a land mask"
         ends = [np.ascontiguousarray(e, dtype=float).ravel() for e in (lon0, lat0, lon1, lat1)]
         out = np.empty(ends[0].size, dtype=np.int64)
         fine = land.fine_coast
         todo = np.arange(out.size)
+        first = True
         while todo.size:
-            x0, y0, x1, y1 = (e[todo] for e in ends)
+            x0, y0, x1, y1 = ends if first else [e[todo] for e in ends]
             got = np.empty(todo.size, dtype=np.int64)
             misses: list[np.ndarray] = []
 
             def scan(a: int, b: int, x0: np.ndarray = x0, y0: np.ndarray = y0,
                      x1: np.ndarray = x1, y1: np.ndarray = y1, got: np.ndarray = got,
-                     misses: list[np.ndarray] = misses) -> None:
+                     misses: list[np.ndarray] = misses, extra: Work | None = alongside
+                     ) -> None:
                 buf = np.empty(MISS_BUFFER, dtype=np.int64)
                 n = rk.ga_land_hits(x0[a:b], y0[a:b], x1[a:b], y1[a:b], self._coarse,
                                     self._clear, self._coarse_deg, self._raster, self._sea_dist,
                                     land.cell_deg, self.problem.land_spacing_deg,
                                     fine.keys, fine.fine, buf, got[a:b])
                 misses.append(buf[:n])
+                if extra is not None:
+                    extra(a, b)
 
             in_chunks(todo.size, scan)
             out[todo] = got
             if any(m.size for m in misses):
                 fine.add(np.concatenate(misses))
             todo = todo[got < 0]
+            first, alongside = False, None
         return out
+
+
+def coarse_land(land: LandMask) -> tuple[np.ndarray, np.ndarray, float]:
+    """The land scan's near-land filter of `land` (built once per mask): the coarse raster
+    (`COARSE_FACTOR` cells, land or coast in or next to a block), per block the arc [deg] to
+    the nearest flagged block, the larger of the polar-shrink bound and each latitude band's
+    (`geo.clear_distance`; about 1.4 times the polar jumps along mid-latitude routes, the
+    same samples decide), and the block size [deg]."""
+    key = id(land)
+    coarse_deg = land.cell_deg * COARSE_FACTOR
+    if key not in _COARSE:
+        coarse = fk.coarse_land_raster(np.asarray(land.raster), COARSE_FACTOR)
+        # both are lower bounds of the arc to land: so is the larger (the banded one is
+        # capped at its reach, the polar one is not)
+        clear = np.maximum(banded_clear_distance_deg(coarse, coarse_deg),
+                           fk.clear_distance_deg(coarse, coarse_deg))
+        _COARSE[key] = (coarse, np.ascontiguousarray(clear))
+    coarse, clear = _COARSE[key]
+    return coarse, clear, coarse_deg
 
 
 def fast_evaluator(problem: RouteProblem, env: Environment,

@@ -140,7 +140,7 @@ def _brute_force_hits(land, lon0, lat0, lon1, lat1, spacing_deg):
 
 def test_ga_land_verdict_is_the_brute_force_one_and_agrees_with_the_exact_test(land_mask):
     from shiproute_planner.route import _route_kernel as rk
-    from shiproute_planner.route.fast_eval import COARSE_FACTOR
+    from shiproute_planner.route.fast_eval import coarse_land
 
     rng = np.random.default_rng(9)
     # legs of up to ~6 deg around the Tsugaru Strait, the Aleutians, the Channel Islands and
@@ -154,28 +154,35 @@ def test_ga_land_verdict_is_the_brute_force_one_and_agrees_with_the_exact_test(l
         lon1.append(c_lon + a[2])
         lat1.append(c_lat + 0.5 * a[3])
     lon0, lat0, lon1, lat1 = (np.concatenate(v) for v in (lon0, lat0, lon1, lat1))
-    coarse = fk.coarse_land_raster(np.asarray(land_mask.raster), COARSE_FACTOR)
-    coarse_deg = land_mask.cell_deg * COARSE_FACTOR
-    clear = fk.clear_distance_deg(coarse, coarse_deg)
+    coarse, clear, coarse_deg = coarse_land(land_mask)
     fine = land_mask.fine_coast
-    got = np.full(lon0.size, -1, dtype=np.int64)
-    todo = np.arange(lon0.size)
-    rounds = 0
-    while todo.size:  # as the evaluator does: resolve the cells met, rescan those legs
-        missing = np.empty(64, dtype=np.int64)  # small: exercises the full-buffer path
-        part = np.empty(todo.size, dtype=np.int64)
-        n = rk.ga_land_hits(lon0[todo], lat0[todo], lon1[todo], lat1[todo], coarse, clear,
-                            coarse_deg, np.asarray(land_mask.raster),
-                            np.asarray(land_mask.sea_distance_cells), land_mask.cell_deg,
-                            0.05, fine.keys, fine.fine, missing, part)
-        got[todo] = part
-        fine.add(missing[:n])
-        todo = todo[part < 0]
-        rounds += 1
-        assert rounds < 500
+
+    def scan(clear):
+        got = np.full(lon0.size, -1, dtype=np.int64)
+        todo = np.arange(lon0.size)
+        rounds = 0
+        while todo.size:  # as the evaluator does: resolve the cells met, rescan those legs
+            missing = np.empty(64, dtype=np.int64)  # small: exercises the full-buffer path
+            part = np.empty(todo.size, dtype=np.int64)
+            n = rk.ga_land_hits(lon0[todo], lat0[todo], lon1[todo], lat1[todo], coarse, clear,
+                                coarse_deg, np.asarray(land_mask.raster),
+                                np.asarray(land_mask.sea_distance_cells), land_mask.cell_deg,
+                                0.05, fine.keys, fine.fine, missing, part)
+            got[todo] = part
+            fine.add(missing[:n])
+            todo = todo[part < 0]
+            rounds += 1
+            assert rounds < 500
+        return got
+
+    got = scan(clear)
     brute = _brute_force_hits(land_mask, lon0, lat0, lon1, lat1, 0.05)
     assert 0.2 < brute.mean() < 0.9  # the sample has both kinds of legs
     assert np.array_equal(got > 0, brute)  # skipping sea never skips a land or coastal cell
+    # the banded clear distances jump further than the polar-shrink ones, never onto land:
+    # the same first hit and the same graded count on every leg
+    assert np.array_equal(got, scan(fk.clear_distance_deg(coarse, coarse_deg)))
+    assert (clear >= fk.clear_distance_deg(coarse, coarse_deg)).all()
     exact = land_mask.segment_land_samples(lon0, lat0, lon1, lat1, 0.05) > 0
     # the ~1 km grid differs from the exact test only for legs grazing a coast
     assert np.mean(exact == brute) > 0.97
