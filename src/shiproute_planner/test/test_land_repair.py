@@ -69,9 +69,11 @@ def test_leg_over_land_is_repaired_and_passes_the_full_resolution_check(leg, tmp
     assert 0.0 < extra_nm < 11.0
     path = _write_geojson(tmp_path / "repaired.geojson", new_lon, new_lat)
     assert _check(path) == 0
-    # and it keeps the clearance it states (less the check's sampling: 0.25 NM spacing)
-    assert fix.clearance_nm >= 0.25
-    assert _check(path, "--clearance-nm", f"{0.9 * fix.clearance_nm:g}") == 0
+    # and it keeps the clearance it states (the default 0.5 NM: there is room round both)
+    assert fix.clearance_nm == 0.5
+    assert _check(path, "--clearance-nm", f"{fix.clearance_nm:g}") == 0
+    # with few waypoints: a bridge team enters a detour by hand
+    assert new_lon.size <= 6
 
 
 def test_repaired_span_is_sailed_at_its_rpm_and_keeps_its_arrival(tmp_path):

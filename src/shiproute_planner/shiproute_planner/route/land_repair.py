@@ -20,6 +20,7 @@ import numpy as np
 from shiproute_core.geodesy import densify_track, inverse
 from shiproute_core.units import M_PER_NM
 
+from ..geo.nav_grid import land_in_box
 from .passages import PassageRules, compute_passage, passage_length_nm
 
 LandTest = Callable[[np.ndarray, np.ndarray], np.ndarray]
@@ -129,6 +130,7 @@ def repair_leg(lon: np.ndarray, lat: np.ndarray, k: int, contains: LandTest, pol
         new_lon = np.concatenate([lon[k:k + 1], p.lon_deg, lon[k + 1:k + 2]])
         new_lat = np.concatenate([lat[k:k + 1], p.lat_deg, lat[k + 1:k + 2]])
         new_lon, new_lat = _without_repeats(new_lon, new_lat)
+        new_lon, new_lat = fewer_nodes(new_lon, new_lat, polygons, p.clearance_nm)
         track_lon = np.concatenate([lon[:k], new_lon, lon[k + 2:]])
         track_lat = np.concatenate([lat[:k], new_lat, lat[k + 2:]])
         legs = frozenset(range(k, k + new_lon.size - 1))
@@ -139,6 +141,55 @@ def repair_leg(lon: np.ndarray, lat: np.ndarray, k: int, contains: LandTest, pol
                          float((plon[first] + 180.0) % 360.0 - 180.0),
                          passage_length_nm(new_lon, new_lat) - old_nm, p.clearance_nm)
     return None
+
+
+def _scaled_land(polygons, lon: np.ndarray, lat: np.ndarray, margin_nm: float):
+    """Land round a detour (unvalidated full-resolution rings clipped to its box) in a local
+    frame where a degree of longitude is as long as a degree of latitude; (land, scale)."""
+    import shapely
+
+    c = float(np.cos(np.radians(np.mean(lat))))
+    pad = margin_nm / 60.0 + 0.02
+    shift = 360.0 * np.round(np.mean(lon) / 360.0)
+    parts = land_in_box(polygons, float(lon.min() - shift - pad / c), float(lat.min() - pad),
+                        float(lon.max() - shift + pad / c), float(lat.max() + pad))
+    scaled = [shapely.transform(g, lambda xy: np.column_stack([(xy[:, 0] + shift) * c,
+                                                               xy[:, 1]])) for g in parts]
+    return scaled, c
+
+
+def fewer_nodes(lon: np.ndarray, lat: np.ndarray, polygons, keep_nm: float
+                ) -> tuple[np.ndarray, np.ndarray]:
+    """A detour with as few nodes as keep every straight sub-leg `keep_nm` off land (and
+    off it at all when 0): a grid path hugging a clearance ring has a node every cell or
+    two; the bridge needs a handful (greedy: from each kept node the farthest one in clear
+    sight)."""
+    import shapely
+
+    if lon.size <= 3:
+        return lon, lat
+    land, c = _scaled_land(polygons, lon, lat, keep_nm)
+    if not land:
+        return lon[[0, -1]], lat[[0, -1]]
+    tree = shapely.STRtree(land)
+    reach = keep_nm / 60.0
+
+    def clear(i: int, j: int) -> bool:
+        seg = shapely.LineString([(lon[i] * c, lat[i]), (lon[j] * c, lat[j])])
+        near = tree.query(seg, predicate="dwithin", distance=reach) if reach > 0 else (
+            tree.query(seg, predicate="intersects"))
+        return near.size == 0
+
+    keep, k = [0], 0
+    while k < lon.size - 1:
+        nxt = k + 1
+        for m in range(lon.size - 1, k + 1, -1):
+            if clear(k, m):
+                nxt = m
+                break
+        keep.append(nxt)
+        k = nxt
+    return lon[keep], lat[keep]
 
 
 def _without_repeats(lon: np.ndarray, lat: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
