@@ -17,7 +17,13 @@ from .ga.pool import SeedPool
 from .method_context import MethodContext, MethodFn, compute_baseline
 from .methods import get_method
 from .plan_prepare import PreparedVoyage
-from .plan_repair import RepairContext, is_berth, repair_context, repaired_leg
+from .plan_repair import (
+    RepairContext,
+    is_berth,
+    repair_context,
+    repaired_canal,
+    repaired_leg,
+)
 from .plan_seeds import leg_seeds, offer_to_pool
 from .plan_setup import cancel_fn
 from .plan_timing import PlanClock
@@ -112,12 +118,17 @@ def search_of(prep: PreparedVoyage, options: PlanOptions, clock: PlanClock,
                   clock, repair_context(prep.env, prep.limits, clearance_nm))
 
 
-def sail_canal_leg(prep: PreparedVoyage, run: LegRun, k: int, options: PlanOptions) -> None:
-    """A canal: sailed along its line at its transit speed."""
+def sail_canal_leg(prep: PreparedVoyage, run: LegRun, k: int, options: PlanOptions,
+                   repair: RepairContext) -> None:
+    """A canal: sailed along its line at its transit speed (lead-in and lead-out checked
+    at the final coastline and repaired like every leg)."""
     canal, rev = prep.canal_legs[k]
     lead_in, ev, lead_out, rpm_c, problem = sail_canal(
         prep.env, canal, rev, run.depart_s, prep.limits,
         (options.stage_hours or OCEAN_STAGE_H) * 3600.0, run.sea_rpm())
+    lead_in, ev, lead_out, fixed = repaired_canal(repair, canal.name, lead_in, ev, lead_out,
+                                                  problem)
+    run.take_repairs(fixed)
     run.add(ev, "canal", problem, (lead_in, lead_out),
             ("canal", rpm_c, ev) if options.with_baseline else None)
     run.arrive(float((lead_out or ev).eta_s[0]), prep.call_at.get(k + 1))
@@ -227,7 +238,7 @@ def sail_legs(request: VoyageRequest, options: PlanOptions, prep: PreparedVoyage
     run = LegRun(prep.depart_s, list(prep.search_rtas), list(prep.warnings))
     for k in range(len(prep.ports) - 1):
         if k in prep.canal_legs:
-            sail_canal_leg(prep, run, k, options)
+            sail_canal_leg(prep, run, k, options, search.repair)
             clock.lap("passages")
         elif k in prep.strait_legs:
             sail_strait_leg(prep, run, k, options, search.repair)

@@ -162,3 +162,26 @@ def land_statement(ctx: RepairContext) -> str:
     return (f"land checked at {ctx.land.words} every 0.25 NM on every leg (outside canals "
             f"and {PORT_RADIUS_M / 1000.0:g} km round berths); legs on land get a detour "
             f"{ctx.rules.clearances_nm[0]:g} NM off land where there is room")
+
+
+def repaired_canal(ctx: RepairContext, name: str, lead_in: RouteEvaluation | None,
+                   canal: RouteEvaluation, lead_out: RouteEvaluation | None,
+                   problem: RouteProblem) -> tuple[RouteEvaluation | None, RouteEvaluation,
+                                                   RouteEvaluation | None, list[dict]]:
+    """A canal leg: its lead-in and lead-out (a gulf or channel sailed at sea) checked and
+    repaired, the canal itself (the authority's fixed line) only sailed from the lead-in's
+    new end."""
+    said: list[dict] = []
+    if lead_in is not None:
+        lead_in, s = repair_part(ctx, lead_in, float(lead_in.time_s[0, 0]), None, 0.0, 0.0,
+                                 f"lead-in to {name}")
+        said += s
+        t = float(lead_in.eta_s[0])
+        if abs(t - float(canal.time_s[0, 0])) > 1e-3:
+            canal = resail(ctx, canal, canal.lon_deg[0], canal.lat_deg[0],
+                           np.asarray(canal.legs["rpm"][0], dtype=float), t, problem)
+    if lead_out is not None:
+        lead_out, s = repair_part(ctx, lead_out, float(canal.eta_s[0]), None, 0.0, 0.0,
+                                  f"lead-out from {name}")
+        said += s
+    return lead_in, canal, lead_out, said
