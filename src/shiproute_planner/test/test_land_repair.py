@@ -34,6 +34,22 @@ SCILLY = ((-6.75, 49.88), (-5.85, 49.99))
 ZHEJIANG = ((121.10, 27.57), (121.29, 27.68))
 
 
+def test_final_land_test_agrees_with_the_route_checks_polygon_test():
+    """The planner's final test (raster + polygons clipped to tiles, rings not validated)
+    gives the route check's verdicts (whole validated polygons, no raster) point for point,
+    round islets, a strait, fjords and a reef bank."""
+    land, words = check.land_test("f")
+    assert words == "land: GSHHG full resolution"
+    rng = np.random.default_rng(7)
+    for lon0, lat0 in ((-6.34, 49.89), (121.19, 27.63), (29.05, 41.1), (-20.37, 63.4),
+                       (-73.84, 22.73), (114.66, 22.41)):
+        lon = lon0 + rng.uniform(-0.6, 0.6, 5000)
+        lat = lat0 + rng.uniform(-0.4, 0.4, 5000)
+        mine = final_land().contains(lon, lat)
+        assert 0 < mine.sum() < mine.size  # both land and sea sampled: the test can fail
+        assert np.array_equal(mine, land.contains(lon, lat))
+
+
 def _write_geojson(path, lon, lat) -> str:
     feature = {"type": "Feature", "properties": {"name": path.stem},
                "geometry": {"type": "LineString",
