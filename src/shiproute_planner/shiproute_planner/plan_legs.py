@@ -31,6 +31,7 @@ from .request import PlanOptions, VoyageRequest
 from .route.approach import sail_approach
 from .route.canals import sail_canal
 from .route.evaluation import RouteEvaluation
+from .route.given_approach import approaches_at
 from .route.problem import RouteProblem
 from .route.voyage_legs import leg_setup
 from .straits import sail_strait
@@ -214,9 +215,11 @@ def plan_leg(prep: PreparedVoyage, run: LegRun, k: int, request: VoyageRequest,
         offer_to_pool(search.pool, problem, a, b, search.month, res.evaluation,
                       res.seed_source, res.genes)
     ap_arr, rpm_ap = leg.ap_arr, leg.rpm_ap
+    mine_dep, mine_arr = approaches_at(prep.given, a, b)
     pre, span, post, fixed = repaired_leg(
         search.repair, (a, b), berths_of(prep, k), leg.pre, res.evaluation, problem,
-        (lambda t: sail_approach(prep.env, ap_arr, rpm_ap, t, prep.limits)) if ap_arr else None)
+        (lambda t: sail_approach(prep.env, ap_arr, rpm_ap, t, prep.limits)) if ap_arr else None,
+        (mine_dep is not None and not under_way, mine_arr is not None))
     run.take_repairs(fixed)
     end_s = float(span.eta_s[0])
     kept = (base.name, base.rpm, base.evaluation) if options.with_baseline and base else None

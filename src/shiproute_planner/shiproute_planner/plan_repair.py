@@ -133,24 +133,27 @@ def repair_part(ctx: RepairContext, part: RouteEvaluation, depart_s: float,
 def repaired_leg(ctx: RepairContext, ports: tuple[Port, Port], berths: tuple[bool, bool],
                  pre: RouteEvaluation | None, span: RouteEvaluation, problem: RouteProblem,
                  sail_post: Callable[[float], RouteEvaluation] | None,
+                 given: tuple[bool, bool] = (False, False),
                  ) -> tuple[RouteEvaluation | None, RouteEvaluation, RouteEvaluation | None,
                             list[dict]]:
     """(approach in, span, approach out, statements) of a leg a -> b, each part checked
-    and repaired, the later parts sailed from the times the earlier ones end."""
+    and repaired, the later parts sailed from the times the earlier ones end; approaches
+    the user gave (`given`: in, out) are sailed as given (the route check judges them)."""
     a, b = ports
     skip_a = PORT_RADIUS_M if berths[0] else 0.0
     skip_b = PORT_RADIUS_M if berths[1] else 0.0
     said: list[dict] = []
     t = float((pre or span).time_s[0, 0])
     if pre is not None:
-        pre, s = repair_part(ctx, pre, t, None, skip_a, 0.0, f"approach from {a.name}")
-        said += s
+        if not given[0]:
+            pre, s = repair_part(ctx, pre, t, None, skip_a, 0.0, f"approach from {a.name}")
+            said += s
         t, skip_a = float(pre.eta_s[0]), 0.0
     span, s = repair_part(ctx, span, t, problem, skip_a,
                           skip_b if sail_post is None else 0.0, f"{a.name} -> {b.name}")
     said += s
     post = sail_post(float(span.eta_s[0])) if sail_post is not None else None
-    if post is not None:
+    if post is not None and not given[1]:
         post, s = repair_part(ctx, post, float(post.time_s[0, 0]), None, 0.0, skip_b,
                               f"approach to {b.name}")
         said += s
