@@ -121,3 +121,37 @@ def test_repaired_span_is_sailed_at_its_rpm_and_keeps_its_arrival(tmp_path):
     assert not int(out.flags[0]) & FLAG_LAND
     path = _write_geojson(tmp_path / "span.geojson", new_lon, new_lat)
     assert _check(path) == 0
+
+
+def test_a_leg_is_repaired_part_by_part_and_each_part_sails_from_the_last_ones_end():
+    """Approach in (clear), a span over the Scillies, approach out (clear): the span is
+    repaired, the approach out is sailed from the repaired span's arrival, the ends stay."""
+    from shiproute_planner.geo.ports import Port
+    from shiproute_planner.plan_repair import repaired_leg
+    from shiproute_planner.route.approach import Approach, sail_approach
+
+    env, spec = make_environment("container_4600teu")
+    limits = route_limits(spec)
+    ctx = repair_context(env, limits)
+    t0 = 1_780_272_000.0
+    (lon0, lat0), (lon1, lat1) = SCILLY
+    a = Port("west", "", lat0 - 0.1, lon0 - 0.6)
+    b = Port("east", "", lat1 - 0.2, lon1 + 0.3)
+    pre = sail_approach(env, Approach(np.array([a.lon_deg, lon0]), np.array([a.lat_deg, lat0])),
+                        60.0, t0, limits)
+    t1 = float(pre.eta_s[0])
+    problem = RouteProblem(lon0, lat0, lon1, lat1, t1, t1 + 86400.0, limits)
+    span = sail_tracks(problem, env, None, np.array([[lon0, lon1]]), np.array([[lat0, lat1]]),
+                       np.array([[60.0]]), t1)
+    out_ap = Approach(np.array([lon1, b.lon_deg]), np.array([lat1, b.lat_deg]))
+    new_pre, new_span, post, rows = repaired_leg(
+        ctx, (a, b), (True, True), pre, span, problem,
+        lambda t: sail_approach(env, out_ap, 60.0, t, limits))
+    assert new_pre is pre  # clear of land: untouched
+    assert [r["part"] for r in rows if "extra_nm" in r] == ["west -> east"]
+    assert new_span.lon_deg.shape[1] > 2
+    assert (new_span.lon_deg[0, 0], new_span.lon_deg[0, -1]) == (lon0, lon1)
+    assert float(new_span.time_s[0, 0]) == pytest.approx(t1)
+    assert post is not None
+    assert float(post.time_s[0, 0]) == pytest.approx(float(new_span.eta_s[0]))
+    assert float(new_span.distance_m[0]) > float(span.distance_m[0])
