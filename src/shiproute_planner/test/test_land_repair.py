@@ -155,3 +155,35 @@ def test_a_leg_is_repaired_part_by_part_and_each_part_sails_from_the_last_ones_e
     assert post is not None
     assert float(post.time_s[0, 0]) == pytest.approx(float(new_span.eta_s[0]))
     assert float(new_span.distance_m[0]) > float(span.distance_m[0])
+
+
+def _plan_through(lon: list[float], lat: list[float], spans, ports: dict[int, str]):
+    """A bare RoutePlan along (lon, lat) at 14 kn (only what the route check reads)."""
+    from shiproute_planner.plan_types import RoutePlan, Waypoint
+
+    nan = float("nan")
+    wps = tuple(Waypoint(la, lo, 1.78e9 + 3600.0 * k, nan, 60.0, 14.0, 14.0, nan, nan, nan,
+                         nan, 0.0, nan, nan, nan, nan, nan, nan, 0, port=ports.get(k, ""))
+                for k, (lo, la) in enumerate(zip(lon, lat, strict=True)))
+    return RoutePlan("t", "seed_ga", "", "fuel", "", "", 1.78e9, 1.79e9, 1.78e9, True, (),
+                     1.0, 1.0, 1.0, nan, "", 0.0, nan, False, nan, 0.0, wps,
+                     ("a", "b"), 3600.0, 0, 0, nan, nan, optimised_spans=spans)
+
+
+def test_plan_check_decides_on_land_on_any_leg_at_full_resolution():
+    """Land at GSHHG full on an approach leg (not the optimised span) makes the plan
+    infeasible, with the leg as the reason; the same leg clear of land does not."""
+    from shiproute_planner.geo.landmask import default_land_mask
+    from shiproute_planner.plan_checks import checked_plan
+
+    (lon0, lat0), (lon1, lat1) = SCILLY
+    limits = route_limits(make_environment("container_4600teu")[1])
+    over = _plan_through([lon0 - 0.5, lon0, lon1], [lat0, lat0, lat1], ((0, 1),),
+                         {0: "a", 2: "b"})
+    out = checked_plan(over, default_land_mask(), limits)
+    assert not out.feasible
+    assert out.infeasible_reasons == ("route check: land on leg 1",)
+    assert any(w.startswith("land checked at GSHHG full resolution") for w in out.warnings)
+    clear = _plan_through([lon0 - 0.5, lon0, lon0 + 0.1], [lat0, lat0, lat0 - 0.2],
+                          ((0, 1),), {0: "a", 2: "b"})
+    assert checked_plan(clear, default_land_mask(), limits).feasible
