@@ -17,6 +17,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
+from shiproute_core.geodesy import inverse
 
 from .geo.full_land import final_land
 from .geo.landmask import LandMask
@@ -76,12 +77,48 @@ def check_berth_to_berth(plan: RoutePlan, limits: RouteLimits, clearance_nm: flo
     return CheckResult(tuple(found), tuple(notes))
 
 
+def baseline_land(plan: RoutePlan) -> list[Violation]:
+    """Land findings on the plan's constant-RPM baseline track at the final coastline
+    (outside `PORT_RADIUS_M` round the plan's berths): the comparison's reference is held
+    to the same coastline as the plan."""
+    if len(plan.baseline_track) < 2:
+        return []
+    lat, lon = (np.array(c, dtype=float) for c in zip(*plan.baseline_track, strict=True))
+    lon = np.unwrap(lon, period=360.0)
+    found = check_track(lon, lat, np.full(lon.size - 1, 14.0), final_land().contains,
+                        port_clearance_m=PORT_RADIUS_M).violations
+    berths = [plan.waypoints[i] for i in berth_cuts(plan)]
+    b_lon = np.array([w.lon_deg for w in berths])
+    b_lat = np.array([w.lat_deg for w in berths])
+    out = []
+    for v in found:
+        _, d = inverse(np.full(b_lon.size, v.lon_deg), np.full(b_lat.size, v.lat_deg),
+                       b_lon, b_lat)
+        if np.min(d) > PORT_RADIUS_M:
+            out.append(v)
+    return out
+
+
+def with_baseline_check(plan: RoutePlan) -> RoutePlan:
+    """The plan with its baseline's land findings stated (and its feasibility withdrawn)."""
+    found = baseline_land(plan)
+    if not found:
+        return plan
+    v, name = found[0], plan.baseline_method or "constant RPM"
+    said = (f"baseline ({name}) touches land at {final_land().words}: {len(found)} "
+            f"leg(s), first at {v.lat_deg:.3f}N {v.lon_deg:.3f}E; the fuel "
+            f"comparison is against a route a ship could not sail as drawn")
+    return dataclasses.replace(plan, baseline_feasible=False,
+                               warnings=(*plan.warnings, said))
+
+
 def checked_plan(plan: RoutePlan, land: LandMask, limits: RouteLimits,
                  clearance_nm: float = 0.0) -> RoutePlan:
     """The plan with the route check's findings in its warnings (and feasibility); `land`,
     the optimiser's mask, is only named: the check runs on the finest coastline."""
     if len(plan.waypoints) < 2:
         return plan
+    plan = with_baseline_check(plan)
     result = check_berth_to_berth(plan, limits, clearance_nm)
     found = result.violations
     warnings = list(plan.warnings)

@@ -9,6 +9,7 @@ Ningbo -> Xiamen of the reference study's application 1).
 
 from __future__ import annotations
 
+import dataclasses
 import json
 
 import numpy as np
@@ -157,7 +158,8 @@ def test_a_leg_is_repaired_part_by_part_and_each_part_sails_from_the_last_ones_e
     assert float(new_span.distance_m[0]) > float(span.distance_m[0])
 
 
-def _plan_through(lon: list[float], lat: list[float], spans, ports: dict[int, str]):
+def _plan_through(lon: list[float], lat: list[float], spans, ports: dict[int, str],
+                  baseline: tuple = ()):
     """A bare RoutePlan along (lon, lat) at 14 kn (only what the route check reads)."""
     from shiproute_planner.plan_types import RoutePlan, Waypoint
 
@@ -167,7 +169,8 @@ def _plan_through(lon: list[float], lat: list[float], spans, ports: dict[int, st
                 for k, (lo, la) in enumerate(zip(lon, lat, strict=True)))
     return RoutePlan("t", "seed_ga", "", "fuel", "", "", 1.78e9, 1.79e9, 1.78e9, True, (),
                      1.0, 1.0, 1.0, nan, "", 0.0, nan, False, nan, 0.0, wps,
-                     ("a", "b"), 3600.0, 0, 0, nan, nan, optimised_spans=spans)
+                     ("a", "b"), 3600.0, 0, 0, nan, nan, optimised_spans=spans,
+                     baseline_track=baseline)
 
 
 def test_plan_check_decides_on_land_on_any_leg_at_full_resolution():
@@ -187,3 +190,11 @@ def test_plan_check_decides_on_land_on_any_leg_at_full_resolution():
     clear = _plan_through([lon0 - 0.5, lon0, lon0 + 0.1], [lat0, lat0, lat0 - 0.2],
                           ((0, 1),), {0: "a", 2: "b"})
     assert checked_plan(clear, default_land_mask(), limits).feasible
+    # a baseline over the Scillies is held to the same coastline: stated, not feasible
+    base = ((lat0, lon0 - 0.5), (lat0, lon0), (lat1, lon1), (lat0 - 0.2, lon0 + 0.1))
+    with_base = _plan_through([lon0 - 0.5, lon0, lon0 + 0.1], [lat0, lat0, lat0 - 0.2],
+                              ((0, 1),), {0: "a", 2: "b"}, base)
+    out = checked_plan(dataclasses.replace(with_base, baseline_feasible=True),
+                       default_land_mask(), limits)
+    assert out.feasible and not out.baseline_feasible
+    assert any(w.startswith("baseline (constant RPM) touches land") for w in out.warnings)
