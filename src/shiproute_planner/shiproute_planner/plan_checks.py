@@ -100,7 +100,10 @@ def baseline_land(plan: RoutePlan) -> list[Violation]:
 
 
 def with_baseline_check(plan: RoutePlan) -> RoutePlan:
-    """The plan with its baseline's land findings stated (and its feasibility withdrawn)."""
+    """The plan with its baseline's land findings stated (and its feasibility withdrawn);
+    a baseline already infeasible is not checked again (its flags are stated already)."""
+    if not plan.baseline_feasible:
+        return plan
     found = baseline_land(plan)
     if not found:
         return plan
