@@ -79,14 +79,19 @@ def check_berth_to_berth(plan: RoutePlan, limits: RouteLimits, clearance_nm: flo
 
 def baseline_land(plan: RoutePlan) -> list[Violation]:
     """Land findings on the plan's constant-RPM baseline track at the final coastline
-    (outside `PORT_RADIUS_M` round the plan's berths): the comparison's reference is held
-    to the same coastline as the plan."""
+    (outside `PORT_RADIUS_M` round the plan's berths and along the canals the plan sails as
+    fixed passages): the comparison's reference is held to the same coastline as the plan."""
     if len(plan.baseline_track) < 2:
         return []
     lat, lon = (np.array(c, dtype=float) for c in zip(*plan.baseline_track, strict=True))
+    canal = {(round(w.lat_deg, 5), round(w.lon_deg, 5))
+             for a, b in plan.extra.get("fixed_passages", ()) for w in plan.waypoints[a:b + 1]}
+    on_canal = np.array([(round(la, 5), round(float((lo + 180.0) % 360.0 - 180.0), 5))
+                         in canal for la, lo in zip(lat, lon, strict=True)])
+    skip = frozenset(np.flatnonzero(on_canal[:-1] & on_canal[1:]).tolist())
     lon = np.unwrap(lon, period=360.0)
     found = check_track(lon, lat, np.full(lon.size - 1, 14.0), final_land().contains,
-                        port_clearance_m=PORT_RADIUS_M).violations
+                        port_clearance_m=PORT_RADIUS_M, skip_legs=skip).violations
     berths = [plan.waypoints[i] for i in berth_cuts(plan)]
     b_lon = np.array([w.lon_deg for w in berths])
     b_lat = np.array([w.lat_deg for w in berths])
