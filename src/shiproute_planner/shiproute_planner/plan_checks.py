@@ -1,25 +1,31 @@
 """No-go zones a voyage is planned with, and the route check every finished plan gets.
 
-The check is the one `shiproute check` runs (land, clearance, depth/UKC, zones), here on the
-planner's own land mask (GSHHG at its resolution, exact near coasts): its findings go into
-the plan's warnings, and one on a leg the method planned (not a fixed approach) makes the
-plan infeasible with the finding as the reason, so a published plan never claims a check
-it fails.
+The check is the one `shiproute check` runs (land, clearance, depth/UKC, zones), on the same
+coastline (the finest GSHHG installed, `geo.full_land`), berth to berth: the route between
+two berths (voyage ends and port calls, not gates or canal points) is checked with
+`PORT_RADIUS_M` round each berth left to the pilot, canals (fixed passages) skipped. Its
+findings go into the plan's warnings; land or clearance on any checked leg, and depth or a
+zone on a leg the method planned, make the plan infeasible with the finding as the reason,
+so a published plan never claims a check it fails.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import itertools
 from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
+from shiproute_core.geodesy import inverse
 
+from .geo.full_land import final_land
 from .geo.landmask import LandMask
 from .geo.zones import Zones, load_zones
+from .plan_repair import INSERTED, PORT_RADIUS_M
 from .plan_types import RoutePlan
 from .route.problem import RouteLimits
-from .route_check import check_track
+from .route_check import CheckResult, Violation, check_track
 
 MAX_LISTED = 8  # findings listed one by one in the warnings; the rest counted
 
@@ -38,32 +44,106 @@ def zone_limits(limits: RouteLimits, zones: Sequence[str | Path] | Zones | None
     return dataclasses.replace(limits, zones=zones), [note]
 
 
-def checked_plan(plan: RoutePlan, land: LandMask, limits: RouteLimits,
-                 clearance_nm: float = 0.0) -> RoutePlan:
-    """The plan with the route check's findings in its warnings (and feasibility)."""
-    if len(plan.waypoints) < 2:
-        return plan
+def berth_cuts(plan: RoutePlan) -> list[int]:
+    """Waypoint indices of the plan's berths: its ends and the port calls between them."""
+    wps = plan.waypoints
+    inner = [i for i, w in enumerate(wps) if 0 < i < len(wps) - 1 and w.port
+             and not w.port.endswith(INSERTED) and not w.port.startswith("turning point")]
+    return [0, *inner, len(wps) - 1]
+
+
+def check_berth_to_berth(plan: RoutePlan, limits: RouteLimits, clearance_nm: float = 0.0
+                         ) -> CheckResult:
+    """The route check of a plan, berth to berth, on the final coastline (leg numbers are
+    the plan's)."""
+    land = final_land()
     lon, lat, _ = plan.track()
     wps = plan.waypoints[:-1]
     speed = np.array([w.stw_kn for w in wps])
     hs = np.nan_to_num(np.array([w.hs_m for w in wps]), nan=0.0)
-    result = check_track(lon, lat, speed, land.is_land, clearance_nm=clearance_nm,
-                         land_near=land.exact.clipped, under_keel=limits.under_keel,
-                         hs_m=hs, zones=limits.zones,
-                         skip_legs=frozenset(k for a, b in plan.extra.get("fixed_passages", ())
-                                             for k in range(a, b)))
+    fixed = {k for a, b in plan.extra.get("fixed_passages", ()) for k in range(a, b)}
+    found: list[Violation] = []
+    notes: list[str] = []
+    for a, b in itertools.pairwise(berth_cuts(plan)):
+        if b <= a:
+            continue
+        part = check_track(lon[a:b + 1], lat[a:b + 1], speed[a:b], land.contains,
+                           clearance_nm=clearance_nm, land_near=land.clipped,
+                           under_keel=limits.under_keel, hs_m=hs[a:b], zones=limits.zones,
+                           port_clearance_m=PORT_RADIUS_M,
+                           skip_legs=frozenset(k - a for k in fixed if a <= k < b))
+        found += [dataclasses.replace(v, leg=v.leg + a) for v in part.violations]
+        notes += [n for n in part.notes if n not in notes]
+    return CheckResult(tuple(found), tuple(notes))
+
+
+def baseline_land(plan: RoutePlan) -> list[Violation]:
+    """Land findings on the plan's constant-RPM baseline track at the final coastline
+    (outside `PORT_RADIUS_M` round the plan's berths and along the canals the plan sails as
+    fixed passages): the comparison's reference is held to the same coastline as the plan."""
+    if len(plan.baseline_track) < 2:
+        return []
+    lat, lon = (np.array(c, dtype=float) for c in zip(*plan.baseline_track, strict=True))
+    canal = {(round(w.lat_deg, 5), round(w.lon_deg, 5))
+             for a, b in plan.extra.get("fixed_passages", ()) for w in plan.waypoints[a:b + 1]}
+    on_canal = np.array([(round(la, 5), round(float((lo + 180.0) % 360.0 - 180.0), 5))
+                         in canal for la, lo in zip(lat, lon, strict=True)])
+    skip = frozenset(np.flatnonzero(on_canal[:-1] & on_canal[1:]).tolist())
+    lon = np.unwrap(lon, period=360.0)
+    found = check_track(lon, lat, np.full(lon.size - 1, 14.0), final_land().contains,
+                        port_clearance_m=PORT_RADIUS_M, skip_legs=skip).violations
+    berths = [plan.waypoints[i] for i in berth_cuts(plan)]
+    b_lon = np.array([w.lon_deg for w in berths])
+    b_lat = np.array([w.lat_deg for w in berths])
+    out = []
+    for v in found:
+        _, d = inverse(np.full(b_lon.size, v.lon_deg), np.full(b_lat.size, v.lat_deg),
+                       b_lon, b_lat)
+        if np.min(d) > PORT_RADIUS_M:
+            out.append(v)
+    return out
+
+
+def with_baseline_check(plan: RoutePlan) -> RoutePlan:
+    """The plan with its baseline's land findings stated (and its feasibility withdrawn);
+    a baseline already infeasible is not checked again (its flags are stated already)."""
+    if not plan.baseline_feasible:
+        return plan
+    found = baseline_land(plan)
+    if not found:
+        return plan
+    v, name = found[0], plan.baseline_method or "constant RPM"
+    said = (f"baseline ({name}) touches land at {final_land().words}: {len(found)} "
+            f"leg(s), first at {v.lat_deg:.3f}N {v.lon_deg:.3f}E; the fuel "
+            f"comparison is against a route a ship could not sail as drawn")
+    return dataclasses.replace(plan, baseline_feasible=False,
+                               warnings=(*plan.warnings, said))
+
+
+def checked_plan(plan: RoutePlan, land: LandMask, limits: RouteLimits,
+                 clearance_nm: float = 0.0) -> RoutePlan:
+    """The plan with the route check's findings in its warnings (and feasibility); `land`,
+    the optimiser's mask, is only named: the check runs on the finest coastline."""
+    if len(plan.waypoints) < 2:
+        return plan
+    plan = with_baseline_check(plan)
+    result = check_berth_to_berth(plan, limits, clearance_nm)
     found = result.violations
     warnings = list(plan.warnings)
+    warnings.append(f"land checked at {final_land().words} every 0.25 NM on every leg "
+                    f"(outside canals and {PORT_RADIUS_M / 1000.0:g} km round berths; the "
+                    f"optimiser searched on GSHHG resolution {land.resolution!r})")
     warnings += [f"route check: {v.line().strip()}" for v in found[:MAX_LISTED]]
     if len(found) > MAX_LISTED:
         warnings.append(f"route check: {len(found) - MAX_LISTED} more finding(s)")
     warnings += [f"route check: {n}" for n in result.notes]
-    planned = np.zeros(len(wps), dtype=bool)
-    for a, b in plan.optimised_spans or ((0, len(wps)),):
+    planned = np.zeros(len(plan.waypoints) - 1, dtype=bool)
+    for a, b in plan.optimised_spans or ((0, len(planned)),):
         planned[a:b] = True
     # depth next to ports and approach ends is pilotage (dredged channels): listed, not
-    # deciding; elsewhere the optimiser's own UKC constraint has decided already
-    bad = [v for v in found if planned[v.leg] and v.kind != "depth"]
+    # deciding; elsewhere the optimiser's own UKC constraint has decided already. Land
+    # decides on every leg checked (approaches and straits are repaired like the spans).
+    bad = [v for v in found if v.kind == "land" or (planned[v.leg] and v.kind != "depth")]
     if bad and plan.feasible:
         return dataclasses.replace(
             plan, warnings=tuple(warnings), feasible=False, infeasible_reasons=tuple(

@@ -17,6 +17,13 @@ from .ga.pool import SeedPool
 from .method_context import MethodContext, MethodFn, compute_baseline
 from .methods import get_method
 from .plan_prepare import PreparedVoyage
+from .plan_repair import (
+    RepairContext,
+    is_berth,
+    repair_context,
+    repaired_canal,
+    repaired_leg,
+)
 from .plan_seeds import leg_seeds, offer_to_pool
 from .plan_setup import cancel_fn
 from .plan_timing import PlanClock
@@ -24,6 +31,7 @@ from .request import PlanOptions, VoyageRequest
 from .route.approach import sail_approach
 from .route.canals import sail_canal
 from .route.evaluation import RouteEvaluation
+from .route.given_approach import approaches_at
 from .route.problem import RouteProblem
 from .route.voyage_legs import leg_setup
 from .straits import sail_strait
@@ -59,6 +67,7 @@ class LegRun:
     member_legs: list[MemberLeg] = field(default_factory=list)  # optimised legs (ensembles)
     generations: int = 0
     evaluations: int = 0
+    repairs: list[dict] = field(default_factory=list)  # land repairs (`plan_repair`)
 
     def sea_rpm(self) -> float | None:
         """RPM at the end of the last leg (a fixed passage goes on at it)."""
@@ -74,6 +83,11 @@ class LegRun:
         self.approaches.append(approaches)
         if baseline is not None:
             self.baselines.append(baseline)
+
+    def take_repairs(self, rows: list[dict]) -> None:
+        """Land repairs of a leg: rows for the plan's JSON, their words in its warnings."""
+        self.repairs += rows
+        self.warnings += [r["text"] for r in rows]
 
     def arrive(self, arrival_s: float, call: PortCall | None) -> None:
         """The leg ends at `arrival_s`; the next one leaves after the port call."""
@@ -91,35 +105,47 @@ class Search:
     month: int
     cancelled: Callable[[], bool]
     clock: PlanClock  # the plan's wall clock, lapped per phase
+    repair: RepairContext  # the final land check and repair of every leg
 
 
-def search_of(prep: PreparedVoyage, options: PlanOptions, clock: PlanClock) -> Search:
-    """The method, random generator, seed pool and clock of a plan."""
+def search_of(prep: PreparedVoyage, options: PlanOptions, clock: PlanClock,
+              clearance_nm: float | None = None) -> Search:
+    """The method, random generator, seed pool, clock and land repair of a plan."""
     seed = options.seed
     rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
     pool = SeedPool(options.seed_pool_dir) if options.seed_pool_dir is not None else None
     month = datetime.fromtimestamp(prep.depart_s, UTC).month
     return Search(get_method(options.method), rng, pool, month, cancel_fn(options.cancel),
-                  clock)
+                  clock, repair_context(prep.env, prep.limits, clearance_nm))
 
 
-def sail_canal_leg(prep: PreparedVoyage, run: LegRun, k: int, options: PlanOptions) -> None:
-    """A canal: sailed along its line at its transit speed."""
+def sail_canal_leg(prep: PreparedVoyage, run: LegRun, k: int, options: PlanOptions,
+                   repair: RepairContext) -> None:
+    """A canal: sailed along its line at its transit speed (lead-in and lead-out checked
+    at the final coastline and repaired like every leg)."""
     canal, rev = prep.canal_legs[k]
     lead_in, ev, lead_out, rpm_c, problem = sail_canal(
         prep.env, canal, rev, run.depart_s, prep.limits,
         (options.stage_hours or OCEAN_STAGE_H) * 3600.0, run.sea_rpm())
+    lead_in, ev, lead_out, fixed = repaired_canal(repair, canal.name, lead_in, ev, lead_out,
+                                                  problem)
+    run.take_repairs(fixed)
     run.add(ev, "canal", problem, (lead_in, lead_out),
             ("canal", rpm_c, ev) if options.with_baseline else None)
     run.arrive(float((lead_out or ev).eta_s[0]), prep.call_at.get(k + 1))
 
 
-def sail_strait_leg(prep: PreparedVoyage, run: LegRun, k: int, options: PlanOptions) -> None:
-    """A strait: the computed passage between its gates, at the sea RPM."""
+def sail_strait_leg(prep: PreparedVoyage, run: LegRun, k: int, options: PlanOptions,
+                    repair: RepairContext) -> None:
+    """A strait: the computed passage between its gates, at the sea RPM (checked at the
+    final coastline and repaired like every leg)."""
     ev, rpm_s, problem, said = sail_strait(
         prep.env, prep.strait_legs[k], run.depart_s, prep.limits,
         (options.stage_hours or OCEAN_STAGE_H) * 3600.0, run.sea_rpm())
+    _, ev, _, fixed = repaired_leg(repair, (prep.ports[k], prep.ports[k + 1]),
+                                   berths_of(prep, k), None, ev, problem, None)
     run.warnings += said
+    run.take_repairs(fixed)
     run.add(ev, "strait", problem, (None, None),
             ("strait", rpm_s, ev) if options.with_baseline else None)
     run.arrive(float(ev.eta_s[0]), prep.call_at.get(k + 1))
@@ -188,26 +214,37 @@ def plan_leg(prep: PreparedVoyage, run: LegRun, k: int, request: VoyageRequest,
     if search.pool is not None:
         offer_to_pool(search.pool, problem, a, b, search.month, res.evaluation,
                       res.seed_source, res.genes)
-    end_s = float(res.evaluation.eta_s[0])
-    post = (sail_approach(prep.env, leg.ap_arr, leg.rpm_ap, end_s, prep.limits)
-            if leg.ap_arr else None)
+    ap_arr, rpm_ap = leg.ap_arr, leg.rpm_ap
+    mine_dep, mine_arr = approaches_at(prep.given, a, b)
+    pre, span, post, fixed = repaired_leg(
+        search.repair, (a, b), berths_of(prep, k), leg.pre, res.evaluation, problem,
+        (lambda t: sail_approach(prep.env, ap_arr, rpm_ap, t, prep.limits)) if ap_arr else None,
+        (mine_dep is not None and not under_way, mine_arr is not None))
+    run.take_repairs(fixed)
+    end_s = float(span.eta_s[0])
     kept = (base.name, base.rpm, base.evaluation) if options.with_baseline and base else None
-    run.add(res.evaluation, res.seed_source, problem, (leg.pre, post), kept)
+    run.add(span, res.seed_source, problem, (pre, post), kept)
     run.arrive(float(post.eta_s[0]) if post is not None else end_s, prep.call_at.get(k + 1))
     search.clock.lap("passages")
+
+
+def berths_of(prep: PreparedVoyage, k: int) -> tuple[bool, bool]:
+    """Whether leg `k` starts and ends at a berth (land round it is the pilot's)."""
+    n = len(prep.ports)
+    return is_berth(prep.ports[k], k, n), is_berth(prep.ports[k + 1], k + 1, n)
 
 
 def sail_legs(request: VoyageRequest, options: PlanOptions, prep: PreparedVoyage,
               clock: PlanClock) -> LegRun:
     """Every leg of the prepared voyage, in order."""
-    search = search_of(prep, options, clock)
+    search = search_of(prep, options, clock, request.clearance_nm)
     run = LegRun(prep.depart_s, list(prep.search_rtas), list(prep.warnings))
     for k in range(len(prep.ports) - 1):
         if k in prep.canal_legs:
-            sail_canal_leg(prep, run, k, options)
+            sail_canal_leg(prep, run, k, options, search.repair)
             clock.lap("passages")
         elif k in prep.strait_legs:
-            sail_strait_leg(prep, run, k, options)
+            sail_strait_leg(prep, run, k, options, search.repair)
             clock.lap("passages")
         else:
             plan_leg(prep, run, k, request, options, search)

@@ -112,6 +112,7 @@ def finished_plan(request: VoyageRequest, options: PlanOptions, prep: PreparedVo
                                               *([late] if late else [])),
                                extra={**out.extra, "forecast": block, "objective": goal,
                                       "timing_s": clock.block(options.budget_s),
+                                      "land_repairs": run.repairs,
                                       **loading_block(prep.spec)})
 
 

@@ -1,7 +1,7 @@
 """The seed GA, the planner's reference method: seed tracks (baseline, great circle, sea lanes,
 bent variants, timed versions, previous plan and pool) turned into genes, the generic ask/tell
 GA (islands, then one population) within the wall-time budget, and the exact final choice
-checked against the coastline polygons."""
+checked against the finest coastline installed (GSHHG full: `geo.full_land`)."""
 
 from __future__ import annotations
 
@@ -17,6 +17,7 @@ from .ga.loop import AskTellGA, GAConfig, SeedGA
 from .ga.ranking import deb_order, is_better
 from .ga_refine import REFINE_EVERY, REFINE_ROUNDS, ga_share_of, refine_best
 from .ga_seeds import all_seeds, best_seeds_first, fresh_seeds_if_stale, seed_genes
+from .geo.full_land import final_land
 from .geo.landmask import LandMask
 from .geo.verify import land_crossings
 from .method_context import MethodContext, MethodResult, Progress
@@ -217,8 +218,8 @@ def final_result(ctx: MethodContext, ga: AskTellGA, confirmed: list[np.ndarray],
         # the baseline wins only through the same dense land check as the GA's candidates
         # (its compiled verdict samples legs too sparsely for an islet like Kojima off Tsugaru)
         base = b.evaluation
-        bad = [] if ctx.land is None else dense_land_legs(base.lon_deg[0], base.lat_deg[0],
-                                                          ctx.land)
+        bad = [] if ctx.land is None else dense_land_legs(
+            base.lon_deg[0], base.lat_deg[0], ctx.problem.port_clearance_m)
         base = with_land_legs(base, bad) if bad else base
         if better_than(base, final):
             return MethodResult(base, "baseline", ga.generation, ga.evaluations, None)
@@ -283,7 +284,7 @@ def exact_choice(p: RouteProblem, env: Environment, land: LandMask, pop: np.ndar
     for k in order[:DENSE_CHECKS]:
         if ev.violation[k] > 0:
             break
-        bad = dense_land_legs(ev.lon_deg[k], ev.lat_deg[k], land)
+        bad = dense_land_legs(ev.lon_deg[k], ev.lat_deg[k], p.port_clearance_m)
         if not bad:
             return x[k].copy(), ev.take(int(k))
         first_bad = first_bad or (int(k), bad)
@@ -294,11 +295,14 @@ def exact_choice(p: RouteProblem, env: Environment, land: LandMask, pop: np.ndar
     return x[k].copy(), with_land_legs(ev.take(k), bad)
 
 
-def dense_land_legs(lon_deg: np.ndarray, lat_deg: np.ndarray, land: LandMask) -> list[int]:
-    """Legs with land at the route check's own sample points (geodesic, every 0.25 NM): a
-    crossing of an islet shorter than a coarser spacing would pass here and fail there."""
-    return land_crossings(lon_deg, lat_deg, step_m=CHECK_STEP_M, port_clearance_m=0.0,
-                          contains=land.is_land)
+def dense_land_legs(lon_deg: np.ndarray, lat_deg: np.ndarray,
+                    port_clearance_m: float = 0.0) -> list[int]:
+    """Legs with land at the route check's own sample points (geodesic, every 0.25 NM) on
+    the finest coastline installed, not the optimiser's mask: a crossing of an islet shorter
+    than a coarser spacing, or missing from a coarser coastline, would pass there and fail
+    at the final check."""
+    return land_crossings(lon_deg, lat_deg, step_m=CHECK_STEP_M,
+                          port_clearance_m=port_clearance_m, contains=final_land().contains)
 
 
 def with_land_legs(ev: RouteEvaluation, legs: list[int]) -> RouteEvaluation:

@@ -55,13 +55,6 @@ def app1():
     return plan_multiport(BUDGET)
 
 
-LAND_XFAIL = pytest.mark.xfail(
-    strict=True, reason="known: the GA's best leg Ningbo -> Xiamen crosses an islet off "
-    "Zhejiang (27.63 N 121.19 E, ~0.75 NM) between the optimiser's land samples (its land "
-    "test, #20 item 1); earlier runs also touched Ras Mohammed (Sinai) on the leg into Suez")
-
-
-@LAND_XFAIL
 def test_application1_feasible(app1):
     assert app1.feasible, app1.infeasible_reasons
 
@@ -86,7 +79,6 @@ def test_application1_on_time_below_baseline_in_windows(app1):
     assert all(r["in_window"] for r in rows)
 
 
-@LAND_XFAIL
 def test_application1_land_free_at_full_resolution(app1):
     assert _land_findings(app1) == []
 

@@ -122,6 +122,7 @@ def run(budget_s: float, only: list[str]) -> dict:
             depth_near_coast_legs=int(np.count_nonzero(near_coast)),
             min_ukc_m=round(float(np.nanmin([w.ukc_m for w in plan.waypoints[:-1]])), 1)
             if np.isfinite(depths).any() else None,
+            land_repairs=[r["text"] for r in plan.extra.get("land_repairs", ())],
             distance_nm=round(plan.total_distance_nm, 1), fuel_t=round(plan.total_fuel_t, 1),
             warnings=list(plan.warnings))
         rows.append(row)
@@ -131,6 +132,7 @@ def run(budget_s: float, only: list[str]) -> dict:
         "feasible_lanes": sum(r["feasible"] for r in ok),
         "land_clean_lanes": sum(not r["land_legs_full_res"] for r in ok),
         "depth_checked_lanes": sum(r["depth_checked"] for r in ok),
+        "land_repaired_lanes": sum(bool(r["land_repairs"]) for r in ok),
         "depth_fully_known_lanes": sum(r["depth_fully_known"] for r in ok),
         "failed_lanes": [r["lane"] for r in rows if "error" in r],
         "median_plan_s": round(statistics.median(times), 2) if times else None,
