@@ -33,11 +33,30 @@ def planner_status(values: dict[str, str], plan: RoutePlan | None, plan_age_s: f
             "warnings": "; ".join(plan.warnings) or "none",
             "fuel_t": f"{plan.total_fuel_t:.2f}",
             "eta_minus_rta_h": f"{(plan.eta_s - plan.rta_s) / 3600:.2f}",
+            **replan_values(plan),
         })
     status.values = [KeyValue(key=k, value=v) for k, v in values.items()]
     msg = DiagnosticArray(status=[status])
     msg.header.stamp = stamp
     return msg
+
+
+def replan_values(plan: RoutePlan) -> dict[str, str]:
+    """A re-plan's word on the previous plan (`replan_keep`): whether it was kept, what its
+    remainder came to on the new forecast, and the sentence why it was kept."""
+    block = plan.extra.get("replan")
+    if not isinstance(block, dict):
+        return {}
+    if not block.get("carried"):
+        return {"replan_previous_plan": f"not carried over: {block.get('why_not', '')}"}
+    kept = next((w for w in plan.warnings if w.startswith("kept previous plan")), "")
+    return {
+        "replan_kept_previous": str(bool(block.get("kept_previous"))),
+        "replan_previous_remaining_fuel_t": f"{block['previous_remaining_fuel_t']:.2f}",
+        "replan_previous_remaining_feasible": str(block["previous_remaining_feasible"]),
+        "replan_search_generations": str(block["generations"]),
+        **({"replan_kept_why": kept} if kept else {}),
+    }
 
 
 def plan_log_line(plan: RoutePlan, reason: str) -> str:
