@@ -10,6 +10,7 @@ from collections.abc import Callable
 import numpy as np
 from shiproute_core.geodesy import inverse
 
+from .detour_seeds import broken_stretch, detour_seeds
 from .ga.islands import cross_track_rad
 from .ga.ranking import deb_order
 from .method_context import Baseline, MethodContext, compute_baseline
@@ -50,6 +51,16 @@ def fresh_seeds_if_stale(ctx: MethodContext, fast: FastEvaluator | None,
     k = int(np.argmin(ev.violation))
     why = "; ".join(reasons_of(int(ev.flags[k]))) or "constraints violated"
     stale = f"re-plan: no route seeded from the {name} is feasible on this forecast ({why})"
+    p = ctx.problem
+    centre = broken_stretch(ev, k)
+    if centre is not None:  # the route bent round where the new forecast breaks it
+        bent = detour_seeds(ctx.seeds[0], centre)
+        if bent:
+            x_seed, sources, offsets = best_seeds_first(
+                p, np.concatenate([x_seed, track_to_genes(p, ctx.env, bent, ctx.land,
+                                                          fast=fast)]),
+                sources + [b.source for b in bent], evaluate)
+            stale += "; detours of it round the broken stretch seeded too"
     if ctx.baseline is not None:  # the cold plan's seeds are in already
         return x_seed, sources, offsets, (stale + "; searched from fresh seeds as well",)
     if not fresh_seeds_fit(ctx):
@@ -58,7 +69,6 @@ def fresh_seeds_if_stale(ctx: MethodContext, fast: FastEvaluator | None,
         return x_seed, sources, offsets, (
             f"{stale}; this span's budget ({budget}) was too short for fresh seeds: a "
             "longer budget may find a feasible route",)
-    p = ctx.problem
     cold = dataclasses.replace(ctx, seeds=[], gene_seeds=[],
                                baseline=compute_baseline(p, ctx.env, ctx.land))
     more, more_sources = seed_genes(cold, all_seeds(cold), fast)

@@ -27,7 +27,7 @@ from .plan_types import RoutePlan
 from .request import PlanOptions
 from .route.evaluation import RouteEvaluation
 from .route.problem import RouteProblem
-from .route.sail import sail_tracks
+from .route.sail_fixed_point import sail_track
 
 PASSAGE_WINDOW_S = 30 * 86400.0  # a fixed part has no RTA of its own (the plan's deadline
 # is checked when the legs are assembled)
@@ -147,8 +147,7 @@ def _sail(prep: PreparedVoyage, rem: Remainder, part: Part, t0: float) -> RouteE
     problem = RouteProblem(float(lon[0]), float(lat[0]), float(lon[-1]), float(lat[-1]), t0,
                            t0 + PASSAGE_WINDOW_S, prep.limits)
     land = prep.land if kind == DECIDING else None
-    return sail_tracks(problem, prep.env, land, lon[None, :], lat[None, :],
-                       rem.rpm[a:b][None, :])
+    return sail_track(problem, prep.env, land, lon, lat, rem.rpm[a:b])
 
 
 def carried_legs(prep: PreparedVoyage, options: PlanOptions) -> CarriedLegs | str:
