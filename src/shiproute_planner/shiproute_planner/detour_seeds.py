@@ -14,6 +14,9 @@ from .route.seeding import TrackSeed
 # is tens to a few hundred kilometres from a track that meets it
 DETOUR_OFFSETS_M = (150e3, 300e3, 500e3)
 DETOUR_TAPER_M = 600e3  # the bend fades out over this much beyond the broken stretch
+RETIME_SCALES = (0.99, 1.0, 1.01, 1.02, 1.04)  # RPM factors of retimed copies ...
+RETIME_SLOPES = (-0.12, -0.06, 0.0, 0.06, 0.12)  # ... and their ramps over the stages
+RETIMED_ROWS = 4  # best seeds retimed
 
 
 def broken_stretch(ev: RouteEvaluation, row: int) -> tuple[float, float, float] | None:
@@ -54,6 +57,22 @@ def detour_seeds(seed: TrackSeed, centre: tuple[float, float, float]) -> list[Tr
             out.append(TrackSeed(f"{seed.source}_detour", d_lon, d_lat,
                                  np.asarray(seed.rpm, float) * scale))
     return out
+
+
+def retimed_genes(x: np.ndarray, n_stages: int, lo: np.ndarray, hi: np.ndarray
+                  ) -> np.ndarray:
+    """Copies of genes `x` (rows) with their RPMs scaled by RETIME_SCALES and ramped by
+    RETIME_SLOPES (relative change first to last stage / 2): passing a storm earlier or
+    later, or making up the minutes a seed's conversion to stages lost, costs one
+    evaluation of a small population instead of generations."""
+    ramp = np.linspace(-1.0, 1.0, n_stages + 1)
+    out = []
+    for scale in RETIME_SCALES:
+        for slope in RETIME_SLOPES:
+            y = x.copy()
+            y[:, n_stages:] *= scale * (1.0 + slope * ramp)[None, :]
+            out.append(y)
+    return np.clip(np.concatenate(out), lo, hi)
 
 
 def _length_m(lon: np.ndarray, lat: np.ndarray) -> float:

@@ -10,12 +10,12 @@ from collections.abc import Callable
 import numpy as np
 from shiproute_core.geodesy import inverse
 
-from .detour_seeds import broken_stretch, detour_seeds
+from .detour_seeds import RETIMED_ROWS, broken_stretch, detour_seeds, retimed_genes
 from .ga.islands import cross_track_rad
 from .ga.ranking import deb_order
 from .method_context import Baseline, MethodContext, compute_baseline
 from .plan_types import reasons_of
-from .route.encoding import clip_genes
+from .route.encoding import clip_genes, gene_bounds
 from .route.evaluation import RouteEvaluation
 from .route.fast_eval import FastEvaluator
 from .route.problem import RouteProblem
@@ -61,6 +61,12 @@ def fresh_seeds_if_stale(ctx: MethodContext, fast: FastEvaluator | None,
                                                           fast=fast)]),
                 sources + [b.source for b in bent], evaluate)
             stale += "; detours of it round the broken stretch seeded too"
+    lo, hi = gene_bounds(p)  # the best few retimed: a storm passed earlier or later
+    rows = min(RETIMED_ROWS, len(x_seed))
+    more = retimed_genes(x_seed[:rows], p.n_stages, lo, hi)
+    names = [f"{s}_retimed" for s in sources[:rows]] * (len(more) // max(rows, 1))
+    x_seed, sources, offsets = best_seeds_first(p, np.concatenate([x_seed, more]),
+                                                sources + names, evaluate)
     if ctx.baseline is not None:  # the cold plan's seeds are in already
         return x_seed, sources, offsets, (stale + "; searched from fresh seeds as well",)
     if not fresh_seeds_fit(ctx):
