@@ -165,6 +165,10 @@ def carried_legs(prep: PreparedVoyage, options: PlanOptions) -> CarriedLegs | st
     rem = remainder_of(previous, options.position, prep.depart_s)
     if isinstance(rem, str):
         return rem
+    lim = prep.limits
+    if not (np.all(np.isfinite(rem.rpm)) and lim.rpm_min <= rem.rpm.min()
+            and rem.rpm.max() <= lim.rpm_max):
+        return f"its RPMs are not all within this ship's {lim.rpm_min:g}..{lim.rpm_max:g}"
     ends = leg_ends(rem, prep)
     if isinstance(ends, str):
         return ends
