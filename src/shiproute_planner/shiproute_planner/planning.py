@@ -36,7 +36,7 @@ from .plan_prepare import PreparedVoyage, prepare_voyage
 from .plan_setup import TimeLike, to_posix_s
 from .plan_timing import PlanClock, previous_checks_s
 from .plan_types import RoutePlan
-from .replan_keep import carried_legs, kept_or_new
+from .replan_keep import carried_legs, kept_or_new, with_search_effort
 from .request import (
     CancelHook,
     ForecastInput,
@@ -77,8 +77,9 @@ def plan(request: VoyageRequest, options: PlanOptions | None = None,
     clock.lap("set-up")
     run = sail_legs(request, options, prep, clock)
     new = finished_plan(request, options, prep, run, clock)
-    return kept_or_new(new, carried, prep, options, run,
-                       lambda legs: finished_plan(request, options, prep, legs, clock))
+    return with_search_effort(kept_or_new(
+        new, carried, prep, options, run,
+        lambda legs: finished_plan(request, options, prep, legs, clock)), options)
 
 
 def finished_plan(request: VoyageRequest, options: PlanOptions, prep: PreparedVoyage,

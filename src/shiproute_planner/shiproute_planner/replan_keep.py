@@ -33,6 +33,7 @@ PASSAGE_WINDOW_S = 30 * 86400.0  # a fixed part has no RTA of its own (the plan'
 # is checked when the legs are assembled)
 SAME_DEPARTURE_S = 60.0  # the same departure (a re-plan at the port) or RTA within this
 OBJECTIVE_EPS = 1e-6  # relative: a new plan this close to the carried one is not "worse"
+FEW_GENERATIONS = 20  # a wall-time search shorter than this is stated in the plan
 
 
 @dataclass(frozen=True)
@@ -270,3 +271,18 @@ def kept_or_new(new: RoutePlan, carried_legs: CarriedLegs | str, prep: PreparedV
     return dataclasses.replace(
         carried, warnings=(*carried.warnings, said),
         extra={**carried.extra, "replan": {**block, "kept_previous": True}})
+
+
+def with_search_effort(plan: RoutePlan, options: PlanOptions) -> RoutePlan:
+    """The plan with a warning when its wall-time budget bought the seed GA only a few
+    generations (a loaded machine, a short re-plan budget): the effort is part of what a plan
+    was made with. Limits the caller set itself (generations, evaluations) are not stated."""
+    if (options.method != "seed_ga" or options.max_evaluations
+            or plan.generations >= min(FEW_GENERATIONS, options.max_generations)
+            or not plan.optimised_spans):
+        return plan
+    search_s = plan.extra.get("timing_s", {}).get("search", float("nan"))
+    said = (f"search: {plan.generations} generation(s), {plan.evaluations} route evaluations "
+            f"in {search_s:.2f} s of a {options.budget_s:g} s budget; a longer budget (or a "
+            "less loaded machine) may find a better plan")
+    return dataclasses.replace(plan, warnings=(*plan.warnings, said))
