@@ -10,7 +10,7 @@ from collections.abc import Callable
 import numpy as np
 from shiproute_core.geodesy import inverse
 
-from .detour_seeds import RETIMED_ROWS, broken_stretch, detour_seeds, retimed_genes
+from .detour_seeds import RETIMED_ROWS, broken_legs, detour_genes, retimed_genes
 from .ga.islands import cross_track_rad
 from .ga.ranking import deb_order
 from .method_context import Baseline, MethodContext, compute_baseline
@@ -52,16 +52,14 @@ def fresh_seeds_if_stale(ctx: MethodContext, fast: FastEvaluator | None,
     why = "; ".join(reasons_of(int(ev.flags[k]))) or "constraints violated"
     stale = f"re-plan: no route seeded from the {name} is feasible on this forecast ({why})"
     p = ctx.problem
-    centre = broken_stretch(ev, k)
-    if centre is not None:  # the route bent round where the new forecast breaks it
-        bent = detour_seeds(ctx.seeds[0], centre)
-        if bent:
-            x_seed, sources, offsets = best_seeds_first(
-                p, np.concatenate([x_seed, track_to_genes(p, ctx.env, bent, ctx.land,
-                                                          fast=fast)]),
-                sources + [b.source for b in bent], evaluate)
-            stale += "; detours of it round the broken stretch seeded too"
-    lo, hi = gene_bounds(p)  # the best few retimed: a storm passed earlier or later
+    lo, hi = gene_bounds(p)
+    bent = detour_genes(x_seed[given[k]], p.n_stages, broken_legs(ev, k), lo, hi)
+    if len(bent):  # the route bent round where the new forecast breaks it
+        x_seed, sources, offsets = best_seeds_first(
+            p, np.concatenate([x_seed, bent]), sources + [f"{name}_detour"] * len(bent),
+            evaluate)
+        stale += "; detours of it round the broken stretch seeded too"
+    # the best few retimed: a storm passed earlier or later
     rows = min(RETIMED_ROWS, len(x_seed))
     more = retimed_genes(x_seed[:rows], p.n_stages, lo, hi)
     names = [f"{s}_retimed" for s in sources[:rows]] * (len(more) // max(rows, 1))
