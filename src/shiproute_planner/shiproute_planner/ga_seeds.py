@@ -23,7 +23,7 @@ from .route.seeding import TrackSeed, great_circle_track, sea_lane_track, track_
 
 FRESH_SEEDS_MIN_BUDGET_S = 1.0  # a stale re-plan's fresh seeds cost ~0.1-0.2 s per span
 FRESH_SEEDS_MIN_EVALUATIONS = 5_000
-REPAIRS_KEPT = 6  # repaired stale seeds (detours, retimed) that enter the first population
+REPAIRS_KEPT = 12  # repaired stale seeds (detours, retimed) that enter the first population
 # RPM ramps (relative change from the first to the last leg / 2) of timed seed variants
 TIMED_SLOPES = (-0.08, -0.04, 0.04, 0.08)
 
