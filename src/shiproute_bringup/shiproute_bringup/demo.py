@@ -149,6 +149,11 @@ def _line(msg, t0: float) -> str:
             f"  feasible={msg.feasible}  [{time.monotonic() - t0:.0f} s]")
 
 
+def _replan_words(msg) -> list[str]:
+    """What a plan says about its search and the previous plan (kept, or a short search)."""
+    return [w for w in msg.warnings if w.startswith(("kept previous plan", "search: "))]
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point of `shiproute demo`."""
     args = _parser().parse_args(argv)
@@ -187,6 +192,8 @@ def main(argv: list[str] | None = None) -> int:
             page.report()
             while seen < len(watcher.plans):
                 print(_line(watcher.plans[seen], t0), flush=True)
+                for said in _replan_words(watcher.plans[seen]):
+                    print(f"    {said}", flush=True)
                 seen += 1
             if not bringup.running():
                 print("bringup stopped early; see nodes.log", file=sys.stderr)

@@ -10,11 +10,12 @@ from collections.abc import Callable
 import numpy as np
 from shiproute_core.geodesy import inverse
 
+from .detour_seeds import RETIMED_ROWS, broken_legs, detour_genes, retimed_genes
 from .ga.islands import cross_track_rad
 from .ga.ranking import deb_order
 from .method_context import Baseline, MethodContext, compute_baseline
 from .plan_types import reasons_of
-from .route.encoding import clip_genes
+from .route.encoding import clip_genes, gene_bounds
 from .route.evaluation import RouteEvaluation
 from .route.fast_eval import FastEvaluator
 from .route.problem import RouteProblem
@@ -22,6 +23,7 @@ from .route.seeding import TrackSeed, great_circle_track, sea_lane_track, track_
 
 FRESH_SEEDS_MIN_BUDGET_S = 1.0  # a stale re-plan's fresh seeds cost ~0.1-0.2 s per span
 FRESH_SEEDS_MIN_EVALUATIONS = 5_000
+REPAIRS_KEPT = 12  # repaired stale seeds (detours, retimed) that enter the first population
 # RPM ramps (relative change from the first to the last leg / 2) of timed seed variants
 TIMED_SLOPES = (-0.08, -0.04, 0.04, 0.08)
 
@@ -50,6 +52,9 @@ def fresh_seeds_if_stale(ctx: MethodContext, fast: FastEvaluator | None,
     k = int(np.argmin(ev.violation))
     why = "; ".join(reasons_of(int(ev.flags[k]))) or "constraints violated"
     stale = f"re-plan: no route seeded from the {name} is feasible on this forecast ({why})"
+    p = ctx.problem
+    x_seed, sources, offsets, said = with_repairs(p, x_seed, sources, given, ev, evaluate)
+    stale += said
     if ctx.baseline is not None:  # the cold plan's seeds are in already
         return x_seed, sources, offsets, (stale + "; searched from fresh seeds as well",)
     if not fresh_seeds_fit(ctx):
@@ -58,13 +63,35 @@ def fresh_seeds_if_stale(ctx: MethodContext, fast: FastEvaluator | None,
         return x_seed, sources, offsets, (
             f"{stale}; this span's budget ({budget}) was too short for fresh seeds: a "
             "longer budget may find a feasible route",)
-    p = ctx.problem
     cold = dataclasses.replace(ctx, seeds=[], gene_seeds=[],
                                baseline=compute_baseline(p, ctx.env, ctx.land))
     more, more_sources = seed_genes(cold, all_seeds(cold), fast)
     x, names, off = best_seeds_first(p, np.concatenate([x_seed, more]), sources + more_sources,
                                      evaluate)
     return x, names, off, (stale + "; searched from fresh seeds as well",)
+
+
+def with_repairs(p: RouteProblem, x_seed: np.ndarray, sources: list[str], given: np.ndarray,
+                 ev: RouteEvaluation, evaluate: Callable[[np.ndarray], RouteEvaluation]
+                 ) -> tuple[np.ndarray, list[str], np.ndarray, str]:
+    """The seeds plus the best REPAIRS_KEPT repairs of the given ones (`ev` their
+    evaluation): detours round the broken legs of the least broken, and the few least broken
+    with their detours retimed; only a few, so the population keeps the other seeds'
+    diversity (a hundred near-copies of the stale route hold the search in its basin)."""
+    lo, hi = gene_bounds(p)
+    best = given[np.argsort(ev.violation, kind="stable")[:RETIMED_ROWS]]
+    k = int(np.argmin(ev.violation))
+    bent = detour_genes(x_seed[given[k]], p.n_stages, broken_legs(ev, k), lo, hi)
+    base = np.concatenate([x_seed[best], bent])
+    cand = np.concatenate([bent, retimed_genes(base, p.n_stages, lo, hi)])
+    detour = f"{sources[given[k]]}_detour"
+    base_names = [f"{sources[i]}_retimed" for i in best] + [f"{detour}_retimed"] * len(bent)
+    names = [detour] * len(bent) + base_names * ((len(cand) - len(bent)) // len(base))
+    rev = evaluate(cand)
+    keep = deb_order(rev.violation, rev.objective)[:REPAIRS_KEPT]
+    x, names_out, offsets = best_seeds_first(
+        p, np.concatenate([x_seed, cand[keep]]), sources + [names[i] for i in keep], evaluate)
+    return x, names_out, offsets, "; detours and retimed versions of it seeded too"
 
 
 def all_seeds(ctx: MethodContext) -> list[TrackSeed]:

@@ -36,6 +36,7 @@ from .plan_prepare import PreparedVoyage, prepare_voyage
 from .plan_setup import TimeLike, to_posix_s
 from .plan_timing import PlanClock, previous_checks_s
 from .plan_types import RoutePlan
+from .replan_keep import carried_legs, kept_or_new, with_search_effort
 from .request import (
     CancelHook,
     ForecastInput,
@@ -71,9 +72,14 @@ def plan(request: VoyageRequest, options: PlanOptions | None = None,
     options = options or PlanOptions()
     clock = PlanClock(checks_measured_s=previous_checks_s(options.previous_plan))
     prep = prepare_voyage(request, options, forecast)
+    # a re-plan is never silently worse than the previous plan's remainder on this forecast
+    carried = carried_legs(prep, options)
     clock.lap("set-up")
     run = sail_legs(request, options, prep, clock)
-    return finished_plan(request, options, prep, run, clock)
+    new = finished_plan(request, options, prep, run, clock)
+    return with_search_effort(kept_or_new(
+        new, carried, prep, options, run,
+        lambda legs: finished_plan(request, options, prep, legs, clock)), options)
 
 
 def finished_plan(request: VoyageRequest, options: PlanOptions, prep: PreparedVoyage,

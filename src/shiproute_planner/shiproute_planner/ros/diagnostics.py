@@ -33,6 +33,7 @@ def planner_status(values: dict[str, str], plan: RoutePlan | None, plan_age_s: f
             "warnings": "; ".join(plan.warnings) or "none",
             "fuel_t": f"{plan.total_fuel_t:.2f}",
             "eta_minus_rta_h": f"{(plan.eta_s - plan.rta_s) / 3600:.2f}",
+            **replan_values(plan),
         })
     status.values = [KeyValue(key=k, value=v) for k, v in values.items()]
     msg = DiagnosticArray(status=[status])
@@ -40,12 +41,33 @@ def planner_status(values: dict[str, str], plan: RoutePlan | None, plan_age_s: f
     return msg
 
 
+def replan_values(plan: RoutePlan) -> dict[str, str]:
+    """A re-plan's word on the previous plan (`replan_keep`): whether it was kept, what its
+    remainder came to on the new forecast, and the sentence why it was kept."""
+    block = plan.extra.get("replan")
+    if not isinstance(block, dict):
+        return {}
+    if not block.get("carried"):
+        return {"replan_previous_plan": f"not carried over: {block.get('why_not', '')}"}
+    kept = next((w for w in plan.warnings if w.startswith("kept previous plan")), "")
+    return {
+        "replan_kept_previous": str(bool(block.get("kept_previous"))),
+        "replan_previous_remaining_fuel_t": f"{block['previous_remaining_fuel_t']:.2f}",
+        "replan_previous_remaining_feasible": str(block["previous_remaining_feasible"]),
+        "replan_search_generations": str(block["generations"]),
+        **({"replan_kept_why": kept} if kept else {}),
+    }
+
+
 def plan_log_line(plan: RoutePlan, reason: str) -> str:
     """The one log line of a published plan: fuel, ETA against RTA, saving and run time."""
     return (
         f"plan {plan.plan_id} cycle {plan.cycle_id}: fuel {plan.total_fuel_t:.1f} t, "
         f"ETA-RTA {(plan.eta_s - plan.rta_s) / 3600:+.1f} h, saved {plan.fuel_saving_t:.1f} t "
-        f"vs constant RPM, {plan.compute_time_s:.2f} s, feasible={plan.feasible} ({reason})"
+        f"vs constant RPM, {plan.compute_time_s:.2f} s, {plan.generations} gens, "
+        f"feasible={plan.feasible}"
+        + (" (kept previous plan)" if plan.extra.get("replan", {}).get("kept_previous")
+           else "") + f" ({reason})"
     )
 
 

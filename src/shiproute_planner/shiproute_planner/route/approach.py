@@ -25,7 +25,7 @@ from ..geo.verify import densify_track
 from .environment import Environment
 from .evaluation import RouteEvaluation
 from .problem import RouteLimits, RouteProblem
-from .sail import sail_tracks
+from .sail_fixed_point import sail_track
 
 
 @dataclass(frozen=True)
@@ -172,5 +172,4 @@ def sail_approach(env: Environment, ap: Approach, rpm: float, t0_s: float,
     """Sail an approach at constant `rpm` from `t0_s` (no land check, no RTA)."""
     problem = RouteProblem(float(ap.lon_deg[0]), float(ap.lat_deg[0]), float(ap.lon_deg[-1]),
                            float(ap.lat_deg[-1]), t0_s, t0_s + 30 * 86400.0, limits)
-    return sail_tracks(problem, env, None, ap.lon_deg[None, :], ap.lat_deg[None, :],
-                       np.array([[rpm]]))
+    return sail_track(problem, env, None, ap.lon_deg, ap.lat_deg, np.array([rpm]))

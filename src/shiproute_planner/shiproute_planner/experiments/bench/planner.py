@@ -156,6 +156,10 @@ def _figures(cold, warm, ref, env, land, problem, reference, setup_s, cold_s, wa
         "baseline_feasible": cold.baseline_feasible,
         "warm_tfoc_t": round(warm.total_fuel_t, 2),
         "warm_feasible": warm.feasible,
+        "warm_timing_s": warm.extra.get("timing_s", {}),
+        "warm_generations": warm.generations,
+        # the previous plan's remainder on the new cycle and whether it was kept (replan_keep)
+        "warm_replan": warm.extra.get("replan", {}),
         "reference_tfoc_t": round(reference, 2),
         "reference_feasible": ref.feasible,
         "gap_to_reference_pct": round(100.0 * (cold.total_fuel_t - reference) / reference, 3),
