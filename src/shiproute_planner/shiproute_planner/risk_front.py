@@ -86,11 +86,26 @@ class RiskFront:
         return sorted(ok, key=lambda p: p.risk)
 
 
-def front_note(front: list[FrontPoint], spec: RiskSpec, chosen_p_hs: float | None) -> str:
-    """The plan's sentence on the trade-off the search saw (empty when it saw none: no
-    front, or one exposure only)."""
-    if len(front) < 2:
+def front_note(front: list[FrontPoint], spec: RiskSpec, chosen_p_hs: float | None,
+               highest_seen: float | None = None) -> str:
+    """The plan's sentence on the trade-off the search saw: the front's points and what a
+    lower exposure costs, or that there was none (the lowest exposure seen also the best,
+    `highest_seen` the highest on-time exposure seen); empty without any front."""
+    if not front:
         return ""
+    head = (f"risk trade-off seen by the search on the optimised span (P(Hs or another "
+            f"sea-keeping limit exceeded) -> {spec.label} of the objective, on time within "
+            f"P(late) <= {spec.p_late_max:g}): ")
+    chosen = "" if chosen_p_hs is None else f"; chosen at P(Hs > limit) {chosen_p_hs:.2f}"
+    asked = f"; asked P(Hs > limit) <= {spec.p_hs_max:g}{chosen}"
+    if len(front) == 1:
+        p = front[0]
+        best = f"{spec.label} {p.risk:.1f}, P90 fuel {p.p90_fuel_t:.1f} t"
+        if highest_seen is None or highest_seen <= p.exposure:
+            return (f"{head}none: every route seen had P(Hs > limit) {p.exposure:.2f} "
+                    f"({best}){asked}")
+        return (f"{head}none: the lowest P(Hs > limit) seen, {p.exposure:.2f}, is also the best "
+                f"({best}); the routes seen up to {highest_seen:.2f} cost more{asked}")
     step = max(1, -(-len(front) // FRONT_POINTS_SAID))
     shown = front[::step]
     if shown[-1] is not front[-1]:
@@ -101,11 +116,7 @@ def front_note(front: list[FrontPoint], spec: RiskSpec, chosen_p_hs: float | Non
     cost = (f"; lowering it from {hi.exposure:.2f} to {lo.exposure:.2f} costs "
             f"{lo.risk - hi.risk:+.1f} in {spec.label} and {lo.p90_fuel_t - hi.p90_fuel_t:+.1f} t "
             "at P90")
-    chosen = "" if chosen_p_hs is None else f"; chosen at P(Hs > limit) {chosen_p_hs:.2f}"
-    return (f"risk trade-off seen by the search on the optimised span (P(Hs or another "
-            f"sea-keeping limit exceeded) -> {spec.label} of the objective, on time within "
-            f"P(late) <= {spec.p_late_max:g}): {pts}{cost}; asked P(Hs > limit) <= "
-            f"{spec.p_hs_max:g}{chosen}")
+    return f"{head}{pts}{cost}{asked}"
 
 
 def front_first(front: RiskFront, pop: np.ndarray, keep: int = 4) -> np.ndarray:
@@ -118,5 +129,7 @@ def front_statement(fast: FastEvaluator, spec: RiskSpec, front: RiskFront,
                     chosen: np.ndarray) -> list[str]:
     """The plan's trade-off sentence, with the chosen genes' own P(Hs > limit)."""
     _, out = risk_evaluate_outcomes(fast, spec, chosen[None, :])
-    note = front_note(front.front(), spec, float(out.probability(out.hs_exceeded)[0]))
+    seen = [p.exposure for (_, _, on_time), p in front.cells.items() if on_time]
+    note = front_note(front.front(), spec, float(out.probability(out.hs_exceeded)[0]),
+                      max(seen, default=None))
     return [note] if note else []

@@ -91,5 +91,10 @@ def test_front_note_states_the_cost_of_lower_exposure_and_the_choice():
     assert f"from {pts[-1].exposure:.2f} to {pts[0].exposure:.2f} costs" in note
     assert f"{pts[0].risk - pts[-1].risk:+.1f} in cvar:0.9" in note
     assert "asked P(Hs > limit) <= 0.2; chosen at P(Hs > limit) 0.20" in note
-    # no trade-off seen (no front, or one exposure only): nothing to say
-    assert front_note([], front.spec, None) == "" and front_note(pts[:1], front.spec, 0.2) == ""
+    # no front: nothing to say; one point: no trade-off, said, with what else was seen
+    assert front_note([], front.spec, None) == ""
+    one = front_note(pts[:1], front.spec, 0.2, pts[-1].exposure)
+    assert f"none: the lowest P(Hs > limit) seen, {pts[0].exposure:.2f}, is also the best" in one
+    assert f"routes seen up to {pts[-1].exposure:.2f} cost more" in one
+    only = front_note(pts[:1], front.spec, 0.2, pts[0].exposure)
+    assert f"none: every route seen had P(Hs > limit) {pts[0].exposure:.2f}" in only

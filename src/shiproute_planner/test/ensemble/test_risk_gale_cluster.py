@@ -92,7 +92,11 @@ def test_risk_aware_plan_goes_round_a_gale_half_the_members_put_on_the_great_cir
     assert a["p_late"] <= 0.5 + 1e-9
     assert not any("not met" in w for w in risky.warnings)
     said = [w for w in risky.warnings if w.startswith("risk trade-off seen by the search")]
-    assert len(said) == 1 and "from 0.50 to 0.00 costs" in said[0]
+    # the through route (0.5) was seen: either going round costs, or it is dearer as well
+    # (heave-to and RTA recovery in the gale members can make the through route the dearer)
+    assert len(said) == 1 and ("from 0.50 to 0.00 costs" in said[0]
+                               or ("seen, 0.00, is also the best" in said[0]
+                               and "routes seen up to 0.50 cost more" in said[0]))
     assert "chosen at P(Hs > limit) 0.00" in said[0]
 
 
