@@ -47,7 +47,7 @@ class TiledLand:
         if parts is None:
             b = self.tile_deg * BLOCK_TILES
             lon0, lat0 = -180.0 + bj * b, -90.0 + bi * b
-            parts = np.array(land_in_box(self.polygons, lon0, lat0, lon0 + b, lat0 + b),
+            parts = np.array(land_in_box(self.polygons, lon0, lat0, lon0 + b, lat0 + b, False),
                              dtype=object)
             self._blocks[(bi, bj)] = parts
         return parts
@@ -85,7 +85,7 @@ class TiledLand:
 
     def clipped(self, lon_min: float, lat_min: float, lon_max: float, lat_max: float):
         """Land inside a lon/lat box (-180..180) as one geometry (clearance tests)."""
-        parts = land_in_box(self.polygons, lon_min, lat_min, lon_max, lat_max)
+        parts = land_in_box(self.polygons, lon_min, lat_min, lon_max, lat_max, False)
         return shapely.GeometryCollection(parts) if parts else shapely.Polygon()
 
 

@@ -35,12 +35,17 @@ class LandMask:
         self.resolution = resolution
         self.cell_deg = float(cell_deg)
         self.polygons = load_land_polygons(resolution)
-        self.exact = ExactLand(self.polygons)
         self.raster = self._load_or_build(cache_dir or data_dir())
         # GA offspring share most legs with their parents (same genes -> same nodes), so
         # exact results per segment are memoised; cleared when it grows past `_cache_max`
         self._seg_cache: dict[bytes, int] = {}
         self._cache_max = 500_000
+
+    @functools.cached_property
+    def exact(self) -> ExactLand:
+        """The polygons' point test, built on first use: its index of every polygon's box
+        (~90 MB at full resolution) is not needed where only the raster is read."""
+        return ExactLand(self.polygons)
 
     def _load_or_build(self, cache_dir: Path) -> np.ndarray:
         self._cache_dir = cache_dir

@@ -121,18 +121,20 @@ def rasterize_land(geometry, lon0: float, lat0: float, dlon: float, dlat: float,
 _RINGS: dict[int, tuple[object, dict[int, object]]] = {}
 
 
-def land_in_box(polygons, lon_min: float, lat_min: float, lon_max: float, lat_max: float
-                ) -> list:
+def land_in_box(polygons, lon_min: float, lat_min: float, lon_max: float, lat_max: float,
+                keep_rings: bool = True) -> list:
     """Land polygons (`gshhg.LandPolygons`, lon in -180..180) clipped to a box, as shapely
     geometries. Rings are not validated (GSHHG rings are simple; validating a continent
-    costs ~20 s): rasterising and point tests only need the rings themselves."""
+    costs ~20 s): rasterising and point tests only need the rings themselves. With
+    `keep_rings` the whole rings stay cached for the next box; a caller that keeps its own
+    clipped pieces passes False (a continent's ring at full resolution is ~20 MB)."""
     import shapely
 
     b = polygons.bounds
     ids = np.flatnonzero((b[:, 0] <= lon_max) & (b[:, 2] >= lon_min) & (b[:, 1] <= lat_max)
                          & (b[:, 3] >= lat_min))
     out = []
-    rings = _RINGS.setdefault(id(polygons), (polygons, {}))[1]
+    rings = _RINGS.setdefault(id(polygons), (polygons, {}))[1] if keep_rings else {}
     for i in ids.tolist():
         poly = rings.get(i)
         if poly is None:
