@@ -262,10 +262,10 @@ def run(n_plans: int, n_clients: int, screenshot: str | None) -> dict[str, Any]:
     """Run the benchmark; returns the JSON-ready result."""
     from shiproute_display.samples import load_sample_plan
 
-    from shiproute_bringup.rosproc import RosProcess, random_domain_id, wait_until
+    from shiproute_bringup.rosproc import RosProcess, random_bench_domain_id, wait_until
 
     plans = [load_sample_plan(n) for n in ("plan_cycle1", "plan_cycle2")]
-    dom, port = random_domain_id(), _free_port()
+    dom, port = random_bench_domain_id(), _free_port()
     weather = RosProcess.script("shiproute_weather_node", "--ros-args", "-p",
                                 "scenario:=storm_march", domain_id=dom, name="weather")
     display = RosProcess.script("shiproute_display_node", "--ros-args", "-p", f"port:={port}",

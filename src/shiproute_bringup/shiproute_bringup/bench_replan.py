@@ -23,7 +23,7 @@ from pathlib import Path
 from shiproute_core.bench_report import print_figures
 
 from shiproute_bringup.bench_nodes import BenchPeer, peak_rss_mb, rss_mb, start_nodes
-from shiproute_bringup.rosproc import RosProcess, random_domain_id
+from shiproute_bringup.rosproc import RosProcess, random_bench_domain_id
 from shiproute_core import topics
 
 DEPART_S = 1772560800.0  # 2026-03-03T18:00:00Z
@@ -50,7 +50,7 @@ def run(budget_s: float, repeats: int, log: bool = False) -> dict:
 
     from shiproute_msgs.msg import ForecastCycle, RoutePlan, ShipState
 
-    dom = random_domain_id()
+    dom = random_bench_domain_id()
     work = Path(tempfile.mkdtemp(prefix="shiproute-bench-replan-"))
     watch = work / "watch"
     watch.mkdir()

@@ -27,7 +27,7 @@ import numpy as np
 from shiproute_core.bench_report import print_figures
 
 from shiproute_bringup.bench_nodes import BenchPeer, peak_rss_mb, rss_mb, start_nodes
-from shiproute_bringup.rosproc import random_domain_id
+from shiproute_bringup.rosproc import random_bench_domain_id
 from shiproute_core import topics
 
 DEPART_S = 1772560800.0  # 2026-03-03T18:00:00Z, the storm scenario's departure
@@ -270,7 +270,7 @@ def run(minutes: float, period_s: float, budget_s: float, ensemble: bool = False
 
     names = ENSEMBLE_CYCLES if ensemble else CYCLES
     files = [str(scenario_path(n)) for n in names]
-    dom = random_domain_id()
+    dom = random_bench_domain_id()
     weather, planner = start_nodes(
         dom, [f"forecast_files:=['{files[0]}']"], RTA, budget_s,
         ["accept_older_forecasts:=true", "write_png:=false"])

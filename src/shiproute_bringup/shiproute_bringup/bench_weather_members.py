@@ -47,12 +47,12 @@ def run(rounds: int, control: bool = False, max_slices: int = 200) -> dict[str, 
     from shiproute_weather.scenarios.catalogue import scenario_path
 
     from shiproute_bringup.bench_nodes import BenchPeer, peak_rss_mb, rss_mb
-    from shiproute_bringup.rosproc import RosProcess, console_script, random_domain_id
+    from shiproute_bringup.rosproc import RosProcess, console_script, random_bench_domain_id
     from shiproute_msgs.srv import LoadForecast
 
     ensemble = str(scenario_path("storm_march_cycle2" if control else "storm_march_ensemble"))
     deterministic = str(scenario_path("storm_march"))
-    dom = random_domain_id()
+    dom = random_bench_domain_id()
     diag: dict[str, dict[str, str]] = {}
     with RosProcess([console_script("shiproute_weather_node"), "--ros-args", "-p",
                      f"forecast_files:=['{ensemble}']", "-p", f"max_slices:={max_slices}"],

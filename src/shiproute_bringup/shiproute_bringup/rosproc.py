@@ -44,6 +44,10 @@ def _die_with_parent() -> None:
 
 
 MAX_DOMAIN_ID = 101  # the highest id safe with the default Fast DDS port mapping
+# the other range Fast DDS's port mapping leaves clear of Linux's ephemeral ports (ROS 2
+# "The ROS_DOMAIN_ID" concept page): benchmarks draw from it, so a bench run beside the
+# tests never shares a domain with one of them
+BENCH_DOMAIN_IDS = range(215, 233)
 
 
 def random_domain_id(rng: random.Random | None = None) -> int:
@@ -56,6 +60,11 @@ def random_domain_id(rng: random.Random | None = None) -> int:
         return (rng or random.SystemRandom()).randint(0, MAX_DOMAIN_ID)
     choices = range(index, MAX_DOMAIN_ID + 1, workers)
     return (rng or random.SystemRandom()).choice(choices)
+
+
+def random_bench_domain_id(rng: random.Random | None = None) -> int:
+    """A ROS_DOMAIN_ID for a benchmark's nodes, in 215..232: never one the tests draw."""
+    return (rng or random.SystemRandom()).choice(BENCH_DOMAIN_IDS)
 
 
 def ros_env(domain_id: int, extra: Mapping[str, str] | None = None) -> dict[str, str]:

@@ -8,7 +8,7 @@ import uuid
 import pytest
 from shiproute_bringup.dispatch import Command, discover, dispatch
 from shiproute_bringup.msgdict import message_class, plain_equal, to_plain
-from shiproute_bringup.rosproc import RosProcess, random_domain_id
+from shiproute_bringup.rosproc import RosProcess, random_bench_domain_id, random_domain_id
 
 from shiproute_bringup import cli, testrun
 
@@ -93,12 +93,25 @@ def test_msgdict_nan_aware_equality() -> None:
     assert to_plain(list(range(40)), max_array=3) == [0, 1, 2, "... (40 values)"]
 
 
+def test_bench_domain_ids_never_meet_the_tests_ids(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Benchmarks draw ROS domain ids from 215..232, tests from 0..101 (any worker split)."""
+    monkeypatch.delenv("PYTEST_XDIST_WORKER", raising=False)
+    monkeypatch.delenv("PYTEST_XDIST_WORKER_COUNT", raising=False)
+    bench = {random_bench_domain_id() for _ in range(500)}
+    tests = {random_domain_id() for _ in range(500)}
+    assert bench <= set(range(215, 233)) and len(bench) > 10
+    assert tests <= set(range(0, 102)) and not bench & tests
+
+
 @pytest.mark.ros
-def test_echo_prints_messages_from_another_process() -> None:
-    """`shiproute echo` discovers the type of a topic and prints N messages as YAML."""
+@pytest.mark.parametrize("draw", [random_domain_id, random_bench_domain_id],
+                         ids=["test-domain", "bench-domain"])
+def test_echo_prints_messages_from_another_process(draw) -> None:
+    """`shiproute echo` discovers the type of a topic and prints N messages as YAML (on a
+    tests' domain and on a benchmarks' one: both ranges work with the DDS in use)."""
     pytest.importorskip("shiproute_msgs.msg")
     assert message_class("shiproute_msgs/msg/ShipState").__name__ == "ShipState"
-    dom = random_domain_id()
+    dom = draw()
     topic = f"/echo_test_{uuid.uuid4().hex[:8]}"  # no other test's publisher can share it
     talker_code = (
         "import math, sys, rclpy\nfrom rclpy.node import Node\n"
