@@ -159,3 +159,16 @@ def assemble_legs(sog, fuel_t_per_h, headings, heading_n, dist_n, dur_n, stage_s
         heading[p, n] = heading_n[p]
         for k in range(m):
             fuel_t[p, k] = fuel_t_per_h[p, k] * duration[p, k] / 3600.0
+
+
+@njit(cache=True, nogil=True)
+def assemble_and_cut(sog, fuel_t_per_h, headings, heading_n, dist_n, dur_n, stage_s, lon, lat,
+                     dep_lon, dep_lat, arr_lon, arr_lat, cuts_m, duration, distance, heading,
+                     fuel_t, ends):
+    """`assemble_legs`, then `port_cut_ends` for each cut in `cuts_m` into ends[4 c: 4 c + 4]
+    (lon0, lat0, lon1, lat1 per cut): one compiled call per piece of rows."""
+    assemble_legs(sog, fuel_t_per_h, headings, heading_n, dist_n, dur_n, stage_s, duration,
+                  distance, heading, fuel_t)
+    for c in range(cuts_m.size):
+        port_cut_ends(lon, lat, distance, dep_lon, dep_lat, arr_lon, arr_lat, cuts_m[c],
+                      ends[4 * c], ends[4 * c + 1], ends[4 * c + 2], ends[4 * c + 3])

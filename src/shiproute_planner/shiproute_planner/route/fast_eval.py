@@ -78,7 +78,7 @@ class FastEvaluator:
     def evaluate(self, x: np.ndarray) -> RouteEvaluation:
         """Generate and evaluate routes from genes `x` (pop, 2n + 1): each thread's rows
         generated and their leg arrays and port-cut leg ends assembled in one piece of
-        work (`_finish_kernel.assemble_legs`, `port_cut_ends`), then land, depth and
+        work (`_finish_kernel.assemble_and_cut`: one compiled call), then land, depth and
         constraints (`fast_finish.finish_fast`)."""
         p = self.problem
         headings, rpm = split_genes(p, x)
@@ -91,7 +91,8 @@ class FastEvaluator:
         headings, rpm = np.ascontiguousarray(headings), np.ascontiguousarray(rpm)
         duration, distance, heading, fuel = (np.empty((pop, m)) for _ in range(4))
         cuts = leg_cuts(p)
-        ends = [tuple(np.empty((pop, m)) for _ in range(4)) for _ in cuts]
+        ends = np.empty((4 * len(cuts), pop, m))  # lon0, lat0, lon1, lat1 per cut
+        cuts_m = np.array(cuts)
 
         def generate(a: int, b: int) -> None:
             rk.generate_routes(headings[a:b], rpm[a:b], p.dep_lon_deg, p.dep_lat_deg,
@@ -99,21 +100,20 @@ class FastEvaluator:
                                self._rpm_lo, self._rpm_hi, *self._weather, self._limits,
                                *self._ship, lon[a:b], lat[a:b], t[a:b], out_f[:, a:b],
                                out_b[:, a:b], heading_n[a:b], dist_n[a:b], dur_n[a:b])
-            kf.assemble_legs(out_f[_F_ROWS["sog_m_s"], a:b],
-                             out_f[_F_ROWS["fuel_t_per_h"], a:b], headings[a:b],
-                             heading_n[a:b], dist_n[a:b], dur_n[a:b], p.stage_s,
-                             duration[a:b], distance[a:b], heading[a:b], fuel[a:b])
-            for cut_m, e in zip(cuts, ends, strict=True):
-                kf.port_cut_ends(lon[a:b], lat[a:b], distance[a:b], p.dep_lon_deg,
-                                 p.dep_lat_deg, p.arr_lon_deg, p.arr_lat_deg, cut_m,
-                                 *(x[a:b] for x in e))
+            kf.assemble_and_cut(out_f[_F_ROWS["sog_m_s"], a:b],
+                                out_f[_F_ROWS["fuel_t_per_h"], a:b], headings[a:b],
+                                heading_n[a:b], dist_n[a:b], dur_n[a:b], p.stage_s, lon[a:b],
+                                lat[a:b], p.dep_lon_deg, p.dep_lat_deg, p.arr_lon_deg,
+                                p.arr_lat_deg, cuts_m, duration[a:b], distance[a:b],
+                                heading[a:b], fuel[a:b], ends[:, a:b])
 
         in_chunks(pop, generate)
         legs = self._perf_legs(out_f, out_b)
         legs.update(heading_deg=heading, rpm=rpm, distance_m=distance, duration_s=duration,
                     fuel_t=fuel, turn_deg=np.zeros((pop, m)))
         scan = None if self.land is None else self._land_verdicts
-        cut_ends = dict(zip(cuts, ((e[0], e[1], e[2], e[3]) for e in ends), strict=True))
+        cut_ends = {cut: (ends[4 * c], ends[4 * c + 1], ends[4 * c + 2], ends[4 * c + 3])
+                    for c, cut in enumerate(cuts)}
         return finish_fast(p, lon, lat, t, legs, scan, cut_ends)
 
     @property

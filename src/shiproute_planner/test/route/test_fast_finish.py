@@ -131,7 +131,7 @@ def test_fast_evaluation_is_finish_on_a_real_population(storm_sampler, land_mask
 @pytest.mark.skipif(not default_depth_files(), reason="ETOPO5 (ferret-datasets) not installed")
 def test_fast_evaluation_with_ukc_is_finish_on_a_real_population(storm_sampler, land_mask):
     """The evaluator's leg arrays and port-cut ends assembled per thread
-    (`_finish_kernel.assemble_legs`) and its land and depth verdicts: `finish` of the same
+    (`_finish_kernel.assemble_and_cut`) and its land and depth verdicts: `finish` of the same
     legs, bit for bit, with the UKC constraint the planner adds by default."""
     env, spec = make_environment("container_4600teu", storm_sampler)
     limits, _ = depth_limits(route_limits(spec), spec, None, True, 1.0)
