@@ -22,8 +22,10 @@ def two_threads():
     set_planner_threads(before)
 
 
+@pytest.mark.parametrize("per_thread", [1, 4])
 @pytest.mark.parametrize("n", [0, 1, 15, 16, 33, 200, 4400, 4401])
-def test_pieces_cover_every_row_once_in_order(n, two_threads):
+def test_pieces_cover_every_row_once_in_order(n, per_thread, two_threads, monkeypatch):
+    monkeypatch.setattr(chunks, "CHUNKS_PER_THREAD", per_thread)
     k, pieces = chunks.chunk_bounds(n)
     assert pieces[0][0] == 0 and pieces[-1][1] == n
     assert all(a1 == b0 for (_, a1), (b0, _) in itertools.pairwise(pieces))
@@ -34,7 +36,10 @@ def test_pieces_cover_every_row_once_in_order(n, two_threads):
         assert pieces == [(0, n)]
 
 
-def test_every_row_is_worked_once_and_threads_share_the_pieces(two_threads):
+@pytest.mark.parametrize("per_thread", [1, 4])
+def test_every_row_is_worked_once_and_threads_share_the_pieces(per_thread, two_threads,
+                                                               monkeypatch):
+    monkeypatch.setattr(chunks, "CHUNKS_PER_THREAD", per_thread)
     n = 4000
     hits = np.zeros(n, dtype=np.int64)
     workers: set[str] = set()
@@ -56,8 +61,9 @@ def test_every_row_is_worked_once_and_threads_share_the_pieces(two_threads):
     assert len(workers) == 2
 
 
-def test_a_slow_thread_takes_fewer_pieces(two_threads):
+def test_a_slow_thread_takes_fewer_pieces(two_threads, monkeypatch):
     """The calling thread stalls on its first piece: the pool's thread does the rest."""
+    monkeypatch.setattr(chunks, "CHUNKS_PER_THREAD", 4)
     n = 800
     _, pieces = chunks.chunk_bounds(n)
     done_by: dict[int, str] = {}
@@ -77,7 +83,8 @@ def test_a_slow_thread_takes_fewer_pieces(two_threads):
     assert sum(v == caller for v in done_by.values()) == 1
 
 
-def test_a_failure_in_a_piece_is_raised_and_stops_new_pieces(two_threads):
+def test_a_failure_in_a_piece_is_raised_and_stops_new_pieces(two_threads, monkeypatch):
+    monkeypatch.setattr(chunks, "CHUNKS_PER_THREAD", 4)
     started: list[int] = []
     boom = threading.Event()
 
