@@ -170,6 +170,7 @@ def run_ga(ctx: MethodContext, ga: AskTellGA,
     criterion flips between the two evaluators)."""
     p = ctx.problem
     confirmed: list[np.ndarray] = []
+    checked: np.ndarray | None = None  # the genes last given to the exact evaluator
     search_s = search_deadline_s(ctx)
     # the loop's share of the search; the rest refines its best (ga_refine)
     deadline_s, loop_evals = ga_share_of(ctx, search_s)
@@ -182,9 +183,8 @@ def run_ga(ctx: MethodContext, ga: AskTellGA,
         x = offspring(ctx, ga)
         ev = evaluate(x)
         ga.tell(x, ev.violation, ev.objective)
-        if (exact_check and ga.generation % EXACT_CHECK_EVERY == 0 and ga.best[1] <= 0
-                and evaluate_genes(p, ctx.env, ctx.land, ga.best[0][None, :]).feasible[0]):
-            confirmed.append(ga.best[0].copy())
+        if exact_check and ga.generation % EXACT_CHECK_EVERY == 0 and ga.best[1] <= 0:
+            checked = confirm_best(p, ctx, ga.best[0], checked, confirmed)
         if ga.generation == 0:
             best_src = first_best_source(ev, sources)
         elif ga.generation % REFINE_EVERY == 0:  # memetic step: descend from the best
@@ -202,6 +202,18 @@ def run_ga(ctx: MethodContext, ga: AskTellGA,
             ctx, deadline_s = whole, search_s
             if search_over(ctx, ga, time.perf_counter() - ctx.t_start, deadline_s):
                 return best_src, confirmed
+
+
+def confirm_best(p: RouteProblem, ctx: MethodContext, best: np.ndarray,
+                 checked: np.ndarray | None, confirmed: list[np.ndarray]) -> np.ndarray:
+    """Append `best` to `confirmed` when the exact evaluator finds it feasible; returns the
+    genes now checked. A best the exact evaluator has already judged (`checked`, the GA's
+    best unchanged since) is not evaluated again: the verdict would be the same."""
+    if checked is not None and np.array_equal(best, checked):
+        return checked
+    if evaluate_genes(p, ctx.env, ctx.land, best[None, :]).feasible[0]:
+        confirmed.append(best.copy())
+    return best.copy()
 
 
 def final_result(ctx: MethodContext, ga: AskTellGA, confirmed: list[np.ndarray],

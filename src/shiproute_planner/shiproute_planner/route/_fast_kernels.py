@@ -32,6 +32,20 @@ E2 = F * (2.0 - F)
 
 
 @njit(cache=True, nogil=True)
+def wrap360(x):
+    """`x % 360.0` (Python's float modulo, bit for bit) without the library call where x lies
+    within one turn of [0, 360): fmod returns x there, or x - 360 exactly (Sterbenz), and
+    the sign correction adds 360 to a negative x."""
+    if 0.0 < x < 360.0:
+        return x
+    if 360.0 <= x < 720.0:
+        return x - 360.0
+    if -360.0 < x < 0.0:
+        return x + 360.0
+    return x % 360.0  # zeros (+0.0 either way), NaN, far values
+
+
+@njit(cache=True, nogil=True)
 def _var(wx, chan, isdir, k, p):
     """Value of variable k at point p (NaN if absent); directions in degrees 0..360."""
     c = chan[k]
@@ -41,8 +55,7 @@ def _var(wx, chan, isdir, k, p):
         s, co = wx[c, p], wx[c + 1, p]
         if s != s or co != co:
             return np.nan
-        d = math.degrees(math.atan2(s, co)) % 360.0
-        return d
+        return wrap360(math.degrees(math.atan2(s, co)))
     return wx[c, p]
 
 
@@ -95,7 +108,7 @@ def fill_sea(wx, chan, isdir, sea, limits):
         elif has_sw or speed <= 0.5:
             ws_from = _nz(_var(wx, chan, isdir, 3, p), 0.0)
         else:
-            ws_from = math.degrees(math.atan2(-u, -v)) % 360.0
+            ws_from = wrap360(math.degrees(math.atan2(-u, -v)))
         sea[0, p] = u
         sea[1, p] = v
         sea[2, p] = _clip(_nz(ws_hs, 0.0), 0.0, hmax)
@@ -179,7 +192,7 @@ def inverse_many(lon0, lat0, lon1, lat1, out_az, out_dist):
         sb1, cb1, sb2, cb2 = math.sin(b1), math.cos(b1), math.sin(b2), math.cos(b2)
         y = math.sin(dl) * cb2
         x = cb1 * sb2 - sb1 * cb2 * math.cos(dl)
-        out_az[p] = math.degrees(math.atan2(y, x)) % 360.0
+        out_az[p] = wrap360(math.degrees(math.atan2(y, x)))
         hav = math.sin(0.5 * (b2 - b1)) ** 2 + cb1 * cb2 * math.sin(0.5 * dl) ** 2
         sig = 2.0 * math.asin(min(1.0, math.sqrt(hav)))
         if sig < 1e-12:

@@ -137,3 +137,38 @@ def leg_constraints(land, leg_f, leg_b, active, limits, checks, bits, flags, vio
             viol[p, k] = v
             row |= f
         row_flags[p] = row
+
+
+@njit(cache=True, nogil=True)
+def assemble_legs(sog, fuel_t_per_h, headings, heading_n, dist_n, dur_n, stage_s, duration,
+                  distance, heading, fuel_t):
+    """The fast evaluator's leg arrays (pop, m) of generated routes: every stage `stage_s`
+    long over max(SOG, 0) x `stage_s` at its heading, the final connection (`heading_n`,
+    `dist_n`, `dur_n`) last, fuel = rate x duration / 3600 (numpy's operations, in its
+    order: the same bits as the whole-array version)."""
+    pop, m = duration.shape
+    n = m - 1
+    for p in range(pop):
+        for k in range(n):
+            s = sog[p, k]
+            duration[p, k] = stage_s
+            distance[p, k] = (s if s != s or s > 0.0 else 0.0) * stage_s
+            heading[p, k] = headings[p, k]
+        duration[p, n] = dur_n[p]
+        distance[p, n] = dist_n[p]
+        heading[p, n] = heading_n[p]
+        for k in range(m):
+            fuel_t[p, k] = fuel_t_per_h[p, k] * duration[p, k] / 3600.0
+
+
+@njit(cache=True, nogil=True)
+def assemble_and_cut(sog, fuel_t_per_h, headings, heading_n, dist_n, dur_n, stage_s, lon, lat,
+                     dep_lon, dep_lat, arr_lon, arr_lat, cuts_m, duration, distance, heading,
+                     fuel_t, ends):
+    """`assemble_legs`, then `port_cut_ends` for each cut in `cuts_m` into ends[4 c: 4 c + 4]
+    (lon0, lat0, lon1, lat1 per cut): one compiled call per piece of rows."""
+    assemble_legs(sog, fuel_t_per_h, headings, heading_n, dist_n, dur_n, stage_s, duration,
+                  distance, heading, fuel_t)
+    for c in range(cuts_m.size):
+        port_cut_ends(lon, lat, distance, dep_lon, dep_lat, arr_lon, arr_lat, cuts_m[c],
+                      ends[4 * c], ends[4 * c + 1], ends[4 * c + 2], ends[4 * c + 3])

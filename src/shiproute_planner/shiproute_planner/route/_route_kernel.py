@@ -76,7 +76,7 @@ def generate_routes(headings, rpm, dep_lon, dep_lat, depart_s, stage_s, arr_lon,
     for i in range(n):
         for p in range(pop):
             r_i[p] = min(max(rpm[p, i], rpm_lo), rpm_hi)
-            h_i[p] = headings[p, i] % 360.0
+            h_i[p] = fk.wrap360(headings[p, i])
         _stage(lo_i, la_i, t_i, r_i, h_i, has_wx, data, times_s, lat0, dlat, lon0, dlon,
                periodic, chan, isdir, limits, par, r_calm, wake, u_ws, u_sw, m0_ws, m0_sw, caa,
                sfoc_x, sfoc_y, wx, sea, f, b)
@@ -103,10 +103,10 @@ def generate_routes(headings, rpm, dep_lon, dep_lat, depart_s, stage_s, arr_lon,
            sfoc_y, wx, sea, f, b)
     redo = False
     for p in range(pop):
-        drift = (f[2, p] - course[p] + 180.0) % 360.0 - 180.0
+        drift = fk.wrap360(f[2, p] - course[p] + 180.0) - 180.0
         heading_n[p] = course[p]
         if abs(drift) > 1e-6:
-            heading_n[p] = (course[p] - drift) % 360.0
+            heading_n[p] = fk.wrap360(course[p] - drift)
             redo = True
     if redo:  # same sea state, corrected heading
         fk.perform(r_i, heading_n, sea, par, r_calm, wake, u_ws, u_sw, m0_ws, m0_sw, caa,
@@ -168,7 +168,7 @@ def polyline_eta(track_lon, track_lat, rpm, depart_s, has_wx, data, times_s, lat
                chan, isdir, limits, par, r_calm, wake, u_ws, u_sw, m0_ws, m0_sw, caa, sfoc_x,
                sfoc_y, wx, sea, f, b)
         for p in range(n):
-            hdg[p] = (course[p] - ((f[2, p] - course[p] + 180.0) % 360.0 - 180.0)) % 360.0
+            hdg[p] = fk.wrap360(course[p] - (fk.wrap360(f[2, p] - course[p] + 180.0) - 180.0))
         fk.perform(rpm, hdg, sea, par, r_calm, wake, u_ws, u_sw, m0_ws, m0_sw, caa, sfoc_x,
                    sfoc_y, f, b)
         for p in range(n):

@@ -19,12 +19,13 @@ from ..chunks import in_chunks
 from ..geo.clear_distance import banded_clear_distance_deg
 from ..geo.landmask import LandMask
 from . import _fast_kernels as fk
+from . import _finish_kernel as kf
 from . import _route_kernel as rk
 from . import member_kernel as mk
 from .encoding import split_genes
 from .environment import PERF_FIELDS, Environment
 from .evaluation import RouteEvaluation
-from .fast_finish import Ends, Work, finish_fast
+from .fast_finish import Ends, Work, finish_fast, leg_cuts
 from .problem import RouteProblem
 
 # out_f rows / out_b rows of ship.fast_kernel.evaluate_kernel -> PERF_FIELDS
@@ -75,7 +76,10 @@ class FastEvaluator:
             self._sea_dist = np.asarray(land.sea_distance_cells)
 
     def evaluate(self, x: np.ndarray) -> RouteEvaluation:
-        """Generate and evaluate routes from genes `x` (pop, 2n + 1)."""
+        """Generate and evaluate routes from genes `x` (pop, 2n + 1): each thread's rows
+        generated and their leg arrays and port-cut leg ends assembled in one piece of
+        work (`_finish_kernel.assemble_and_cut`: one compiled call), then land, depth and
+        constraints (`fast_finish.finish_fast`)."""
         p = self.problem
         headings, rpm = split_genes(p, x)
         pop, n = headings.shape
@@ -85,6 +89,10 @@ class FastEvaluator:
         out_b = np.empty((5, pop, m), dtype=np.bool_)
         heading_n, dist_n, dur_n = np.empty(pop), np.empty(pop), np.empty(pop)
         headings, rpm = np.ascontiguousarray(headings), np.ascontiguousarray(rpm)
+        duration, distance, heading, fuel = (np.empty((pop, m)) for _ in range(4))
+        cuts = leg_cuts(p)
+        ends = np.empty((4 * len(cuts), pop, m))  # lon0, lat0, lon1, lat1 per cut
+        cuts_m = np.array(cuts)
 
         def generate(a: int, b: int) -> None:
             rk.generate_routes(headings[a:b], rpm[a:b], p.dep_lon_deg, p.dep_lat_deg,
@@ -92,9 +100,21 @@ class FastEvaluator:
                                self._rpm_lo, self._rpm_hi, *self._weather, self._limits,
                                *self._ship, lon[a:b], lat[a:b], t[a:b], out_f[:, a:b],
                                out_b[:, a:b], heading_n[a:b], dist_n[a:b], dur_n[a:b])
+            kf.assemble_and_cut(out_f[_F_ROWS["sog_m_s"], a:b],
+                                out_f[_F_ROWS["fuel_t_per_h"], a:b], headings[a:b],
+                                heading_n[a:b], dist_n[a:b], dur_n[a:b], p.stage_s, lon[a:b],
+                                lat[a:b], p.dep_lon_deg, p.dep_lat_deg, p.arr_lon_deg,
+                                p.arr_lat_deg, cuts_m, duration[a:b], distance[a:b],
+                                heading[a:b], fuel[a:b], ends[:, a:b])
 
         in_chunks(pop, generate)
-        return self._finish(headings, rpm, lon, lat, t, out_f, out_b, heading_n, dist_n, dur_n)
+        legs = self._perf_legs(out_f, out_b)
+        legs.update(heading_deg=heading, rpm=rpm, distance_m=distance, duration_s=duration,
+                    fuel_t=fuel, turn_deg=np.zeros((pop, m)))
+        scan = None if self.land is None else self._land_verdicts
+        cut_ends = {cut: (ends[4 * c], ends[4 * c + 1], ends[4 * c + 2], ends[4 * c + 3])
+                    for c, cut in enumerate(cuts)}
+        return finish_fast(p, lon, lat, t, legs, scan, cut_ends)
 
     @property
     def member_count(self) -> int:
@@ -142,9 +162,7 @@ class FastEvaluator:
         p = self.problem
         pop, n = headings.shape
         m = n + 1
-        legs = {k: out_f[r] for k, r in _F_ROWS.items()}
-        legs.update({k: out_b[r] for k, r in _B_ROWS.items()})
-        legs = {k: legs[k] for k in PERF_FIELDS}
+        legs = self._perf_legs(out_f, out_b)
         duration = np.full((pop, m), p.stage_s)
         duration[:, n] = dur_n
         distance = np.empty((pop, m))
@@ -158,6 +176,13 @@ class FastEvaluator:
         legs["turn_deg"] = np.zeros((pop, m))
         scan = None if self.land is None else self._land_verdicts
         return finish_fast(p, lon, lat, t, legs, scan)
+
+    @staticmethod
+    def _perf_legs(out_f: np.ndarray, out_b: np.ndarray) -> dict[str, np.ndarray]:
+        """The ship model's leg arrays (views of the kernel's output rows), PERF_FIELDS order."""
+        legs = {k: out_f[r] for k, r in _F_ROWS.items()}
+        legs.update({k: out_b[r] for k, r in _B_ROWS.items()})
+        return {k: legs[k] for k in PERF_FIELDS}
 
     def sail_stage(self, lon: np.ndarray, lat: np.ndarray, t: np.ndarray, rpm: np.ndarray,
                    heading_deg: np.ndarray, duration_s: float

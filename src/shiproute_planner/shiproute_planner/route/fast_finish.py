@@ -43,6 +43,23 @@ def port_cut_ends(problem: RouteProblem, lon: np.ndarray, lat: np.ndarray,
     return out[0], out[1], out[2], out[3]
 
 
+def leg_cuts(problem: RouteProblem) -> tuple[float, ...]:
+    """The port cuts [m] `finish_fast` needs leg ends for: the land scan's
+    (`port_clearance_m`) and, with a UKC constraint outside no-go zone problems, the depth
+    scan's (`PILOTAGE_DEPTH_M`)."""
+    if problem.limits.under_keel is None or problem.limits.zones is not None:
+        return (problem.port_clearance_m,)
+    return (problem.port_clearance_m, PILOTAGE_DEPTH_M)
+
+
+def _cut(problem: RouteProblem, lon: np.ndarray, lat: np.ndarray, distance_m: np.ndarray,
+         cut_m: float, given: dict[float, Ends] | None) -> Ends:
+    """Leg ends with `cut_m` cut off at the ports: from `given` when there, else computed."""
+    if given is not None and cut_m in given:
+        return given[cut_m]
+    return port_cut_ends(problem, lon, lat, distance_m, cut_m)
+
+
 def _limit_vectors(limits: RouteLimits, with_ukc: bool) -> tuple[np.ndarray, np.ndarray]:
     """The kernel's scalar limits and check switches of `limits`."""
     lim = np.zeros(kf.N_LIMITS)
@@ -64,22 +81,23 @@ def _limit_vectors(limits: RouteLimits, with_ukc: bool) -> tuple[np.ndarray, np.
 
 def finish_fast(problem: RouteProblem, lon: np.ndarray, lat: np.ndarray, time_s: np.ndarray,
                 legs: dict[str, np.ndarray],
-                land_samples: Callable[[Ends, Work | None], np.ndarray] | None
-                ) -> RouteEvaluation:
+                land_samples: Callable[[Ends, Work | None], np.ndarray] | None,
+                cut_ends: dict[float, Ends] | None = None) -> RouteEvaluation:
     """`finish(problem, land, lon, lat, time_s, legs, land_samples(ends, None))` where `ends`
     are the legs with `problem.port_clearance_m` cut off at the ports (None: no land check).
-    The depth scan is handed to `land_samples` as work to run on the same threads."""
+    The depth scan is handed to `land_samples` as work to run on the same threads.
+    `cut_ends`: leg ends per port cut [m] (`leg_cuts`) the caller has computed already."""
     distance = legs["distance_m"]
     if problem.limits.zones is not None:
         samples = None if land_samples is None else land_samples(
-            port_cut_ends(problem, lon, lat, distance, problem.port_clearance_m), None)
+            _cut(problem, lon, lat, distance, problem.port_clearance_m, cut_ends), None)
         return finish(problem, None, lon, lat, time_s, legs, samples)
     active = legs["duration_s"] > 0
     under_keel = problem.limits.under_keel
     depth_scan: Work | None = None
     if under_keel is not None:  # not in the pilotage waters next to ports and approach ends
         # `UnderKeel.leg_clearance` (capped) with its scan run alongside the land scan
-        ends = port_cut_ends(problem, lon, lat, distance, PILOTAGE_DEPTH_M)
+        ends = _cut(problem, lon, lat, distance, PILOTAGE_DEPTH_M, cut_ends)
         need = under_keel.required_depth_m(legs["stw_m_s"], legs["hs_m"])
         depth, depth_scan = capped_scan(under_keel.bathymetry, *ends, need)
     if land_samples is None:
@@ -87,7 +105,7 @@ def finish_fast(problem: RouteProblem, lon: np.ndarray, lat: np.ndarray, time_s:
         if depth_scan is not None:
             in_chunks(depth.size, depth_scan, DEPTH_MIN_CHUNK)
     else:
-        ends = port_cut_ends(problem, lon, lat, distance, problem.port_clearance_m)
+        ends = _cut(problem, lon, lat, distance, problem.port_clearance_m, cut_ends)
         legs["land_samples"] = np.where(active, land_samples(ends, depth_scan), 0)
     ukc = None
     if under_keel is not None:

@@ -14,7 +14,12 @@ from shiproute_planner.experiments.bench.planner import ga_like_population
 from shiproute_planner.geo.bathymetry import default_depth_files
 from shiproute_planner.plan_setup import make_environment, route_limits, to_posix_s
 from shiproute_planner.route.environment import PERF_FIELDS
-from shiproute_planner.route.evaluation import RouteEvaluation, clear_ports, finish
+from shiproute_planner.route.evaluation import (
+    PILOTAGE_DEPTH_M,
+    RouteEvaluation,
+    clear_ports,
+    finish,
+)
 from shiproute_planner.route.fast_eval import fast_evaluator
 from shiproute_planner.route.fast_finish import finish_fast, port_cut_ends
 from shiproute_planner.route.problem import RouteProblem
@@ -121,3 +126,30 @@ def test_fast_evaluation_is_finish_on_a_real_population(storm_sampler, land_mask
     a = finish(p, None, b.lon_deg, b.lat_deg, b.time_s, legs, b.legs["land_samples"])
     _assert_same(a, b)
     assert b.legs["land_samples"].any() and (b.leg_flags == 0).any()
+
+
+@pytest.mark.skipif(not default_depth_files(), reason="ETOPO5 (ferret-datasets) not installed")
+def test_fast_evaluation_with_ukc_is_finish_on_a_real_population(storm_sampler, land_mask):
+    """The evaluator's leg arrays and port-cut ends assembled per thread
+    (`_finish_kernel.assemble_and_cut`) and its land and depth verdicts: `finish` of the same
+    legs, bit for bit, with the UKC constraint the planner adds by default."""
+    env, spec = make_environment("container_4600teu", storm_sampler)
+    limits, _ = depth_limits(route_limits(spec), spec, None, True, 1.0)
+    p = _problem(limits)
+    fast = fast_evaluator(p, env, land_mask)
+    assert fast is not None
+    b = fast.evaluate(ga_like_population(p, 90, np.random.default_rng(11)))
+    legs = {k: v.copy() for k, v in b.legs.items() if k not in ADDED_BY_FINISH}
+    stage = legs["duration_s"][:, :-1]
+    assert (stage == p.stage_s).all()
+    assert np.array_equal(legs["distance_m"][:, :-1],
+                          np.maximum(b.legs["sog_m_s"][:, :-1], 0.0) * p.stage_s)
+    assert np.array_equal(legs["fuel_t"], legs["fuel_t_per_h"] * legs["duration_s"] / 3600.0)
+    a = finish(p, None, b.lon_deg, b.lat_deg, b.time_s, legs, b.legs["land_samples"])
+    _assert_same(a, b)
+    # the depth verdict is the under-keel check's own (capped) scan of the pilotage-cut legs
+    active = legs["duration_s"] > 0
+    ends = clear_ports(p, b.lon_deg, b.lat_deg, legs["distance_m"], PILOTAGE_DEPTH_M)
+    _, ukc = limits.under_keel.leg_clearance(*ends, legs["stw_m_s"], legs["hs_m"])
+    assert np.array_equal(b.legs["ukc_m"], np.where(active, ukc, np.nan), equal_nan=True)
+    assert np.isfinite(b.legs["ukc_m"]).any()
