@@ -89,7 +89,7 @@ def with_repairs(ctx: MethodContext, fast: FastEvaluator | None, x_seed: np.ndar
     k = int(np.argmin(ev.violation))
     bent = detour_genes(x_seed[given[k]], p.n_stages, broken_legs(ev, k), lo, hi)
     base = np.concatenate([x_seed[best], bent])
-    tracked, tracked_names = track_repairs(p, ctx.env, ctx.land, fast, ev, k)
+    tracked, tracked_names = track_repairs(p, ctx.env, ctx.land, fast, ev, k, evaluate)
     cand = np.concatenate([tracked, bent, retimed_genes(base, p.n_stages, lo, hi)])
     detour = f"{sources[given[k]]}_detour"
     base_names = [f"{sources[i]}_retimed" for i in best] + [f"{detour}_retimed"] * len(bent)

@@ -8,6 +8,7 @@ side (RPM scaled by the longer track's length). All are converted to genes in on
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -24,7 +25,8 @@ RETIME_FACTORS = (0.90, 0.94, 0.97, 1.03, 1.06, 1.10)
 ARRIVAL_MARGIN_S = 1800.0  # re-timed copies aim this long before the RTA
 # lateral shift of the broken stretch's nodes, in mean leg lengths (half of it on the node
 # before and after the stretch), to either side
-SHIFTS_LEGS = (0.5, 1.0, 1.5)
+SHIFTS_LEGS = (0.5, 1.0, 1.5, 2.5)
+REPAIR_ROUNDS = 2  # a round repairs the least broken repair of the round before
 # headings tried per stage when the repaired tracks become genes: they follow a track the
 # search already sailed, so a narrower fan than a new polyline's does (a third less time)
 REPAIR_FAN_DEG = 30.0
@@ -96,15 +98,29 @@ def shifted_tracks(ev: RouteEvaluation, row: int, stretch: tuple[int, int]) -> l
 
 
 def track_repairs(problem: RouteProblem, env: Environment, land: Any, fast: Any,
-                  ev: RouteEvaluation, row: int) -> tuple[np.ndarray, list[str]]:
+                  ev: RouteEvaluation, row: int,
+                  evaluate: Callable[[np.ndarray], RouteEvaluation]
+                  ) -> tuple[np.ndarray, list[str]]:
     """Genes and source names of route `row` re-timed and shifted round its broken stretch
-    (none when it is not broken)."""
-    stretch = broken_stretch(ev, row)
-    if stretch is None:
+    (none when it is not broken); while none of a round's repairs is feasible, the least
+    broken of them is repaired in turn (a storm too wide for one shift, a lateness the
+    shift added), up to REPAIR_ROUNDS rounds."""
+    genes, names = [], []
+    for _ in range(REPAIR_ROUNDS):
+        stretch = broken_stretch(ev, row)
+        if stretch is None:
+            break
+        seeds = retimed_tracks(problem, ev, row, stretch) + shifted_tracks(ev, row, stretch)
+        if not seeds:
+            break
+        x = track_to_genes(problem, env, seeds, land, fan_deg=REPAIR_FAN_DEG,
+                           fan_n=REPAIR_FAN_N, fast=fast)
+        genes.append(x)
+        names += [s.source for s in seeds]
+        ev = evaluate(x)
+        if (ev.violation <= 0.0).any():
+            break
+        row = int(np.argmin(ev.violation))
+    if not genes:
         return np.empty((0, problem.n_var)), []
-    seeds = retimed_tracks(problem, ev, row, stretch) + shifted_tracks(ev, row, stretch)
-    if not seeds:
-        return np.empty((0, problem.n_var)), []
-    genes = track_to_genes(problem, env, seeds, land, fan_deg=REPAIR_FAN_DEG, fan_n=REPAIR_FAN_N,
-                           fast=fast)
-    return genes, [s.source for s in seeds]
+    return np.concatenate(genes), names
