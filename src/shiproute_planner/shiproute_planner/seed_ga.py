@@ -19,7 +19,6 @@ from .ga_refine import REFINE_EVERY, REFINE_ROUNDS, ga_share_of, refine_best
 from .ga_seeds import all_seeds, best_seeds_first, fresh_seeds_if_stale, seed_genes
 from .geo.full_land import final_land
 from .geo.landmask import LandMask
-from .geo.verify import land_crossings
 from .method_context import MethodContext, MethodResult, Progress
 from .risk_choice import risk_choice
 from .risk_front import RiskFront, front_first, front_statement
@@ -28,9 +27,9 @@ from .route.environment import Environment
 from .route.evaluation import RouteEvaluation
 from .route.fast_eval import FastEvaluator, fast_evaluator
 from .route.generate import evaluate_genes
+from .route.land_repair import land_legs
 from .route.member_eval import risk_evaluate_outcomes
 from .route.problem import RouteProblem
-from .route_check import CHECK_STEP_M
 
 EXACT_CHOICE_RESERVE_S = 0.25  # wall time kept for the exact final choice and dense land check
 EXACT_CHOICE_SHARE = 0.28  # ... at most this share of a small budget (re-plans of 0.5 s)
@@ -301,8 +300,10 @@ def dense_land_legs(lon_deg: np.ndarray, lat_deg: np.ndarray,
     the finest coastline installed, not the optimiser's mask: a crossing of an islet shorter
     than a coarser spacing, or missing from a coarser coastline, would pass there and fail
     at the final check."""
-    return land_crossings(lon_deg, lat_deg, step_m=CHECK_STEP_M,
-                          port_clearance_m=port_clearance_m, contains=final_land().contains)
+    lon = np.unwrap(np.asarray(lon_deg, dtype=float), period=360.0)
+    # the final check's own pass (`land_repair.land_legs`: one geodesic pass for all legs)
+    return land_legs(lon, np.asarray(lat_deg, dtype=float), final_land().contains,
+                     port_clearance_m, port_clearance_m)
 
 
 def with_land_legs(ev: RouteEvaluation, legs: list[int]) -> RouteEvaluation:
