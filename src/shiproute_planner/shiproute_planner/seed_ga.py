@@ -36,6 +36,7 @@ EXACT_CHOICE_SHARE = 0.28  # ... at most this share of a small budget (re-plans 
 EXACT_TOP_PER_S = 40.0  # final candidates re-evaluated exactly per second of budget (4..24)
 DENSE_CHECKS = 12  # feasible final candidates given the dense land check, best first
 EXACT_CHECK_EVERY = 15  # generations between exact confirmations of the GA's best
+SHORT_SEARCH_S = 1.0  # a search this short publishes a clean seed rather than repair land
 # a risk-aware GA first runs on the members' mean forecast for this share of the budget and
 # seeds itself with that run's best candidates
 MEAN_PHASE_SHARE = 0.25
@@ -82,7 +83,8 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
         return MethodResult(final, best_src, mean_gens + ga.generation,
                             mean_evals + ga.evaluations, best_x.copy(),
                             (*notes, *front_statement(fast, risk, front, best_x)))
-    return dataclasses.replace(final_result(ctx, ga, confirmed, best_src), notes=notes)
+    res = final_result(ctx, ga, confirmed, best_src, x_seed)
+    return dataclasses.replace(res, notes=(*notes, *res.notes))
 
 
 def with_mean_optimum(ctx: MethodContext, fast: FastEvaluator, x_seed: np.ndarray,
@@ -204,14 +206,23 @@ def run_ga(ctx: MethodContext, ga: AskTellGA,
 
 
 def final_result(ctx: MethodContext, ga: AskTellGA, confirmed: list[np.ndarray],
-                 best_src: str) -> MethodResult:
+                 best_src: str, seeds: np.ndarray | None = None) -> MethodResult:
     """The exact choice among the final population (and the confirmed bests), never worse
-    than the constant-RPM baseline the GA was seeded with."""
+    than the constant-RPM baseline the GA was seeded with; after a short search whose
+    choice touches land at full resolution, the best of its `seeds` that passes (see
+    `clean_seed`)."""
     pop = ga.pop
     assert pop is not None  # the loop ran at least one generation
     top = min(24, len(pop), max(4, round(min(EXACT_TOP_PER_S * ctx.budget_s, 24.0))))
     pool_x = pop if not confirmed else np.concatenate([pop[:top], confirmed[::-1], pop[top:]])
     best_x, final = exact_choice(ctx.problem, ctx.env, ctx.land, pool_x, top=top)
+    clean = clean_seed(ctx, seeds, final)
+    said: tuple[str, ...] = ()
+    if clean is not None:
+        best_x, final = clean
+        said = ("search: its best route touched land at full resolution; with a "
+                f"{ctx.budget_s:.2f}-s search the best seed that passes the check was taken "
+                "instead of a detour round the land",)
     b = ctx.baseline
     if b is not None and better_than(b.evaluation, final):
         # the baseline wins only through the same dense land check as the GA's candidates
@@ -222,7 +233,27 @@ def final_result(ctx: MethodContext, ga: AskTellGA, confirmed: list[np.ndarray],
         base = with_land_legs(base, bad) if bad else base
         if better_than(base, final):
             return MethodResult(base, "baseline", ga.generation, ga.evaluations, None)
-    return MethodResult(final, best_src, ga.generation, ga.evaluations, best_x.copy())
+    return MethodResult(final, best_src, ga.generation, ga.evaluations, best_x.copy(),
+                        notes=said)
+
+
+def clean_seed(ctx: MethodContext, seeds: np.ndarray | None, final: RouteEvaluation
+               ) -> tuple[np.ndarray, RouteEvaluation] | None:
+    """For a search shorter than SHORT_SEARCH_S whose exact choice the dense check put on
+    land: the best feasible seed (a re-plan's previous route, its repairs) that passes the
+    same check, or None. The land repair of the choice (a detour on a fine grid, ~0.05-0.2 s)
+    would cost a 0.5-s re-plan its budget; a cold plan's longer search affords it."""
+    if (ctx.land is None or seeds is None or len(seeds) == 0
+            or ctx.budget_s >= SHORT_SEARCH_S or not int(final.flags[0]) & FLAG_LAND):
+        return None
+    p = ctx.problem
+    ev = evaluate_genes(p, ctx.env, ctx.land, seeds)
+    for k in deb_order(ev.violation, ev.objective)[:DENSE_CHECKS]:
+        if ev.violation[k] > 0:
+            break
+        if not dense_land_legs(ev.lon_deg[k], ev.lat_deg[k], p.port_clearance_m):
+            return seeds[k].copy(), ev.take(int(k))
+    return None
 
 
 def better_than(a: RouteEvaluation, b: RouteEvaluation) -> bool:
