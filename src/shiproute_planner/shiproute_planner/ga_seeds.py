@@ -79,22 +79,25 @@ def with_repairs(ctx: MethodContext, fast: FastEvaluator | None, x_seed: np.ndar
                  ) -> tuple[np.ndarray, list[str], np.ndarray, str]:
     """The seeds plus the best REPAIRS_KEPT repairs of the given ones (`ev` their
     evaluation): the least broken one's track re-timed and its broken stretch shifted
-    sideways (`track_repairs`), detours round its broken legs in gene space, and the few
-    least broken with their detours retimed; only a few, so the population keeps the other
-    seeds' diversity (a hundred near-copies of the stale route hold the search in its
+    sideways (`track_repairs`), detours round its broken legs in gene space and, when no
+    track repair is feasible, the few least broken and the detours retimed in gene space;
+    only a few are kept, so the population keeps the other seeds' diversity (a hundred near-copies of the stale route hold the search in its
     basin)."""
     p = ctx.problem
     lo, hi = gene_bounds(p)
     best = given[np.argsort(ev.violation, kind="stable")[:RETIMED_ROWS]]
     k = int(np.argmin(ev.violation))
     bent = detour_genes(x_seed[given[k]], p.n_stages, broken_legs(ev, k), lo, hi)
-    base = np.concatenate([x_seed[best], bent])
-    tracked, tracked_names = track_repairs(p, ctx.env, ctx.land, fast, ev, k, evaluate)
-    cand = np.concatenate([tracked, bent, retimed_genes(base, p.n_stages, lo, hi)])
+    tracked, names, fixed = track_repairs(p, ctx.env, ctx.land, fast, ev, k, evaluate)
     detour = f"{sources[given[k]]}_detour"
-    base_names = [f"{sources[i]}_retimed" for i in best] + [f"{detour}_retimed"] * len(bent)
-    names = [*tracked_names, *[detour] * len(bent),
-             *base_names * ((len(cand) - len(bent) - len(tracked)) // len(base))]
+    cand = np.concatenate([tracked, bent])
+    names += [detour] * len(bent)
+    if not fixed:  # gene-space re-timing too (small factors: minutes lost to the stages)
+        base = np.concatenate([x_seed[best], bent])
+        retimed = retimed_genes(base, p.n_stages, lo, hi)
+        base_names = [f"{sources[i]}_retimed" for i in best] + [f"{detour}_retimed"] * len(bent)
+        cand = np.concatenate([cand, retimed])
+        names += base_names * (len(retimed) // len(base))
     rev = evaluate(cand)
     keep = deb_order(rev.violation, rev.objective)[:REPAIRS_KEPT]
     x, names_out, offsets = best_seeds_first(

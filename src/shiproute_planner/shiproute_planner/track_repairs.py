@@ -100,12 +100,12 @@ def shifted_tracks(ev: RouteEvaluation, row: int, stretch: tuple[int, int]) -> l
 def track_repairs(problem: RouteProblem, env: Environment, land: Any, fast: Any,
                   ev: RouteEvaluation, row: int,
                   evaluate: Callable[[np.ndarray], RouteEvaluation]
-                  ) -> tuple[np.ndarray, list[str]]:
+                  ) -> tuple[np.ndarray, list[str], bool]:
     """Genes and source names of route `row` re-timed and shifted round its broken stretch
-    (none when it is not broken); while none of a round's repairs is feasible, the least
-    broken of them is repaired in turn (a storm too wide for one shift, a lateness the
-    shift added), up to REPAIR_ROUNDS rounds."""
-    genes, names = [], []
+    (none when it is not broken), and whether one of them is feasible; while none of a
+    round's repairs is, the least broken of them is repaired in turn (a storm too wide for
+    one shift, a lateness the shift added), up to REPAIR_ROUNDS rounds."""
+    genes, names, feasible = [], [], False
     for _ in range(REPAIR_ROUNDS):
         stretch = broken_stretch(ev, row)
         if stretch is None:
@@ -118,9 +118,10 @@ def track_repairs(problem: RouteProblem, env: Environment, land: Any, fast: Any,
         genes.append(x)
         names += [s.source for s in seeds]
         ev = evaluate(x)
-        if (ev.violation <= 0.0).any():
+        feasible = bool((ev.violation <= 0.0).any())
+        if feasible:
             break
         row = int(np.argmin(ev.violation))
     if not genes:
-        return np.empty((0, problem.n_var)), []
-    return np.concatenate(genes), names
+        return np.empty((0, problem.n_var)), [], False
+    return np.concatenate(genes), names, feasible
