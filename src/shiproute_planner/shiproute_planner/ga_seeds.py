@@ -81,8 +81,8 @@ def with_repairs(ctx: MethodContext, fast: FastEvaluator | None, x_seed: np.ndar
     evaluation): the least broken one's track re-timed and its broken stretch shifted
     sideways (`track_repairs`), detours round its broken legs in gene space and, when no
     track repair is feasible, the few least broken and the detours retimed in gene space;
-    only a few are kept, so the population keeps the other seeds' diversity (a hundred near-copies of the stale route hold the search in its
-    basin)."""
+    only a few are kept, so the population keeps the other seeds' diversity (a hundred
+    near-copies of the stale route hold the search in its basin)."""
     p = ctx.problem
     lo, hi = gene_bounds(p)
     best = given[np.argsort(ev.violation, kind="stable")[:RETIMED_ROWS]]
