@@ -21,16 +21,17 @@ from .route.seeding import TrackSeed, track_to_genes
 
 # RPM factor up to the cut; the legs after it get the factor that keeps the arrival time
 # (speed ~ RPM), so a copy reaches the broken stretch earlier or later by up to ~10 %
-RETIME_FACTORS = (0.90, 0.94, 0.97, 1.03, 1.06, 1.10)
+RETIME_FACTORS = (0.91, 0.96, 1.04, 1.09)
 ARRIVAL_MARGIN_S = 1800.0  # re-timed copies aim this long before the RTA
 # lateral shift of the broken stretch's nodes, in mean leg lengths (half of it on the node
 # before and after the stretch), to either side
-SHIFTS_LEGS = (0.5, 1.0, 1.5, 2.5)
+SHIFTS_LEGS = (0.5, 1.0, 2.0)
 REPAIR_ROUNDS = 2  # a round repairs the least broken repair of the round before
 # headings tried per stage when the repaired tracks become genes: they follow a track the
-# search already sailed, so a narrower fan than a new polyline's does (a third less time)
+# search already sailed, so a narrower fan than a new polyline's does (less than half the
+# time)
 REPAIR_FAN_DEG = 30.0
-REPAIR_FAN_N = 7
+REPAIR_FAN_N = 5
 
 
 def broken_stretch(ev: RouteEvaluation, row: int) -> tuple[int, int] | None:
