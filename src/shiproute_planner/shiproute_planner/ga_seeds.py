@@ -20,7 +20,7 @@ from .route.evaluation import RouteEvaluation
 from .route.fast_eval import FastEvaluator
 from .route.problem import RouteProblem
 from .route.seeding import TrackSeed, great_circle_track, sea_lane_track, track_to_genes, via_track
-from .track_repairs import track_repairs
+from .track_repairs import REPAIR_FAN_DEG, REPAIR_FAN_N, track_repairs
 
 FRESH_SEEDS_MIN_BUDGET_S = 1.0  # a stale re-plan's fresh seeds cost ~0.1-0.2 s per span
 FRESH_SEEDS_MIN_EVALUATIONS = 5_000
@@ -125,9 +125,14 @@ def all_seeds(ctx: MethodContext) -> list[TrackSeed]:
 
 def seed_genes(ctx: MethodContext, seeds: list[TrackSeed], fast: FastEvaluator | None
                ) -> tuple[np.ndarray, list[str]]:
-    """(genes, source names) of the seed tracks and of the ready gene seeds that fit."""
+    """(genes, source names) of the seed tracks and of the ready gene seeds that fit; a
+    search shorter than FRESH_SEEDS_MIN_BUDGET_S (a re-plan's span) converts its seeds, all
+    tracks a plan already sailed or repairs of them, with the repairs' narrower fan."""
     p = ctx.problem
-    x_seed = (track_to_genes(p, ctx.env, seeds, ctx.land, fast=fast) if seeds
+    narrow = bool(seeds) and not fresh_seeds_fit(ctx) and ctx.baseline is None
+    x_seed = (track_to_genes(p, ctx.env, seeds, ctx.land, fast=fast,
+                             fan_deg=REPAIR_FAN_DEG if narrow else 60.0,
+                             fan_n=REPAIR_FAN_N if narrow else 13) if seeds
               else np.empty((0, p.n_var)))
     sources = [s.source for s in seeds]
     for name, genes in ctx.gene_seeds:
