@@ -239,13 +239,14 @@ def final_result(ctx: MethodContext, ga: AskTellGA, confirmed: list[np.ndarray],
 
 def clean_seed(ctx: MethodContext, seeds: np.ndarray | None, final: RouteEvaluation
                ) -> tuple[np.ndarray, RouteEvaluation] | None:
-    """For a search shorter than SHORT_SEARCH_S whose exact choice the dense check put on
-    land: the best feasible seed (a re-plan's previous route, its repairs) that passes the
-    same check, or None. The land repair of the choice (a detour on a fine grid, ~0.05-0.2 s)
-    would cost a 0.5-s re-plan its budget; a cold plan's longer search affords it."""
+    """For a re-plan's search shorter than SHORT_SEARCH_S whose exact choice the dense
+    check put on land: the best feasible seed (the previous route, its repairs) that passes
+    the same check, or None. The land repair of the choice (a detour on a fine grid,
+    ~0.05-0.2 s) would cost a 0.5-s re-plan its budget; a cold plan keeps the repair."""
     if (ctx.land is None or seeds is None or len(seeds) == 0
-            or ctx.budget_s >= SHORT_SEARCH_S or not int(final.flags[0]) & FLAG_LAND):
-        return None
+            or ctx.budget_s >= SHORT_SEARCH_S or not int(final.flags[0]) & FLAG_LAND
+            or not any(s.source == "previous_plan" for s in ctx.seeds)):
+        return None  # not a re-plan's short search, or nothing to replace
     p = ctx.problem
     ev = evaluate_genes(p, ctx.env, ctx.land, seeds)
     for k in deb_order(ev.violation, ev.objective)[:DENSE_CHECKS]:
