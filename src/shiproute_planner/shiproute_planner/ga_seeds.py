@@ -20,6 +20,7 @@ from .route.evaluation import RouteEvaluation
 from .route.fast_eval import FastEvaluator
 from .route.problem import RouteProblem
 from .route.seeding import TrackSeed, great_circle_track, sea_lane_track, track_to_genes, via_track
+from .track_repairs import REPAIR_FAN_DEG, REPAIR_FAN_N, track_repairs
 
 FRESH_SEEDS_MIN_BUDGET_S = 1.0  # a stale re-plan's fresh seeds cost ~0.1-0.2 s per span
 FRESH_SEEDS_MIN_EVALUATIONS = 5_000
@@ -53,7 +54,8 @@ def fresh_seeds_if_stale(ctx: MethodContext, fast: FastEvaluator | None,
     why = "; ".join(reasons_of(int(ev.flags[k]))) or "constraints violated"
     stale = f"re-plan: no route seeded from the {name} is feasible on this forecast ({why})"
     p = ctx.problem
-    x_seed, sources, offsets, said = with_repairs(p, x_seed, sources, given, ev, evaluate)
+    x_seed, sources, offsets, said = with_repairs(ctx, fast, x_seed, sources, given, ev,
+                                                  evaluate)
     stale += said
     if ctx.baseline is not None:  # the cold plan's seeds are in already
         return x_seed, sources, offsets, (stale + "; searched from fresh seeds as well",)
@@ -71,27 +73,37 @@ def fresh_seeds_if_stale(ctx: MethodContext, fast: FastEvaluator | None,
     return x, names, off, (stale + "; searched from fresh seeds as well",)
 
 
-def with_repairs(p: RouteProblem, x_seed: np.ndarray, sources: list[str], given: np.ndarray,
-                 ev: RouteEvaluation, evaluate: Callable[[np.ndarray], RouteEvaluation]
+def with_repairs(ctx: MethodContext, fast: FastEvaluator | None, x_seed: np.ndarray,
+                 sources: list[str], given: np.ndarray, ev: RouteEvaluation,
+                 evaluate: Callable[[np.ndarray], RouteEvaluation]
                  ) -> tuple[np.ndarray, list[str], np.ndarray, str]:
     """The seeds plus the best REPAIRS_KEPT repairs of the given ones (`ev` their
-    evaluation): detours round the broken legs of the least broken, and the few least broken
-    with their detours retimed; only a few, so the population keeps the other seeds'
-    diversity (a hundred near-copies of the stale route hold the search in its basin)."""
+    evaluation): the least broken one's track re-timed and its broken stretch shifted
+    sideways (`track_repairs`), detours round its broken legs in gene space and, when no
+    track repair is feasible, the few least broken and the detours retimed in gene space;
+    only a few are kept, so the population keeps the other seeds' diversity (a hundred
+    near-copies of the stale route hold the search in its basin)."""
+    p = ctx.problem
     lo, hi = gene_bounds(p)
     best = given[np.argsort(ev.violation, kind="stable")[:RETIMED_ROWS]]
     k = int(np.argmin(ev.violation))
     bent = detour_genes(x_seed[given[k]], p.n_stages, broken_legs(ev, k), lo, hi)
-    base = np.concatenate([x_seed[best], bent])
-    cand = np.concatenate([bent, retimed_genes(base, p.n_stages, lo, hi)])
+    tracked, names, fixed = track_repairs(p, ctx.env, ctx.land, fast, ev, k, evaluate)
     detour = f"{sources[given[k]]}_detour"
-    base_names = [f"{sources[i]}_retimed" for i in best] + [f"{detour}_retimed"] * len(bent)
-    names = [detour] * len(bent) + base_names * ((len(cand) - len(bent)) // len(base))
+    cand = np.concatenate([tracked, bent])
+    names += [detour] * len(bent)
+    if not fixed:  # gene-space re-timing too (small factors: minutes lost to the stages)
+        base = np.concatenate([x_seed[best], bent])
+        retimed = retimed_genes(base, p.n_stages, lo, hi)
+        base_names = [f"{sources[i]}_retimed" for i in best] + [f"{detour}_retimed"] * len(bent)
+        cand = np.concatenate([cand, retimed])
+        names += base_names * (len(retimed) // len(base))
     rev = evaluate(cand)
     keep = deb_order(rev.violation, rev.objective)[:REPAIRS_KEPT]
     x, names_out, offsets = best_seeds_first(
         p, np.concatenate([x_seed, cand[keep]]), sources + [names[i] for i in keep], evaluate)
-    return x, names_out, offsets, "; detours and retimed versions of it seeded too"
+    return x, names_out, offsets, ("; re-timed, shifted and detoured versions of it seeded "
+                                   "too")
 
 
 def all_seeds(ctx: MethodContext) -> list[TrackSeed]:
@@ -113,9 +125,14 @@ def all_seeds(ctx: MethodContext) -> list[TrackSeed]:
 
 def seed_genes(ctx: MethodContext, seeds: list[TrackSeed], fast: FastEvaluator | None
                ) -> tuple[np.ndarray, list[str]]:
-    """(genes, source names) of the seed tracks and of the ready gene seeds that fit."""
+    """(genes, source names) of the seed tracks and of the ready gene seeds that fit; a
+    search shorter than FRESH_SEEDS_MIN_BUDGET_S (a re-plan's span) converts its seeds, all
+    tracks a plan already sailed or repairs of them, with the repairs' narrower fan."""
     p = ctx.problem
-    x_seed = (track_to_genes(p, ctx.env, seeds, ctx.land, fast=fast) if seeds
+    narrow = bool(seeds) and not fresh_seeds_fit(ctx) and ctx.baseline is None
+    x_seed = (track_to_genes(p, ctx.env, seeds, ctx.land, fast=fast,
+                             fan_deg=REPAIR_FAN_DEG if narrow else 60.0,
+                             fan_n=REPAIR_FAN_N if narrow else 13) if seeds
               else np.empty((0, p.n_var)))
     sources = [s.source for s in seeds]
     for name, genes in ctx.gene_seeds:

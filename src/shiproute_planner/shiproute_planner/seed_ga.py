@@ -19,7 +19,6 @@ from .ga_refine import REFINE_EVERY, REFINE_ROUNDS, ga_share_of, refine_best
 from .ga_seeds import all_seeds, best_seeds_first, fresh_seeds_if_stale, seed_genes
 from .geo.full_land import final_land
 from .geo.landmask import LandMask
-from .geo.verify import land_crossings
 from .method_context import MethodContext, MethodResult, Progress
 from .risk_choice import risk_choice
 from .risk_front import RiskFront, front_first, front_statement
@@ -28,15 +27,16 @@ from .route.environment import Environment
 from .route.evaluation import RouteEvaluation
 from .route.fast_eval import FastEvaluator, fast_evaluator
 from .route.generate import evaluate_genes
+from .route.land_repair import land_legs
 from .route.member_eval import risk_evaluate_outcomes
 from .route.problem import RouteProblem
-from .route_check import CHECK_STEP_M
 
 EXACT_CHOICE_RESERVE_S = 0.25  # wall time kept for the exact final choice and dense land check
 EXACT_CHOICE_SHARE = 0.28  # ... at most this share of a small budget (re-plans of 0.5 s)
 EXACT_TOP_PER_S = 40.0  # final candidates re-evaluated exactly per second of budget (4..24)
 DENSE_CHECKS = 12  # feasible final candidates given the dense land check, best first
 EXACT_CHECK_EVERY = 15  # generations between exact confirmations of the GA's best
+SHORT_SEARCH_S = 1.0  # a search this short publishes a clean seed rather than repair land
 # a risk-aware GA first runs on the members' mean forecast for this share of the budget and
 # seeds itself with that run's best candidates
 MEAN_PHASE_SHARE = 0.25
@@ -83,7 +83,8 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
         return MethodResult(final, best_src, mean_gens + ga.generation,
                             mean_evals + ga.evaluations, best_x.copy(),
                             (*notes, *front_statement(fast, risk, front, best_x)))
-    return dataclasses.replace(final_result(ctx, ga, confirmed, best_src), notes=notes)
+    res = final_result(ctx, ga, confirmed, best_src, x_seed)
+    return dataclasses.replace(res, notes=(*notes, *res.notes))
 
 
 def with_mean_optimum(ctx: MethodContext, fast: FastEvaluator, x_seed: np.ndarray,
@@ -217,14 +218,23 @@ def confirm_best(p: RouteProblem, ctx: MethodContext, best: np.ndarray,
 
 
 def final_result(ctx: MethodContext, ga: AskTellGA, confirmed: list[np.ndarray],
-                 best_src: str) -> MethodResult:
+                 best_src: str, seeds: np.ndarray | None = None) -> MethodResult:
     """The exact choice among the final population (and the confirmed bests), never worse
-    than the constant-RPM baseline the GA was seeded with."""
+    than the constant-RPM baseline the GA was seeded with; after a short search whose
+    choice touches land at full resolution, the best of its `seeds` that passes (see
+    `clean_seed`)."""
     pop = ga.pop
     assert pop is not None  # the loop ran at least one generation
     top = min(24, len(pop), max(4, round(min(EXACT_TOP_PER_S * ctx.budget_s, 24.0))))
     pool_x = pop if not confirmed else np.concatenate([pop[:top], confirmed[::-1], pop[top:]])
     best_x, final = exact_choice(ctx.problem, ctx.env, ctx.land, pool_x, top=top)
+    clean = clean_seed(ctx, seeds, final)
+    said: tuple[str, ...] = ()
+    if clean is not None:
+        best_x, final = clean
+        said = ("search: its best route touched land at full resolution; with a "
+                f"{ctx.budget_s:.2f}-s search the best seed that passes the check was taken "
+                "instead of a detour round the land",)
     b = ctx.baseline
     if b is not None and better_than(b.evaluation, final):
         # the baseline wins only through the same dense land check as the GA's candidates
@@ -235,7 +245,28 @@ def final_result(ctx: MethodContext, ga: AskTellGA, confirmed: list[np.ndarray],
         base = with_land_legs(base, bad) if bad else base
         if better_than(base, final):
             return MethodResult(base, "baseline", ga.generation, ga.evaluations, None)
-    return MethodResult(final, best_src, ga.generation, ga.evaluations, best_x.copy())
+    return MethodResult(final, best_src, ga.generation, ga.evaluations, best_x.copy(),
+                        notes=said)
+
+
+def clean_seed(ctx: MethodContext, seeds: np.ndarray | None, final: RouteEvaluation
+               ) -> tuple[np.ndarray, RouteEvaluation] | None:
+    """For a re-plan's search shorter than SHORT_SEARCH_S whose exact choice the dense
+    check put on land: the best feasible seed (the previous route, its repairs) that passes
+    the same check, or None. The land repair of the choice (a detour on a fine grid,
+    ~0.05-0.2 s) would cost a 0.5-s re-plan its budget; a cold plan keeps the repair."""
+    if (ctx.land is None or seeds is None or len(seeds) == 0
+            or ctx.budget_s >= SHORT_SEARCH_S or not int(final.flags[0]) & FLAG_LAND
+            or not any(s.source == "previous_plan" for s in ctx.seeds)):
+        return None  # not a re-plan's short search, or nothing to replace
+    p = ctx.problem
+    ev = evaluate_genes(p, ctx.env, ctx.land, seeds)
+    for k in deb_order(ev.violation, ev.objective)[:DENSE_CHECKS]:
+        if ev.violation[k] > 0:
+            break
+        if not dense_land_legs(ev.lon_deg[k], ev.lat_deg[k], p.port_clearance_m):
+            return seeds[k].copy(), ev.take(int(k))
+    return None
 
 
 def better_than(a: RouteEvaluation, b: RouteEvaluation) -> bool:
@@ -313,8 +344,10 @@ def dense_land_legs(lon_deg: np.ndarray, lat_deg: np.ndarray,
     the finest coastline installed, not the optimiser's mask: a crossing of an islet shorter
     than a coarser spacing, or missing from a coarser coastline, would pass there and fail
     at the final check."""
-    return land_crossings(lon_deg, lat_deg, step_m=CHECK_STEP_M,
-                          port_clearance_m=port_clearance_m, contains=final_land().contains)
+    lon = np.unwrap(np.asarray(lon_deg, dtype=float), period=360.0)
+    # the final check's own pass (`land_repair.land_legs`: one geodesic pass for all legs)
+    return land_legs(lon, np.asarray(lat_deg, dtype=float), final_land().contains,
+                     port_clearance_m, port_clearance_m)
 
 
 def with_land_legs(ev: RouteEvaluation, legs: list[int]) -> RouteEvaluation:

@@ -14,6 +14,8 @@ waters (`PORT_SKIP_NM` round each port) are left to the port's approach.
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 from shapely.errors import ShapelyError
 from shiproute_core.geodesy import densify_track, inverse, wrap_lon
@@ -66,16 +68,30 @@ def shoal_stretches(dist_m: np.ndarray, depth_m: np.ndarray, need_m: float
     return out
 
 
-def _lane_of(a, b) -> tuple[np.ndarray, np.ndarray] | None:
-    """The sea lane between two ports, densified to `STEP_M` (continuous longitudes)."""
+def _lane_of(a, b) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+    """The sea lane between two ports, densified to `STEP_M` (continuous longitudes), and
+    the distance along it [m] at each point."""
+    return _lane_between(round(float(wrap_lon(a.lon_deg)), 4), round(a.lat_deg, 4),
+                         round(float(wrap_lon(b.lon_deg)), 4), round(b.lat_deg, 4))
+
+
+@functools.lru_cache(maxsize=32)
+def _lane_between(lon0: float, lat0: float, lon1: float, lat1: float
+                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
+    """`_lane_of` for rounded end points, kept (read-only): a re-plan's legs beyond the
+    ship's position are the previous plan's, and their lanes ~10 ms each to densify."""
     from .geo.sea_lanes import searoute_coords
 
-    coords = searoute_coords(round(float(wrap_lon(a.lon_deg)), 4), round(a.lat_deg, 4),
-                              round(float(wrap_lon(b.lon_deg)), 4), round(b.lat_deg, 4))
+    coords = searoute_coords(lon0, lat0, lon1, lat1)
     if coords is None or len(coords) < 2:
         return None
     lon, lat = densify_track(np.unwrap(coords[:, 0], period=360.0), coords[:, 1], STEP_M)
-    return np.asarray(lon, dtype=float), np.asarray(lat, dtype=float)
+    lon, lat = np.array(lon, dtype=float), np.array(lat, dtype=float)
+    _, seg = inverse(lon[:-1], lat[:-1], lon[1:], lat[1:])
+    dist = np.concatenate([[0.0], np.cumsum(seg)])
+    for a in (lon, lat, dist):
+        a.setflags(write=False)
+    return lon, lat, dist
 
 
 def trusted_depth_m(bathymetry, lon: np.ndarray, lat: np.ndarray, need_m: float,
@@ -144,9 +160,7 @@ def route_shoals(ports: list, canal_legs: dict, strait_legs: dict, via_rta: list
         else:
             lane = _lane_of(a, b)
             if lane is not None:
-                lon, lat = lane
-                _, seg = inverse(lon[:-1], lat[:-1], lon[1:], lat[1:])
-                dist = np.concatenate([[0.0], np.cumsum(seg)])
+                lon, lat, dist = lane
                 try:
                     depth = trusted_depth_m(under_keel.bathymetry, lon, lat, need_m)
                 except (ValueError, OSError, MemoryError, ShapelyError) as exc:

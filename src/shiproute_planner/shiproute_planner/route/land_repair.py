@@ -82,15 +82,29 @@ def leg_samples(lon: np.ndarray, lat: np.ndarray, k: int, skip_start_m: float,
 
 def land_legs(lon: np.ndarray, lat: np.ndarray, contains: LandTest, skip_start_m: float = 0.0,
               skip_end_m: float = 0.0, skip_legs: frozenset[int] = frozenset()) -> list[int]:
-    """Legs of a track with a tested dense sample on land."""
-    bad = []
-    for k in range(lon.size - 1):
-        if k in skip_legs:
-            continue
-        plon, plat, _, tested = leg_samples(lon, lat, k, skip_start_m, skip_end_m)
-        if tested.any() and np.asarray(contains(plon[tested], plat[tested])).any():
-            bad.append(k)
-    return bad
+    """Legs of a track with a tested dense sample on land: the samples of `leg_samples`
+    (each leg's start node and its points every STEP_M), all legs in one geodesic pass and
+    one land test instead of a pass per leg."""
+    m = lon.size - 1
+    if m < 1:
+        return []
+    _, dist = inverse(lon[:-1], lat[:-1], lon[1:], lat[1:])
+    dist = np.atleast_1d(np.asarray(dist, dtype=float))
+    plon, plat = densify_track(lon, lat, STEP_M)
+    n = np.maximum(1, np.ceil(dist / STEP_M).astype(np.int64))
+    start = np.concatenate([[0], np.cumsum(n)[:-1]])  # sample index of each leg's start node
+    owner = np.concatenate([[0], np.repeat(np.arange(m), n)])
+    step = np.concatenate([[0], np.arange(owner.size - 1) - start[owner[1:]] + 1])
+    along = (np.concatenate([[0.0], np.cumsum(dist)])[owner]
+             + dist[owner] * step / n[owner])
+    plon = lon[owner] + (np.asarray(plon, dtype=float) - lon[owner] + 180.0) % 360.0 - 180.0
+    tested = (along >= skip_start_m) & (along <= float(dist.sum()) - skip_end_m)
+    hit = np.zeros(owner.size, dtype=np.int64)
+    if tested.any():
+        hit[tested] = np.asarray(contains(plon[tested], np.asarray(plat)[tested]), dtype=bool)
+    count = np.concatenate([[0], np.cumsum(hit)])
+    on_land = count[start + n + 1] - count[start] > 0  # start node and points of each leg
+    return [k for k in np.flatnonzero(on_land).tolist() if k not in skip_legs]
 
 
 def _stretch(plon: np.ndarray, plat: np.ndarray, along: np.ndarray, a_m: float, b_m: float
