@@ -10,7 +10,8 @@ from datetime import timedelta
 
 import numpy as np
 import pytest
-from shiproute_core.geodesy import direct, inverse, unwrap_near
+from shiproute_core.geodesy import unwrap_near
+from shiproute_planner.plan_position import position_after
 from shiproute_planner.plan_setup import make_environment, route_limits
 from shiproute_planner.planning import plan
 from shiproute_planner.request import PlanOptions, VoyageRequest, voyage_times
@@ -24,16 +25,6 @@ SHIP = "container_4600teu"
 def _voyage() -> VoyageRequest:
     depart_s, rta_s = voyage_times("2026-03-03T18:00Z", timedelta(days=13))
     return VoyageRequest("Busan", "Long Beach", depart_s, rta_s, SHIP)
-
-
-def _position_after(p, hours: float) -> tuple[float, float, float]:
-    """(lat, lon, time) on plan `p` `hours` after its departure (geodesic interpolation)."""
-    lon, lat, t = p.track()
-    now = p.departure_s + hours * 3600.0
-    k = int(np.searchsorted(t, now, side="right") - 1)
-    az, d = inverse(lon[k], lat[k], lon[k + 1], lat[k + 1])
-    plon, plat = direct(lon[k], lat[k], az, d * (now - t[k]) / (t[k + 1] - t[k]))
-    return float(plat), float(plon), now
 
 
 def _remainder_sailed(previous, position, sampler):
@@ -68,7 +59,7 @@ def test_starved_replan_keeps_the_feasible_previous_plan(previous_plan, land_mas
     # and over land) on the forecast the previous plan was made on: the previous plan's
     # remainder is published, exactly as the independent march sails it
     voyage = _voyage()
-    pos = _position_after(previous_plan, hours)
+    pos = position_after(previous_plan, hours)
     sailed, lim = _remainder_sailed(previous_plan, pos, storm_sampler)
     assert sailed.eta_s[0] <= voyage.rta_s + voyage.rta_tolerance_s  # still on time ...
     assert np.nanmax(sailed.legs["hs_m"]) <= lim.max_hs_m  # ... and below the Hs limit
@@ -87,7 +78,7 @@ def test_starved_replan_keeps_the_feasible_previous_plan(previous_plan, land_mas
 def test_starved_seed_ga_replan_is_no_worse_than_the_previous_remainder(
         previous_plan, land_mask, storm_sampler):
     voyage = _voyage()
-    pos = _position_after(previous_plan, 30.0)
+    pos = position_after(previous_plan, 30.0)
     sailed, _ = _remainder_sailed(previous_plan, pos, storm_sampler)
     out = plan(voyage, PlanOptions(land=land_mask, budget_s=600.0, max_evaluations=1,
                                    max_generations=0, previous_plan=previous_plan,
@@ -108,7 +99,7 @@ def test_warm_replan_on_the_moved_storm_is_feasible(previous_plan, land_mask, se
     from shiproute_weather.scenarios.catalogue import scenario_dataset
 
     cycle2 = ForecastSampler(scenario_dataset("storm_march_cycle2"), dtype=np.float16)
-    pos = _position_after(previous_plan, 6.0)
+    pos = position_after(previous_plan, 6.0)
     out = plan(_voyage(), PlanOptions(land=land_mask, budget_s=600.0, max_evaluations=2000,
                                       seed=seed, previous_plan=previous_plan, position=pos,
                                       with_baseline=False), cycle2)

@@ -15,7 +15,8 @@ from datetime import timedelta
 import numpy as np
 import pytest
 import xarray as xr
-from shiproute_core.geodesy import direct, inverse, unwrap_near
+from shiproute_core.geodesy import unwrap_near
+from shiproute_planner.plan_position import position_after
 from shiproute_planner.plan_setup import make_environment, route_limits
 from shiproute_planner.planning import plan
 from shiproute_planner.request import PlanOptions, VoyageRequest, voyage_times
@@ -75,16 +76,6 @@ def _storm_on(previous, deficit_hpa: float):
                               1.2)))
 
 
-def _position_after(p, hours: float) -> tuple[float, float, float]:
-    """(lat, lon, time) on plan `p` `hours` after its departure (geodesic interpolation)."""
-    lon, lat, t = p.track()
-    now = p.departure_s + hours * 3600.0
-    k = int(np.searchsorted(t, now, side="right") - 1)
-    az, d = inverse(lon[k], lat[k], lon[k + 1], lat[k + 1])
-    plon, plat = direct(lon[k], lat[k], az, d * (now - t[k]) / (t[k + 1] - t[k]))
-    return float(plat), float(plon), now
-
-
 def _marched(lon, lat, rpm, start_s: float, sampler):
     """A track sailed at `rpm` per leg from `start_s` by the leg-by-leg march (one piece,
     no land test: only the weather is in question here)."""
@@ -118,13 +109,13 @@ def previous(land_mask):
 def _replan(previous, land_mask, cycle, seed: int):
     return plan(_voyage(), PlanOptions(
         land=land_mask, budget_s=600.0, max_evaluations=REPLAN_EVALUATIONS, seed=seed,
-        previous_plan=previous, position=_position_after(previous, 12.0),
+        previous_plan=previous, position=position_after(previous, 12.0),
         with_baseline=False), cycle)
 
 
 def test_a_storm_moved_onto_the_route_is_re_planned_round_feasibly(previous, land_mask):
     cycle = _storm_on(previous, 60.0)  # ~950 hPa: a deep winter storm
-    pos = _position_after(previous, 12.0)
+    pos = position_after(previous, 12.0)
     limit_m = route_limits(make_environment(SHIP, None)[1]).max_hs_m
     stale = _remainder(previous, pos, cycle)
     # the new cycle breaks the previous route: its remainder meets seas above the limit
@@ -146,7 +137,7 @@ def test_a_re_plan_where_the_previous_route_holds_is_no_dearer_than_it(previous,
     # the next cycle re-issues the weather; 48 h along the previous remainder, marched
     # independently, is on time and within every limit: the re-plan may not cost more
     voyage = _voyage()
-    pos = _position_after(previous, 48.0)
+    pos = position_after(previous, 48.0)
     stale = _remainder(previous, pos, _cycle())
     assert stale.violation[0] <= 0.0
     assert stale.eta_s[0] <= voyage.rta_s + voyage.rta_tolerance_s

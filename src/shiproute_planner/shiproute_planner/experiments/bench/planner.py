@@ -19,11 +19,12 @@ from datetime import timedelta
 
 import numpy as np
 from shiproute_core.bench_report import print_figures
-from shiproute_core.geodesy import direct, inverse
+from shiproute_core.geodesy import inverse
 
 from ...ga.loop import GAConfig
 from ...geo.landmask import default_land_mask
 from ...geo.verify import land_crossings
+from ...plan_position import position_after
 from ...plan_setup import make_environment
 from ...plan_timing import tolerated_overrun_s
 from ...planning import plan
@@ -36,17 +37,6 @@ from ...route.seeding import great_circle_track
 from ...threads import planner_threads
 
 DEPART = "2026-03-03T18:00Z"
-
-
-def _position_after(plan, hours: float) -> tuple[float, float, float]:
-    """(lat, lon, time) on the plan `hours` after departure (geodesic interpolation)."""
-    lon, lat, t = plan.track()
-    now = plan.departure_s + hours * 3600.0
-    k = int(np.clip(np.searchsorted(t, now, side="right") - 1, 0, t.size - 2))
-    az, d = inverse(lon[k], lat[k], lon[k + 1], lat[k + 1])
-    f = (now - t[k]) / max(t[k + 1] - t[k], 1.0)
-    plon, plat = direct(lon[k], lat[k], az, d * f)
-    return float(plat), float(plon), now
 
 
 def ga_like_population(problem: RouteProblem, pop: int, rng: np.random.Generator,
@@ -108,7 +98,7 @@ def run(budget_s: float, warm_budget_s: float, ref_factor: float, seed: int) -> 
         cold = plan(voyage, dataclasses.replace(common, budget_s=budget_s,
                                                 seed_pool_dir=pool_dir), s1)
         cold_s = time.perf_counter() - t
-    pos = _position_after(cold, 6.0)
+    pos = position_after(cold, 6.0)
     t = time.perf_counter()
     warm = plan(voyage, dataclasses.replace(
         common, budget_s=warm_budget_s, previous_plan=cold, position=pos,
