@@ -22,3 +22,25 @@ def test_cli_plan_warms_up_outside_the_budget_and_searches(tmp_path, capsys):
     # a GA generation is one population (~100 routes): an ocean crossing that kept its
     # budget for the search makes many; the best seed alone is generation 0
     assert doc["generations"] >= 5, doc["generations"]
+
+
+def test_warm_up_names_the_land_rasters_it_will_build_for_a_new_machine(tmp_path,
+                                                                         monkeypatch):
+    """An empty data directory (a new machine) lacks every land raster: the warm-up says it
+    builds them (~40 s at full resolution, once); once stored, it says nothing of them."""
+    from shiproute_planner.cli.warm_up import warm_up_note
+    from shiproute_planner.geo.full_land import first_builds
+    from shiproute_planner.geo.gshhg import finest_resolution
+    from shiproute_planner.geo.landmask import cached_array_name
+
+    monkeypatch.setenv("SHIPROUTE_DATA_DIR", str(tmp_path))
+    wanted = {"i", finest_resolution()}
+    built = first_builds()
+    assert len(built) == len(wanted)
+    assert "intermediate-resolution land raster" in " ".join(built)
+    note = warm_up_note(2.0, built)
+    assert "for this machine (once)" in note and built[0] in note
+    for res in wanted:
+        (tmp_path / cached_array_name("landmask", res, 0.05)).write_bytes(b"")
+    assert first_builds() == ()
+    assert "for this machine" not in warm_up_note(2.0, first_builds())

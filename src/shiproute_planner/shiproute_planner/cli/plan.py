@@ -181,8 +181,11 @@ def main(argv: list[str]) -> int:
             bathymetry=args.bathymetry, default_bathymetry=not args.no_default_bathymetry,
             ukc_margin_m=args.ukc_margin, zones=args.zones, clearance_nm=args.clearance_nm,
             approaches_given=args.approach, risk=risk)
+        from ..geo.full_land import first_builds  # numba kernels: not for `--help`
+
+        built = first_builds()
         warm_s = warm_up(req, keywords)
-        print(warm_up_note(warm_s), file=sys.stderr)
+        print(warm_up_note(warm_s, built), file=sys.stderr)
         if req.objective == "front":
             from .plan_front import run_front
 

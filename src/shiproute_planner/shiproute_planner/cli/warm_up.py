@@ -26,7 +26,9 @@ def warm_up(req: PlanRequest, keywords: dict[str, Any]) -> float:
     return time.perf_counter() - t0
 
 
-def warm_up_note(seconds: float) -> str:
-    """The stderr line that says what the warm-up did and that the budget excludes it."""
+def warm_up_note(seconds: float, built: tuple[str, ...] = ()) -> str:
+    """The stderr line that says what the warm-up did and that the budget excludes it
+    (`built`: what it built for this machine, once, from `first_builds`)."""
+    once = f"; built {' and '.join(built)} for this machine (once)" if built else ""
     return (f"warm-up: {seconds:.1f} s before the budget's clock (compiled kernels, land "
-            "and depth maps, sea lanes, coastal passages; once per process)")
+            f"and depth maps, sea lanes, coastal passages; once per process{once})")

@@ -22,7 +22,7 @@ import shapely
 
 from .gshhg import LandPolygons, finest_resolution
 from .land_kernels import raster_lookup
-from .landmask import LandMask, default_land_mask
+from .landmask import LandMask, default_land_mask, land_raster_built
 from .nav_grid import land_in_box
 from .raster import COAST, LAND
 
@@ -125,3 +125,11 @@ def final_land() -> FinalLand:
     res = finest_resolution()
     mask = default_land_mask(res)
     return FinalLand(res, mask, TiledLand(mask.polygons))
+
+
+def first_builds() -> tuple[str, ...]:
+    """The land rasters a planner's warm-up will build for this machine the first time
+    (stored in the data directory, then memory-mapped): the search's and the final test's."""
+    return tuple(f"the GSHHG {RESOLUTION_WORDS[res]}-resolution land raster"
+                 for res in sorted({"i", finest_resolution()}, reverse=True)
+                 if not land_raster_built(res))

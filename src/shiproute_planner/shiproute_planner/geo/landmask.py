@@ -55,8 +55,7 @@ class LandMask:
     def _cached_array(self, kind: str, build: Callable[[], np.ndarray]) -> np.ndarray:
         """Array `kind` of this resolution and cell size from the data directory's .npy
         cache (memory-mapped), built and stored atomically when missing or corrupt."""
-        name = f"{kind}_v{RASTER_VERSION}_gshhg_{self.resolution}_{self.cell_deg:g}deg.npy"
-        path = self._cache_dir / name
+        path = self._cache_dir / cached_array_name(kind, self.resolution, self.cell_deg)
         if path.is_file():
             try:
                 return np.load(path, mmap_mode="r")
@@ -140,6 +139,19 @@ class LandMask:
             hit = self.exact.contains(c_lon[:n], c_lat[:n])
             land += np.bincount(c_seg[:n][hit], minlength=n_seg)
         return land
+
+
+def cached_array_name(kind: str, resolution: str, cell_deg: float) -> str:
+    """File name of a land mask's cached array `kind` in the data directory."""
+    return f"{kind}_v{RASTER_VERSION}_gshhg_{resolution}_{cell_deg:g}deg.npy"
+
+
+def land_raster_built(resolution: str, cell_deg: float = 0.05,
+                      cache_dir: Path | None = None) -> bool:
+    """True when the land raster of `resolution` is already stored on this machine (its
+    first build, ~40 s at full resolution, is then not ahead)."""
+    return ((cache_dir or data_dir()) / cached_array_name("landmask", resolution, cell_deg)
+            ).is_file()
 
 
 def sea_distance_cells(raster: np.ndarray, cap: int = 255) -> np.ndarray:

@@ -36,11 +36,13 @@ def warm_planner(p: Callable[[str], Any]) -> str:
     against a 3 s budget without it). Returns what was warmed and how long it took; raises
     what planning the voyage raises (the caller reports it, the first plan says it too)."""
     from ..front import top_speed_s
+    from ..geo.full_land import first_builds
     from ..planning import plan
     from ..request import PlanOptions
     from ..voyage_params import parse_utc
     from .plan_call import node_request
 
+    built = first_builds()
     t0 = time.perf_counter()
     departure, rta_s = str(p("departure_time")), parse_utc(str(p("rta")))
     # without a departure time the voyage leaves early enough to be possible
@@ -51,8 +53,9 @@ def warm_planner(p: Callable[[str], Any]) -> str:
     plan(request, PlanOptions(method=str(p("method")), budget_s=0.0, max_generations=0,
                               with_baseline=False, stage_hours=float(p("stage_hours")) or None),
          None)
+    once = f"; built {' and '.join(built)} for this machine (once)" if built else ""
     return (f"warm-up: {request.origin} -> {request.destination} set up in calm water in "
-            f"{time.perf_counter() - t0:.1f} s (kernels, land and depth maps, sea lanes)")
+            f"{time.perf_counter() - t0:.1f} s (kernels, land and depth maps, sea lanes{once})")
 
 
 def warm_up_logged(p: Callable[[str], Any], logger: Any) -> None:
