@@ -18,6 +18,7 @@ from shiproute_core.geodesy import densify_track, inverse, wrap_lon
 from shiproute_core.units import M_PER_NM
 
 from .geo.zones import Zones
+from .route.track_samples import track_samples
 from .route.under_keel import UnderKeel
 
 
@@ -62,23 +63,6 @@ def _leg_points(lon: np.ndarray, lat: np.ndarray, k: int, step_m: float):
     return np.asarray(plon, dtype=float), np.asarray(plat, dtype=float)
 
 
-def _track_samples(lon: np.ndarray, lat: np.ndarray, dist: np.ndarray, step_m: float
-                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """The samples `_leg_points` gives each leg, for the whole track at once: (lon, lat,
-    index of each leg's start node, points per leg, distance along the track [m]); the
-    longitudes of a leg's points continue its start node's frame."""
-    plon, plat = densify_track(lon, lat, step_m)
-    n = np.maximum(1, np.ceil(dist / step_m).astype(np.int64))
-    first = np.concatenate([[0], np.cumsum(n)[:-1]])
-    owner = np.concatenate([[0], np.repeat(np.arange(dist.size), n)])
-    step = np.concatenate([[0], np.arange(owner.size - 1) - first[owner[1:]] + 1])
-    along = np.concatenate([[0.0], np.cumsum(dist)])[owner] + dist[owner] * step / n[owner]
-    plon = np.asarray(plon, dtype=float)
-    plat = np.asarray(plat, dtype=float)
-    plon[first], plat[first] = lon[:-1], lat[:-1]  # each leg starts at its own node
-    return plon, plat, first, n, along
-
-
 def check_track(lon_deg: np.ndarray, lat_deg: np.ndarray, speed_kn: np.ndarray,
                 land_contains: Callable[[np.ndarray, np.ndarray], np.ndarray], *,
                 clearance_nm: float = 0.0, land_near: Callable | None = None,
@@ -100,7 +84,7 @@ def check_track(lon_deg: np.ndarray, lat_deg: np.ndarray, speed_kn: np.ndarray,
     notes: list[str] = []
     # every leg's samples in one geodesic pass and one land test (a pass per leg cost a
     # re-plan ~50 ms); leg k owns samples first[k] (its start node) .. first[k] + count[k]
-    all_lon, all_lat, first, count, all_along = _track_samples(lon, lat, dist, step_m)
+    all_lon, all_lat, first, count, all_along = track_samples(lon, lat, dist, step_m)
     tested = (all_along >= port_clearance_m) & (all_along <= total - port_clearance_m)
     for k in skip_legs:
         if 0 <= k < n_leg:

@@ -22,6 +22,7 @@ from shiproute_core.units import M_PER_NM
 
 from ..geo.nav_grid import land_in_box
 from .passages import PassageRules, compute_passage, passage_length_nm
+from .track_samples import track_samples
 
 LandTest = Callable[[np.ndarray, np.ndarray], np.ndarray]
 #: dense sample spacing (0.25 NM), the route check's own (`route_check.CHECK_STEP_M`)
@@ -90,18 +91,11 @@ def land_legs(lon: np.ndarray, lat: np.ndarray, contains: LandTest, skip_start_m
         return []
     _, dist = inverse(lon[:-1], lat[:-1], lon[1:], lat[1:])
     dist = np.atleast_1d(np.asarray(dist, dtype=float))
-    plon, plat = densify_track(lon, lat, STEP_M)
-    n = np.maximum(1, np.ceil(dist / STEP_M).astype(np.int64))
-    start = np.concatenate([[0], np.cumsum(n)[:-1]])  # sample index of each leg's start node
-    owner = np.concatenate([[0], np.repeat(np.arange(m), n)])
-    step = np.concatenate([[0], np.arange(owner.size - 1) - start[owner[1:]] + 1])
-    along = (np.concatenate([[0.0], np.cumsum(dist)])[owner]
-             + dist[owner] * step / n[owner])
-    plon = lon[owner] + (np.asarray(plon, dtype=float) - lon[owner] + 180.0) % 360.0 - 180.0
+    plon, plat, start, n, along = track_samples(lon, lat, dist, STEP_M)
     tested = (along >= skip_start_m) & (along <= float(dist.sum()) - skip_end_m)
-    hit = np.zeros(owner.size, dtype=np.int64)
+    hit = np.zeros(plon.size, dtype=np.int64)
     if tested.any():
-        hit[tested] = np.asarray(contains(plon[tested], np.asarray(plat)[tested]), dtype=bool)
+        hit[tested] = np.asarray(contains(plon[tested], plat[tested]), dtype=bool)
     count = np.concatenate([[0], np.cumsum(hit)])
     on_land = count[start + n + 1] - count[start] > 0  # start node and points of each leg
     return [k for k in np.flatnonzero(on_land).tolist() if k not in skip_legs]
