@@ -29,6 +29,8 @@ def warm_up(req: PlanRequest, keywords: dict[str, Any]) -> float:
 def warm_up_note(seconds: float, built: tuple[str, ...] = ()) -> str:
     """The stderr line that says what the warm-up did and that the budget excludes it
     (`built`: what it built for this machine, once, from `first_builds`)."""
-    once = f"; built {' and '.join(built)} for this machine (once)" if built else ""
+    from ..geo.full_land import first_builds_clause
+
+    once = first_builds_clause(built)
     return (f"warm-up: {seconds:.1f} s before the budget's clock (compiled kernels, land "
             f"and depth maps, sea lanes, coastal passages; once per process{once})")

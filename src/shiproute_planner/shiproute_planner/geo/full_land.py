@@ -133,3 +133,8 @@ def first_builds() -> tuple[str, ...]:
     return tuple(f"the GSHHG {RESOLUTION_WORDS[res]}-resolution land raster"
                  for res in sorted({"i", finest_resolution()}, reverse=True)
                  if not land_raster_built(res))
+
+
+def first_builds_clause(built: tuple[str, ...]) -> str:
+    """The clause a warm-up message adds for what it built for this machine (empty if nothing)."""
+    return f"; built {' and '.join(built)} for this machine (once)" if built else ""

@@ -36,7 +36,7 @@ def warm_planner(p: Callable[[str], Any]) -> str:
     against a 3 s budget without it). Returns what was warmed and how long it took; raises
     what planning the voyage raises (the caller reports it, the first plan says it too)."""
     from ..front import top_speed_s
-    from ..geo.full_land import first_builds
+    from ..geo.full_land import first_builds, first_builds_clause
     from ..planning import plan
     from ..request import PlanOptions
     from ..voyage_params import parse_utc
@@ -53,7 +53,7 @@ def warm_planner(p: Callable[[str], Any]) -> str:
     plan(request, PlanOptions(method=str(p("method")), budget_s=0.0, max_generations=0,
                               with_baseline=False, stage_hours=float(p("stage_hours")) or None),
          None)
-    once = f"; built {' and '.join(built)} for this machine (once)" if built else ""
+    once = first_builds_clause(built)
     return (f"warm-up: {request.origin} -> {request.destination} set up in calm water in "
             f"{time.perf_counter() - t0:.1f} s (kernels, land and depth maps, sea lanes{once})")
 
