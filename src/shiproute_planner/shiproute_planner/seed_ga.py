@@ -35,7 +35,7 @@ EXACT_CHOICE_RESERVE_S = 0.25  # wall time kept for the exact final choice and d
 EXACT_CHOICE_SHARE = 0.28  # ... at most this share of a small budget (re-plans of 0.5 s)
 EXACT_TOP_PER_S = 40.0  # final candidates re-evaluated exactly per second of budget (4..24)
 DENSE_CHECKS = 12  # feasible final candidates given the dense land check, best first
-EXACT_CHECK_EVERY = 15  # generations between exact confirmations of the GA's best
+EXACT_CHECK_EVERY = 15  # generations between records of the GA's best for the final choice
 SHORT_SEARCH_S = 1.0  # a search this short publishes a clean seed rather than repair land
 # a risk-aware GA first runs on the members' mean forecast for this share of the budget and
 # seeds itself with that run's best candidates
@@ -71,9 +71,9 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
     x_seed, sources, offsets, notes = fresh_seeds_if_stale(ctx, fast, evaluate, x_seed,
                                                            sources, offsets)
     ga = initial_ga(ctx, x_seed, offsets)
-    # the exact evaluator confirms bests of one forecast only (a risk-aware best is a
-    # measure over members the exact evaluator does not see)
-    best_src, confirmed = run_ga(ctx, ga, evaluate, fast is not None and risk is None, sources)
+    # bests of one forecast only are kept for the exact final choice (a risk-aware best is
+    # a measure over members the exact evaluator does not see)
+    best_src, recorded = run_ga(ctx, ga, evaluate, fast is not None and risk is None, sources)
     if risk is not None and fast is not None and front is not None:
         # the risk measure chooses, not the members' mean: the front's best within the
         # bounds first (the GA's elitism keeps it too), then the final population
@@ -83,7 +83,7 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
         return MethodResult(final, best_src, mean_gens + ga.generation,
                             mean_evals + ga.evaluations, best_x.copy(),
                             (*notes, *front_statement(fast, risk, front, best_x)))
-    res = final_result(ctx, ga, confirmed, best_src, x_seed)
+    res = final_result(ctx, ga, recorded, best_src, x_seed)
     return dataclasses.replace(res, notes=(*notes, *res.notes))
 
 
@@ -164,14 +164,12 @@ def search_over(ctx: MethodContext, ga: AskTellGA, elapsed_s: float, deadline_s:
 
 
 def run_ga(ctx: MethodContext, ga: AskTellGA,
-           evaluate: Callable[[np.ndarray], RouteEvaluation], exact_check: bool,
+           evaluate: Callable[[np.ndarray], RouteEvaluation], record: bool,
            sources: list[str]) -> tuple[str, list[np.ndarray]]:
-    """The ask/tell loop within the budget: (best seed's source, bests the exact evaluator
-    confirmed along the way, the fallback when the final population sits where a boolean
-    criterion flips between the two evaluators)."""
-    p = ctx.problem
-    confirmed: list[np.ndarray] = []
-    checked: np.ndarray | None = None  # the genes last given to the exact evaluator
+    """The ask/tell loop within the budget: (best seed's source, the GA's feasible bests
+    along the way when `record`, the exact final choice's fallback when the final
+    population sits where a boolean criterion flips between the two evaluators)."""
+    recorded: list[np.ndarray] = []
     search_s = search_deadline_s(ctx)
     # the loop's share of the search; the rest refines its best (ga_refine)
     deadline_s, loop_evals = ga_share_of(ctx, search_s)
@@ -184,8 +182,8 @@ def run_ga(ctx: MethodContext, ga: AskTellGA,
         x = offspring(ctx, ga)
         ev = evaluate(x)
         ga.tell(x, ev.violation, ev.objective)
-        if exact_check and ga.generation % EXACT_CHECK_EVERY == 0 and ga.best[1] <= 0:
-            checked = confirm_best(p, ctx, ga.best[0], checked, confirmed)
+        if record and ga.generation % EXACT_CHECK_EVERY == 0 and ga.best[1] <= 0:
+            record_best(ga.best[0], recorded)
         if ga.generation == 0:
             best_src = first_best_source(ev, sources)
         elif ga.generation % REFINE_EVERY == 0:  # memetic step: descend from the best
@@ -197,36 +195,33 @@ def run_ga(ctx: MethodContext, ga: AskTellGA,
                                   f if v <= 0 else float("nan"), v, elapsed))
         if search_over(ctx, ga, elapsed, deadline_s):
             if ctx is whole or whole.cancelled():
-                return best_src, confirmed
+                return best_src, recorded
             refine_best(whole, ga, evaluate, search_s)
             # what the refinement left (it stops when it gains nothing) goes back to the GA
             ctx, deadline_s = whole, search_s
             if search_over(ctx, ga, time.perf_counter() - ctx.t_start, deadline_s):
-                return best_src, confirmed
+                return best_src, recorded
 
 
-def confirm_best(p: RouteProblem, ctx: MethodContext, best: np.ndarray,
-                 checked: np.ndarray | None, confirmed: list[np.ndarray]) -> np.ndarray:
-    """Append `best` to `confirmed` when the exact evaluator finds it feasible; returns the
-    genes now checked. A best the exact evaluator has already judged (`checked`, the GA's
-    best unchanged since) is not evaluated again: the verdict would be the same."""
-    if checked is not None and np.array_equal(best, checked):
-        return checked
-    if evaluate_genes(p, ctx.env, ctx.land, best[None, :]).feasible[0]:
-        confirmed.append(best.copy())
-    return best.copy()
+def record_best(best: np.ndarray, recorded: list[np.ndarray]) -> None:
+    """Append a copy of `best` to `recorded` unless it is the last one there (the GA's best
+    unchanged since). The exact evaluator judges them all at once in the final choice, only
+    when no final candidate passes: its cost is per call (~18 ms for one route or thirty),
+    and a call per record took ~8 % of a plan's CPU."""
+    if not recorded or not np.array_equal(best, recorded[-1]):
+        recorded.append(best.copy())
 
 
-def final_result(ctx: MethodContext, ga: AskTellGA, confirmed: list[np.ndarray],
+def final_result(ctx: MethodContext, ga: AskTellGA, recorded: list[np.ndarray],
                  best_src: str, seeds: np.ndarray | None = None) -> MethodResult:
-    """The exact choice among the final population (and the confirmed bests), never worse
+    """The exact choice among the final population (and the recorded bests), never worse
     than the constant-RPM baseline the GA was seeded with; after a short search whose
     choice touches land at full resolution, the best of its `seeds` that passes (see
     `clean_seed`)."""
     pop = ga.pop
     assert pop is not None  # the loop ran at least one generation
     top = min(24, len(pop), max(4, round(min(EXACT_TOP_PER_S * ctx.budget_s, 24.0))))
-    pool_x = pop if not confirmed else np.concatenate([pop[:top], confirmed[::-1], pop[top:]])
+    pool_x = pop if not recorded else np.concatenate([pop[:top], recorded[::-1], pop[top:]])
     best_x, final = exact_choice(ctx.problem, ctx.env, ctx.land, pool_x, top=top)
     clean = clean_seed(ctx, seeds, final)
     said: tuple[str, ...] = ()

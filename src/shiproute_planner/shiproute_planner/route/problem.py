@@ -15,6 +15,7 @@ if TYPE_CHECKING:
     from ..geo.zones import Zones
     from .under_keel import UnderKeel
 
+STAGE_FIT_TOLERANCE = 1e-9  # stages: a window this much (relative) over whole stages is whole
 
 @dataclass(frozen=True)
 class RouteLimits:
@@ -82,8 +83,12 @@ class RouteProblem:
             self, "arr_lon_deg", float(unwrap_near(self.arr_lon_deg, self.dep_lon_deg))
         )
         if self.n_stages <= 0:
+            # the final connection gets (0, 1] stage of time; a window of a whole number of
+            # stages by intent (a derived stage length) must not read as a hair more in
+            # floating point, which would leave the connection no time at all
             window = self.rta_s - self.depart_s
-            object.__setattr__(self, "n_stages", max(1, math.ceil(window / self.stage_s) - 1))
+            stages = math.ceil(window / self.stage_s - STAGE_FIT_TOLERANCE) - 1
+            object.__setattr__(self, "n_stages", max(1, stages))
         lim = self.limits
         if not lim.rpm_max > lim.rpm_min > 0:
             raise InvalidVoyageError(
