@@ -20,6 +20,7 @@ from .route.evaluation import RouteEvaluation
 from .route.fast_eval import FastEvaluator
 from .route.problem import RouteProblem
 from .route.seeding import TrackSeed, great_circle_track, sea_lane_track, track_to_genes, via_track
+from .seeding_budget import SeedingBudget, unbounded
 from .track_repairs import REPAIR_FAN_DEG, REPAIR_FAN_N, track_repairs
 
 FRESH_SEEDS_MIN_BUDGET_S = 1.0  # a stale re-plan's fresh seeds cost ~0.1-0.2 s per span
@@ -38,13 +39,19 @@ def fresh_seeds_fit(ctx: MethodContext) -> bool:
 
 def fresh_seeds_if_stale(ctx: MethodContext, fast: FastEvaluator | None,
                          evaluate: Callable[[np.ndarray], RouteEvaluation], x_seed: np.ndarray,
-                         sources: list[str], offsets: np.ndarray
+                         sources: list[str], offsets: np.ndarray,
+                         budget: SeedingBudget | None = None
                          ) -> tuple[np.ndarray, list[str], np.ndarray, tuple[str, ...]]:
     """When no given seed (the previous plan on a new cycle, the pool's route) is feasible,
-    a cold plan's seeds too (there already with a baseline): a route into the new cycle's
-    storm is not repaired in a few generations. Returns them ranked, and the note why."""
+    repairs of them and a cold plan's seeds (great circle, sea lane, via points north and
+    south, the baseline): a route into the new cycle's storm is not repaired in a few
+    generations, and a re-plan is to end feasible where a cold plan from the ship would.
+    Seeds are built only while `budget` (the seeding phase's share of the span) lasts: the
+    best so far go to the GA, and the plan says what was left out. Returns them ranked, and
+    the note why."""
     if not ctx.seeds or len(x_seed) == 0:
         return x_seed, sources, offsets, ()
+    budget = budget or unbounded()
     name = ctx.seeds[0].source
     given = np.flatnonzero([s.startswith(name) for s in sources])
     ev = evaluate(x_seed[given]) if given.size else None
@@ -54,41 +61,55 @@ def fresh_seeds_if_stale(ctx: MethodContext, fast: FastEvaluator | None,
     why = "; ".join(reasons_of(int(ev.flags[k]))) or "constraints violated"
     stale = f"re-plan: no route seeded from the {name} is feasible on this forecast ({why})"
     p = ctx.problem
-    x_seed, sources, offsets, said = with_repairs(ctx, fast, x_seed, sources, given, ev,
-                                                  evaluate)
+    x_seed, sources, said = with_repairs(ctx, fast, x_seed, sources, given, ev, evaluate,
+                                         budget)
     stale += said
-    if ctx.baseline is not None:  # the cold plan's seeds are in already
-        return x_seed, sources, offsets, (stale + "; searched from fresh seeds as well",)
     if not fresh_seeds_fit(ctx):
-        budget = (f"{ctx.max_evaluations} evaluations" if ctx.max_evaluations
-                  else f"{ctx.budget_s:.2f} s")
-        return x_seed, sources, offsets, (
-            f"{stale}; this span's budget ({budget}) was too short for fresh seeds: a "
-            "longer budget may find a feasible route",)
-    cold = dataclasses.replace(ctx, seeds=[], gene_seeds=[],
-                               baseline=compute_baseline(p, ctx.env, ctx.land))
-    more, more_sources = seed_genes(cold, all_seeds(cold), fast)
+        x, names, off = best_seeds_first(p, x_seed, sources, evaluate)
+        budget_words = (f"{ctx.max_evaluations} evaluations" if ctx.max_evaluations
+                        else f"{ctx.budget_s:.2f} s")
+        seeded = "; the constant-RPM baseline seeded" if ctx.baseline is not None else ""
+        return x, names, off, (
+            f"{stale}{seeded}; this span's budget ({budget_words}) was too short for a cold "
+            "plan's other seeds: a longer budget may find a feasible route",)
+    if budget.spent():
+        x, names, off = best_seeds_first(p, x_seed, sources, evaluate)
+        return x, names, off, (f"{stale}; {spent_words(budget)}: no fresh seeds",)
+    base = ctx.baseline or compute_baseline(p, ctx.env, ctx.land)
+    cold = dataclasses.replace(ctx, seeds=[], gene_seeds=[], baseline=base)
+    present = set(sources)
+    tracks = [s for s in all_seeds(cold) if s.source not in present]
+    more, more_sources = seed_genes(cold, tracks, fast) if tracks else (
+        np.empty((0, p.n_var)), [])
     x, names, off = best_seeds_first(p, np.concatenate([x_seed, more]), sources + more_sources,
                                      evaluate)
-    return x, names, off, (stale + "; searched from fresh seeds as well",)
+    return x, names, off, (stale + "; searched from a cold plan's fresh seeds as well",)
+
+
+def spent_words(budget: SeedingBudget) -> str:
+    """What the plan says when the seeding phase ran out of its share."""
+    return (f"seeding stopped after {budget.elapsed_s():.2f} s, its share "
+            f"({budget.share_s():.2f} s) of the search spent, with the best seeds so far")
 
 
 def with_repairs(ctx: MethodContext, fast: FastEvaluator | None, x_seed: np.ndarray,
                  sources: list[str], given: np.ndarray, ev: RouteEvaluation,
-                 evaluate: Callable[[np.ndarray], RouteEvaluation]
-                 ) -> tuple[np.ndarray, list[str], np.ndarray, str]:
+                 evaluate: Callable[[np.ndarray], RouteEvaluation], budget: SeedingBudget
+                 ) -> tuple[np.ndarray, list[str], str]:
     """The seeds plus the best REPAIRS_KEPT repairs of the given ones (`ev` their
     evaluation): the least broken one's track re-timed and its broken stretch shifted
-    sideways (`track_repairs`), detours round its broken legs in gene space and, when no
-    track repair is feasible, the few least broken and the detours retimed in gene space;
-    only a few are kept, so the population keeps the other seeds' diversity (a hundred
-    near-copies of the stale route hold the search in its basin)."""
+    sideways (`track_repairs`, while `budget` lasts), detours round its broken legs in gene
+    space and, when no track repair is feasible, the few least broken and the detours
+    retimed in gene space; only a few are kept, so the population keeps the other seeds'
+    diversity (a hundred near-copies of the stale route hold the search in its basin).
+    Returns the seeds unranked (the caller ranks them once) and what the plan says."""
     p = ctx.problem
     lo, hi = gene_bounds(p)
     best = given[np.argsort(ev.violation, kind="stable")[:RETIMED_ROWS]]
     k = int(np.argmin(ev.violation))
     bent = detour_genes(x_seed[given[k]], p.n_stages, broken_legs(ev, k), lo, hi)
-    tracked, names, fixed = track_repairs(p, ctx.env, ctx.land, fast, ev, k, evaluate)
+    tracked, names, fixed = track_repairs(p, ctx.env, ctx.land, fast, ev, k, evaluate,
+                                          budget.spent)
     detour = f"{sources[given[k]]}_detour"
     cand = np.concatenate([tracked, bent])
     names += [detour] * len(bent)
@@ -98,12 +119,13 @@ def with_repairs(ctx: MethodContext, fast: FastEvaluator | None, x_seed: np.ndar
         base_names = [f"{sources[i]}_retimed" for i in best] + [f"{detour}_retimed"] * len(bent)
         cand = np.concatenate([cand, retimed])
         names += base_names * (len(retimed) // len(base))
+    said = ("; re-timed, shifted and detoured versions of it seeded too" if len(tracked)
+            else "; detoured and re-timed versions of it seeded too")
+    if not len(cand):
+        return x_seed, sources, said
     rev = evaluate(cand)
     keep = deb_order(rev.violation, rev.objective)[:REPAIRS_KEPT]
-    x, names_out, offsets = best_seeds_first(
-        p, np.concatenate([x_seed, cand[keep]]), sources + [names[i] for i in keep], evaluate)
-    return x, names_out, offsets, ("; re-timed, shifted and detoured versions of it seeded "
-                                   "too")
+    return (np.concatenate([x_seed, cand[keep]]), sources + [names[i] for i in keep], said)
 
 
 def all_seeds(ctx: MethodContext) -> list[TrackSeed]:
