@@ -12,6 +12,10 @@ from dataclasses import dataclass
 # seed tracks take ~0.1-0.3 s of a 3-s span on an idle core, a stale re-plan's repairs about
 # as much again, so this share is rarely binding and binds hard where a first use stalls
 SEEDING_SHARE = 0.3
+# a short search (a 0.5-s re-plan's span: ~0.3 s) lives on its repairs more than on its few
+# generations: its seeding gets at least this long, within SEEDING_MAX_SHARE of the search
+SEEDING_MIN_S = 0.25
+SEEDING_MAX_SHARE = 0.6
 
 
 @dataclass(frozen=True)
@@ -36,8 +40,11 @@ class SeedingBudget:
 
 def seeding_budget(t_start_s: float, search_s: float) -> SeedingBudget:
     """The seeding budget of a span whose search started at `t_start_s` (perf_counter) and
-    may run `search_s` seconds (infinite: never spent)."""
-    return SeedingBudget(t_start_s, t_start_s + SEEDING_SHARE * max(search_s, 0.0))
+    may run `search_s` seconds (infinite: never spent): SEEDING_SHARE of it, at least
+    SEEDING_MIN_S within SEEDING_MAX_SHARE."""
+    search_s = max(search_s, 0.0)
+    share_s = min(max(SEEDING_SHARE * search_s, SEEDING_MIN_S), SEEDING_MAX_SHARE * search_s)
+    return SeedingBudget(t_start_s, t_start_s + share_s)
 
 
 def unbounded() -> SeedingBudget:

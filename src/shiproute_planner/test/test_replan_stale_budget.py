@@ -18,7 +18,7 @@ from shiproute_planner.plan_position import position_after
 from shiproute_planner.plan_timing import tolerated_overrun_s
 from shiproute_planner.planning import plan
 from shiproute_planner.request import PlanOptions, VoyageRequest, voyage_times
-from shiproute_planner.seeding_budget import SEEDING_SHARE
+from shiproute_planner.seeding_budget import SEEDING_MIN_S, SEEDING_SHARE, seeding_budget
 
 from shiproute_planner import ga_seeds, track_repairs
 
@@ -115,3 +115,13 @@ def test_a_stalled_seeding_phase_leaves_the_ga_its_generations_within_budget(
     assert any("seeding stopped after" in w for w in out.warnings), out.warnings
     assert out.extra["timing_s"]["search"] <= LOAD_FACTOR * BUDGET_S
     assert wall_s <= LOAD_FACTOR * (BUDGET_S + tolerated_overrun_s(BUDGET_S))
+
+
+def test_the_seeding_share_bounds_long_searches_and_keeps_short_ones_their_repairs():
+    now = time.perf_counter()
+    assert seeding_budget(now, 2.75).share_s() == pytest.approx(SEEDING_SHARE * 2.75)
+    # a 0.5-s re-plan's span (~0.3 s of search): at least SEEDING_MIN_S, at most 60 % of it
+    short = seeding_budget(now, 0.3).share_s()
+    assert short == pytest.approx(min(SEEDING_MIN_S, 0.6 * 0.3))
+    assert not seeding_budget(now, float("inf")).spent()
+    assert seeding_budget(now - 10.0, 3.0).spent()
