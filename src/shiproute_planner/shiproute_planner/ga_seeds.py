@@ -61,35 +61,35 @@ def fresh_seeds_if_stale(ctx: MethodContext, fast: FastEvaluator | None,
     why = "; ".join(reasons_of(int(ev.flags[k]))) or "constraints violated"
     stale = f"re-plan: no route seeded from the {name} is feasible on this forecast ({why})"
     p = ctx.problem
-    x_seed, sources, said = with_repairs(ctx, fast, x_seed, sources, given, ev, evaluate,
-                                         budget)
-    stale += said
+    # a cold plan's seeds first (a re-plan is to end feasible where a cold plan from the
+    # ship would), then the repairs of the given seeds while the seeding budget lasts
     if not fresh_seeds_fit(ctx):
-        x, names, off = best_seeds_first(p, x_seed, sources, evaluate)
         budget_words = (f"{ctx.max_evaluations} evaluations" if ctx.max_evaluations
                         else f"{ctx.budget_s:.2f} s")
         seeded = "; the constant-RPM baseline seeded" if ctx.baseline is not None else ""
-        return x, names, off, (
-            f"{stale}{seeded}; this span's budget ({budget_words}) was too short for a cold "
-            "plan's other seeds: a longer budget may find a feasible route",)
+        fresh = (f"{seeded}; this span's budget ({budget_words}) was too short for a cold "
+                 "plan's other seeds: a longer budget may find a feasible route")
+    else:
+        base = ctx.baseline or compute_baseline(p, ctx.env, ctx.land)
+        cold = dataclasses.replace(ctx, seeds=[], gene_seeds=[], baseline=base)
+        present = set(sources)
+        tracks = [s for s in all_seeds(cold) if s.source not in present]
+        if tracks:
+            more, more_sources = seed_genes(cold, tracks, fast)
+            x_seed, sources = np.concatenate([x_seed, more]), sources + more_sources
+        fresh = "; searched from a cold plan's fresh seeds as well"
+    x_seed, sources, said = with_repairs(ctx, fast, x_seed, sources, given, ev, evaluate,
+                                         budget)
     if budget.spent():
-        x, names, off = best_seeds_first(p, x_seed, sources, evaluate)
-        return x, names, off, (f"{stale}; {spent_words(budget)}: no fresh seeds",)
-    base = ctx.baseline or compute_baseline(p, ctx.env, ctx.land)
-    cold = dataclasses.replace(ctx, seeds=[], gene_seeds=[], baseline=base)
-    present = set(sources)
-    tracks = [s for s in all_seeds(cold) if s.source not in present]
-    more, more_sources = seed_genes(cold, tracks, fast) if tracks else (
-        np.empty((0, p.n_var)), [])
-    x, names, off = best_seeds_first(p, np.concatenate([x_seed, more]), sources + more_sources,
-                                     evaluate)
-    return x, names, off, (stale + "; searched from a cold plan's fresh seeds as well",)
+        said += f" ({spent_words(budget)})"
+    x, names, off = best_seeds_first(p, x_seed, sources, evaluate)
+    return x, names, off, (stale + said + fresh,)
 
 
 def spent_words(budget: SeedingBudget) -> str:
     """What the plan says when the seeding phase ran out of its share."""
     return (f"seeding stopped after {budget.elapsed_s():.2f} s, its share "
-            f"({budget.share_s():.2f} s) of the search spent, with the best seeds so far")
+            f"({budget.share_s():.2f} s) of the search spent: the best seeds so far taken")
 
 
 def with_repairs(ctx: MethodContext, fast: FastEvaluator | None, x_seed: np.ndarray,
@@ -120,7 +120,7 @@ def with_repairs(ctx: MethodContext, fast: FastEvaluator | None, x_seed: np.ndar
         cand = np.concatenate([cand, retimed])
         names += base_names * (len(retimed) // len(base))
     said = ("; re-timed, shifted and detoured versions of it seeded too" if len(tracked)
-            else "; detoured and re-timed versions of it seeded too")
+            else "; detoured and re-timed versions of it seeded too, no track repairs")
     if not len(cand):
         return x_seed, sources, said
     rev = evaluate(cand)
