@@ -31,7 +31,8 @@ TIMED_SLOPES = (-0.08, -0.04, 0.04, 0.08)
 
 
 def fresh_seeds_fit(ctx: MethodContext) -> bool:
-    """Whether the span's search affords a cold plan's seeds (baseline, ~25 more tracks)."""
+    """Whether the span's search is long enough to put a cold plan's seeds (baseline, ~25
+    more tracks) before the repairs of a stale re-plan's seeds."""
     if ctx.max_evaluations:
         return ctx.max_evaluations >= FRESH_SEEDS_MIN_EVALUATIONS
     return ctx.budget_s >= FRESH_SEEDS_MIN_BUDGET_S
@@ -61,29 +62,40 @@ def fresh_seeds_if_stale(ctx: MethodContext, fast: FastEvaluator | None,
     why = "; ".join(reasons_of(int(ev.flags[k]))) or "constraints violated"
     stale = f"re-plan: no route seeded from the {name} is feasible on this forecast ({why})"
     p = ctx.problem
-    # a cold plan's seeds first (a re-plan is to end feasible where a cold plan from the
-    # ship would), then the repairs of the given seeds while the seeding budget lasts
-    if not fresh_seeds_fit(ctx):
-        budget_words = (f"{ctx.max_evaluations} evaluations" if ctx.max_evaluations
-                        else f"{ctx.budget_s:.2f} s")
-        seeded = "; the constant-RPM baseline seeded" if ctx.baseline is not None else ""
-        fresh = (f"{seeded}; this span's budget ({budget_words}) was too short for a cold "
-                 "plan's other seeds: a longer budget may find a feasible route")
-    else:
-        base = ctx.baseline or compute_baseline(p, ctx.env, ctx.land)
-        cold = dataclasses.replace(ctx, seeds=[], gene_seeds=[], baseline=base)
-        present = set(sources)
-        tracks = [s for s in all_seeds(cold) if s.source not in present]
-        if tracks:
-            more, more_sources = seed_genes(cold, tracks, fast)
-            x_seed, sources = np.concatenate([x_seed, more]), sources + more_sources
-        fresh = "; searched from a cold plan's fresh seeds as well"
+    # a cold plan's seeds (a re-plan is to end feasible where a cold plan from the ship
+    # would) and the repairs of the given seeds, while the seeding budget lasts; a short
+    # search lives on its repairs, so there they come first, and a short wall-time search
+    # (a 0.5-s re-plan's ~0.3-s span) has no room for ~0.1-0.2 s of cold seeds after them
+    cold_first = fresh_seeds_fit(ctx)
+    fresh = ""
+    if cold_first:
+        x_seed, sources, fresh = with_cold_seeds(ctx, fast, x_seed, sources)
     x_seed, sources, said = with_repairs(ctx, fast, x_seed, sources, given, ev, evaluate,
                                          budget)
+    if not cold_first and ctx.max_evaluations and not budget.spent():
+        x_seed, sources, fresh = with_cold_seeds(ctx, fast, x_seed, sources)
     if budget.spent():
         said += f" ({spent_words(budget)})"
+    if not fresh:
+        fresh = ("; no room left for a cold plan's seeds in this span's budget ("
+                 f"{ctx.budget_s:.2f} s): a longer budget may find a feasible route")
     x, names, off = best_seeds_first(p, x_seed, sources, evaluate)
     return x, names, off, (stale + said + fresh,)
+
+
+def with_cold_seeds(ctx: MethodContext, fast: FastEvaluator | None, x_seed: np.ndarray,
+                    sources: list[str]) -> tuple[np.ndarray, list[str], str]:
+    """The seeds plus every seed a cold plan from the same start would have (baseline, great
+    circle, sea lane, via points north and south) that is not in yet, and the plan's word."""
+    p = ctx.problem
+    base = ctx.baseline or compute_baseline(p, ctx.env, ctx.land)
+    cold = dataclasses.replace(ctx, seeds=[], gene_seeds=[], baseline=base)
+    present = set(sources)
+    tracks = [s for s in all_seeds(cold) if s.source not in present]
+    if tracks:
+        more, more_sources = seed_genes(cold, tracks, fast)
+        x_seed, sources = np.concatenate([x_seed, more]), sources + more_sources
+    return x_seed, sources, "; searched from a cold plan's fresh seeds as well"
 
 
 def spent_words(budget: SeedingBudget) -> str:

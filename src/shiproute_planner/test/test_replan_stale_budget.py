@@ -125,3 +125,25 @@ def test_the_seeding_share_bounds_long_searches_and_keeps_short_ones_their_repai
     assert short == pytest.approx(min(SEEDING_MIN_S, 0.6 * 0.3))
     assert not seeding_budget(now, float("inf")).spent()
     assert seeding_budget(now - 10.0, 3.0).spent()
+
+
+TSUGARU_WEST = (41.33, 139.71)  # the replayed ship in the demo, at the strait's western mouth
+TSUGARU_EAST_LON = 141.4  # the strait's eastern gate lies east of this
+
+
+def test_a_ship_late_for_its_strait_gets_its_own_passage_as_a_cold_plan_would(previous,
+                                                                              land_mask):
+    # the demo's case: the replayed ship reaches the Tsugaru Strait after plan 1 expected it
+    # through (plan 1's departure approach is over by time); the re-plan once searched from
+    # the ship through the strait in 12-h stages and ended on land or infeasible
+    _, _, t = previous.track()
+    first_span_start = previous.optimised_spans[0][0]
+    now = float(t[first_span_start]) + 6 * 3600.0  # past plan 1's approach by time
+    position = (*TSUGARU_WEST, now)
+    outs = [_plan2(prev, position, land_mask, budget_s=600.0, max_evaluations=2_300)
+            for prev in (None, previous)]
+    for out in outs:
+        assert out.feasible, out.infeasible_reasons
+        p_lon, _, _ = out.track()
+        start = out.optimised_spans[0][0]
+        assert p_lon[start] > TSUGARU_EAST_LON  # the search starts past the strait
