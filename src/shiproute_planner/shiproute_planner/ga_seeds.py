@@ -5,6 +5,7 @@ re-plan's given seeds are all infeasible on a new forecast."""
 from __future__ import annotations
 
 import dataclasses
+import time
 from collections.abc import Callable
 
 import numpy as np
@@ -25,6 +26,7 @@ from .track_repairs import REPAIR_FAN_DEG, REPAIR_FAN_N, track_repairs
 
 FRESH_SEEDS_MIN_BUDGET_S = 1.0  # a stale re-plan's fresh seeds cost ~0.1-0.2 s per span
 FRESH_SEEDS_MIN_EVALUATIONS = 5_000
+MIN_COLD_TRACKS = 3  # fewer cold seeds than this are not worth a conversion pass
 REPAIRS_KEPT = 12  # repaired stale seeds (detours, retimed) that enter the first population
 # RPM ramps (relative change from the first to the last leg / 2) of timed seed variants
 TIMED_SLOPES = (-0.08, -0.04, 0.04, 0.08)
@@ -68,34 +70,56 @@ def fresh_seeds_if_stale(ctx: MethodContext, fast: FastEvaluator | None,
     # (a 0.5-s re-plan's ~0.3-s span) has no room for ~0.1-0.2 s of cold seeds after them
     cold_first = fresh_seeds_fit(ctx)
     fresh = ""
+    per_track_s = budget.elapsed_s() / max(len(sources), 1)  # the given seeds' conversion
     if cold_first:
-        x_seed, sources, fresh = with_cold_seeds(ctx, fast, x_seed, sources)
+        x_seed, sources, fresh = with_cold_seeds(ctx, fast, x_seed, sources, budget,
+                                                 per_track_s)
     x_seed, sources, said = with_repairs(ctx, fast, x_seed, sources, given, ev, evaluate,
                                          budget)
     if not cold_first and ctx.max_evaluations and not budget.spent():
-        x_seed, sources, fresh = with_cold_seeds(ctx, fast, x_seed, sources)
+        x_seed, sources, fresh = with_cold_seeds(ctx, fast, x_seed, sources, budget,
+                                                 per_track_s)
     if budget.spent():
         said += f" ({spent_words(budget)})"
     if not fresh:
-        fresh = ("; no room left for a cold plan's seeds in this span's budget ("
-                 f"{ctx.budget_s:.2f} s): a longer budget may find a feasible route")
+        fresh = ("; no room left for a cold plan's seeds in this span's seeding share ("
+                 f"{budget.share_s():.2f} s): a longer budget may find a feasible route")
     x, names, off = best_seeds_first(p, x_seed, sources, evaluate)
     return x, names, off, (stale + said + fresh,)
 
 
 def with_cold_seeds(ctx: MethodContext, fast: FastEvaluator | None, x_seed: np.ndarray,
-                    sources: list[str]) -> tuple[np.ndarray, list[str], str]:
-    """The seeds plus every seed a cold plan from the same start would have (baseline, great
-    circle, sea lane, via points north and south) that is not in yet, and the plan's word."""
+                    sources: list[str], budget: SeedingBudget, per_track_s: float
+                    ) -> tuple[np.ndarray, list[str], str]:
+    """The seeds plus the seeds a cold plan from the same start would have (baseline, great
+    circle, sea lane, via points north and south) that are not in yet, as many as the
+    seeding budget's rest affords at `per_track_s` per track (the given seeds' conversion
+    cost: one conversion cannot be stopped half way), and the plan's word."""
     p = ctx.problem
     base = ctx.baseline or compute_baseline(p, ctx.env, ctx.land)
     cold = dataclasses.replace(ctx, seeds=[], gene_seeds=[], baseline=base)
     present = set(sources)
     tracks = [s for s in all_seeds(cold) if s.source not in present]
-    if tracks:
-        more, more_sources = seed_genes(cold, tracks, fast)
-        x_seed, sources = np.concatenate([x_seed, more]), sources + more_sources
-    return x_seed, sources, "; searched from a cold plan's fresh seeds as well"
+    left_s = budget.deadline_s - time.perf_counter()
+    fit = len(tracks) if per_track_s <= 0 else int(left_s / per_track_s)
+    if fit < MIN_COLD_TRACKS:
+        return x_seed, sources, ""
+    kept = affordable(tracks, fit)
+    more, more_sources = seed_genes(cold, kept, fast)
+    said = ("; searched from a cold plan's fresh seeds as well" if len(kept) == len(tracks)
+            else f"; searched from {len(kept)} of a cold plan's {len(tracks)} fresh seeds as "
+            "well (the seeding share's rest)")
+    return np.concatenate([x_seed, more]), sources + more_sources, said
+
+
+def affordable(tracks: list[TrackSeed], n: int) -> list[TrackSeed]:
+    """At most `n` of `tracks`: the first two (great circle, sea lane) and the rest (via
+    points north and south at three places) evenly spread."""
+    if n >= len(tracks):
+        return tracks
+    head, rest = tracks[:2], tracks[2:]
+    pick = np.unique(np.linspace(0, len(rest) - 1, max(n - len(head), 0)).round().astype(int))
+    return head[:n] + [rest[i] for i in pick] if rest else head[:n]
 
 
 def spent_words(budget: SeedingBudget) -> str:
