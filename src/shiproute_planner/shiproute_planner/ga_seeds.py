@@ -5,6 +5,7 @@ re-plan's given seeds are all infeasible on a new forecast."""
 from __future__ import annotations
 
 import dataclasses
+import time
 from collections.abc import Callable
 
 import numpy as np
@@ -20,17 +21,20 @@ from .route.evaluation import RouteEvaluation
 from .route.fast_eval import FastEvaluator
 from .route.problem import RouteProblem
 from .route.seeding import TrackSeed, great_circle_track, sea_lane_track, track_to_genes, via_track
+from .seeding_budget import SeedingBudget, unbounded
 from .track_repairs import REPAIR_FAN_DEG, REPAIR_FAN_N, track_repairs
 
 FRESH_SEEDS_MIN_BUDGET_S = 1.0  # a stale re-plan's fresh seeds cost ~0.1-0.2 s per span
 FRESH_SEEDS_MIN_EVALUATIONS = 5_000
+MIN_COLD_TRACKS = 3  # fewer cold seeds than this are not worth a conversion pass
 REPAIRS_KEPT = 12  # repaired stale seeds (detours, retimed) that enter the first population
 # RPM ramps (relative change from the first to the last leg / 2) of timed seed variants
 TIMED_SLOPES = (-0.08, -0.04, 0.04, 0.08)
 
 
 def fresh_seeds_fit(ctx: MethodContext) -> bool:
-    """Whether the span's search affords a cold plan's seeds (baseline, ~25 more tracks)."""
+    """Whether the span's search is long enough to put a cold plan's seeds (baseline, ~25
+    more tracks) before the repairs of a stale re-plan's seeds."""
     if ctx.max_evaluations:
         return ctx.max_evaluations >= FRESH_SEEDS_MIN_EVALUATIONS
     return ctx.budget_s >= FRESH_SEEDS_MIN_BUDGET_S
@@ -38,13 +42,19 @@ def fresh_seeds_fit(ctx: MethodContext) -> bool:
 
 def fresh_seeds_if_stale(ctx: MethodContext, fast: FastEvaluator | None,
                          evaluate: Callable[[np.ndarray], RouteEvaluation], x_seed: np.ndarray,
-                         sources: list[str], offsets: np.ndarray
+                         sources: list[str], offsets: np.ndarray,
+                         budget: SeedingBudget | None = None
                          ) -> tuple[np.ndarray, list[str], np.ndarray, tuple[str, ...]]:
     """When no given seed (the previous plan on a new cycle, the pool's route) is feasible,
-    a cold plan's seeds too (there already with a baseline): a route into the new cycle's
-    storm is not repaired in a few generations. Returns them ranked, and the note why."""
+    repairs of them and a cold plan's seeds (great circle, sea lane, via points north and
+    south, the baseline): a route into the new cycle's storm is not repaired in a few
+    generations, and a re-plan is to end feasible where a cold plan from the ship would.
+    Seeds are built only while `budget` (the seeding phase's share of the span) lasts: the
+    best so far go to the GA, and the plan says what was left out. Returns them ranked, and
+    the note why."""
     if not ctx.seeds or len(x_seed) == 0:
         return x_seed, sources, offsets, ()
+    budget = budget or unbounded()
     name = ctx.seeds[0].source
     given = np.flatnonzero([s.startswith(name) for s in sources])
     ev = evaluate(x_seed[given]) if given.size else None
@@ -54,41 +64,88 @@ def fresh_seeds_if_stale(ctx: MethodContext, fast: FastEvaluator | None,
     why = "; ".join(reasons_of(int(ev.flags[k]))) or "constraints violated"
     stale = f"re-plan: no route seeded from the {name} is feasible on this forecast ({why})"
     p = ctx.problem
-    x_seed, sources, offsets, said = with_repairs(ctx, fast, x_seed, sources, given, ev,
-                                                  evaluate)
-    stale += said
-    if ctx.baseline is not None:  # the cold plan's seeds are in already
-        return x_seed, sources, offsets, (stale + "; searched from fresh seeds as well",)
-    if not fresh_seeds_fit(ctx):
-        budget = (f"{ctx.max_evaluations} evaluations" if ctx.max_evaluations
-                  else f"{ctx.budget_s:.2f} s")
-        return x_seed, sources, offsets, (
-            f"{stale}; this span's budget ({budget}) was too short for fresh seeds: a "
-            "longer budget may find a feasible route",)
-    cold = dataclasses.replace(ctx, seeds=[], gene_seeds=[],
-                               baseline=compute_baseline(p, ctx.env, ctx.land))
-    more, more_sources = seed_genes(cold, all_seeds(cold), fast)
-    x, names, off = best_seeds_first(p, np.concatenate([x_seed, more]), sources + more_sources,
-                                     evaluate)
-    return x, names, off, (stale + "; searched from fresh seeds as well",)
+    # a cold plan's seeds (a re-plan is to end feasible where a cold plan from the ship
+    # would) and the repairs of the given seeds, while the seeding budget lasts; a short
+    # search lives on its repairs, so there they come first, and a short wall-time search
+    # (a 0.5-s re-plan's ~0.3-s span) has no room for ~0.1-0.2 s of cold seeds after them
+    cold_first = fresh_seeds_fit(ctx)
+    fresh = ""
+    per_track_s = budget.elapsed_s() / max(len(sources), 1)  # the given seeds' conversion
+    if cold_first:
+        x_seed, sources, fresh = with_cold_seeds(ctx, fast, x_seed, sources, budget,
+                                                 per_track_s)
+    x_seed, sources, said = with_repairs(ctx, fast, x_seed, sources, given, ev, evaluate,
+                                         budget)
+    if not cold_first and ctx.max_evaluations and not budget.spent():
+        x_seed, sources, fresh = with_cold_seeds(ctx, fast, x_seed, sources, budget,
+                                                 per_track_s)
+    if budget.spent():
+        said += f" ({spent_words(budget)})"
+    if not fresh:
+        fresh = ("; no room left for a cold plan's seeds in this span's seeding share ("
+                 f"{budget.share_s():.2f} s): a longer budget may find a feasible route")
+    x, names, off = best_seeds_first(p, x_seed, sources, evaluate)
+    return x, names, off, (stale + said + fresh,)
+
+
+def with_cold_seeds(ctx: MethodContext, fast: FastEvaluator | None, x_seed: np.ndarray,
+                    sources: list[str], budget: SeedingBudget, per_track_s: float
+                    ) -> tuple[np.ndarray, list[str], str]:
+    """The seeds plus the seeds a cold plan from the same start would have (baseline, great
+    circle, sea lane, via points north and south) that are not in yet, as many as the
+    seeding budget's rest affords at `per_track_s` per track (the given seeds' conversion
+    cost: one conversion cannot be stopped half way), and the plan's word."""
+    p = ctx.problem
+    base = ctx.baseline or compute_baseline(p, ctx.env, ctx.land)
+    cold = dataclasses.replace(ctx, seeds=[], gene_seeds=[], baseline=base)
+    present = set(sources)
+    tracks = [s for s in all_seeds(cold) if s.source not in present]
+    left_s = budget.deadline_s - time.perf_counter()
+    fit = len(tracks) if per_track_s <= 0 else int(left_s / per_track_s)
+    if fit < MIN_COLD_TRACKS:
+        return x_seed, sources, ""
+    kept = affordable(tracks, fit)
+    more, more_sources = seed_genes(cold, kept, fast)
+    said = ("; searched from a cold plan's fresh seeds as well" if len(kept) == len(tracks)
+            else f"; searched from {len(kept)} of a cold plan's {len(tracks)} fresh seeds as "
+            "well (the seeding share's rest)")
+    return np.concatenate([x_seed, more]), sources + more_sources, said
+
+
+def affordable(tracks: list[TrackSeed], n: int) -> list[TrackSeed]:
+    """At most `n` of `tracks`: the first two (great circle, sea lane) and the rest (via
+    points north and south at three places) evenly spread."""
+    if n >= len(tracks):
+        return tracks
+    head, rest = tracks[:2], tracks[2:]
+    pick = np.unique(np.linspace(0, len(rest) - 1, max(n - len(head), 0)).round().astype(int))
+    return head[:n] + [rest[i] for i in pick] if rest else head[:n]
+
+
+def spent_words(budget: SeedingBudget) -> str:
+    """What the plan says when the seeding phase ran out of its share."""
+    return (f"seeding stopped after {budget.elapsed_s():.2f} s, its share "
+            f"({budget.share_s():.2f} s) of the search spent: the best seeds so far taken")
 
 
 def with_repairs(ctx: MethodContext, fast: FastEvaluator | None, x_seed: np.ndarray,
                  sources: list[str], given: np.ndarray, ev: RouteEvaluation,
-                 evaluate: Callable[[np.ndarray], RouteEvaluation]
-                 ) -> tuple[np.ndarray, list[str], np.ndarray, str]:
+                 evaluate: Callable[[np.ndarray], RouteEvaluation], budget: SeedingBudget
+                 ) -> tuple[np.ndarray, list[str], str]:
     """The seeds plus the best REPAIRS_KEPT repairs of the given ones (`ev` their
     evaluation): the least broken one's track re-timed and its broken stretch shifted
-    sideways (`track_repairs`), detours round its broken legs in gene space and, when no
-    track repair is feasible, the few least broken and the detours retimed in gene space;
-    only a few are kept, so the population keeps the other seeds' diversity (a hundred
-    near-copies of the stale route hold the search in its basin)."""
+    sideways (`track_repairs`, while `budget` lasts), detours round its broken legs in gene
+    space and, when no track repair is feasible, the few least broken and the detours
+    retimed in gene space; only a few are kept, so the population keeps the other seeds'
+    diversity (a hundred near-copies of the stale route hold the search in its basin).
+    Returns the seeds unranked (the caller ranks them once) and what the plan says."""
     p = ctx.problem
     lo, hi = gene_bounds(p)
     best = given[np.argsort(ev.violation, kind="stable")[:RETIMED_ROWS]]
     k = int(np.argmin(ev.violation))
     bent = detour_genes(x_seed[given[k]], p.n_stages, broken_legs(ev, k), lo, hi)
-    tracked, names, fixed = track_repairs(p, ctx.env, ctx.land, fast, ev, k, evaluate)
+    tracked, names, fixed = track_repairs(p, ctx.env, ctx.land, fast, ev, k, evaluate,
+                                          budget.spent)
     detour = f"{sources[given[k]]}_detour"
     cand = np.concatenate([tracked, bent])
     names += [detour] * len(bent)
@@ -98,12 +155,13 @@ def with_repairs(ctx: MethodContext, fast: FastEvaluator | None, x_seed: np.ndar
         base_names = [f"{sources[i]}_retimed" for i in best] + [f"{detour}_retimed"] * len(bent)
         cand = np.concatenate([cand, retimed])
         names += base_names * (len(retimed) // len(base))
+    said = ("; re-timed, shifted and detoured versions of it seeded too" if len(tracked)
+            else "; detoured and re-timed versions of it seeded too, no track repairs")
+    if not len(cand):
+        return x_seed, sources, said
     rev = evaluate(cand)
     keep = deb_order(rev.violation, rev.objective)[:REPAIRS_KEPT]
-    x, names_out, offsets = best_seeds_first(
-        p, np.concatenate([x_seed, cand[keep]]), sources + [names[i] for i in keep], evaluate)
-    return x, names_out, offsets, ("; re-timed, shifted and detoured versions of it seeded "
-                                   "too")
+    return (np.concatenate([x_seed, cand[keep]]), sources + [names[i] for i in keep], said)
 
 
 def all_seeds(ctx: MethodContext) -> list[TrackSeed]:

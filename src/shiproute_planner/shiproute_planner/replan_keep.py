@@ -47,6 +47,7 @@ class Remainder:
     start_s: float
     prev_index: np.ndarray
     ports: tuple[str, ...]  # port name of each node ("" where none)
+    planned_s: np.ndarray  # the previous plan's time at each node (the ship's time first)
 
 
 def remainder_of(previous: RoutePlan, position: tuple[float, float, float] | None,
@@ -60,7 +61,8 @@ def remainder_of(previous: RoutePlan, position: tuple[float, float, float] | Non
         if abs(previous.departure_s - depart_s) > SAME_DEPARTURE_S:
             return "the previous plan left at another time"
         idx = np.arange(lon.size)
-        return Remainder(lon.copy(), lat.copy(), rpm.copy(), float(t[0]), idx, names)
+        return Remainder(lon.copy(), lat.copy(), rpm.copy(), float(t[0]), idx, names,
+                         np.asarray(t, dtype=float).copy())
     now_lat, now_lon, now_s = position
     later = np.flatnonzero(t > now_s)
     if later.size == 0 or int(later[0]) == 0:
@@ -71,7 +73,7 @@ def remainder_of(previous: RoutePlan, position: tuple[float, float, float] | Non
     out_lat = np.concatenate([[now_lat], lat[first:]])
     idx = np.concatenate([[-1], np.arange(first, lon.size)])
     return Remainder(out_lon, out_lat, rpm[first - 1:].astype(float), float(now_s), idx,
-                     ("", *names[first:]))
+                     ("", *names[first:]), np.concatenate([[now_s], t[first:]]))
 
 
 def _local(rem: Remainder, prev_i: int) -> int:
@@ -148,7 +150,10 @@ def _sail(prep: PreparedVoyage, rem: Remainder, part: Part, t0: float) -> RouteE
     problem = RouteProblem(float(lon[0]), float(lat[0]), float(lon[-1]), float(lat[-1]), t0,
                            t0 + PASSAGE_WINDOW_S, prep.limits)
     land = prep.land if kind == DECIDING else None
-    return sail_track(problem, prep.env, land, lon, lat, rem.rpm[a:b])
+    # the planned times start the fixed-point iterations: a remainder sailed on a new cycle
+    # keeps most of them, so few passes settle it (from the departure alone it needs more)
+    return sail_track(problem, prep.env, land, lon, lat, rem.rpm[a:b],
+                      time_guess_s=rem.planned_s[a:b + 1])
 
 
 def carried_legs(prep: PreparedVoyage, options: PlanOptions) -> CarriedLegs | str:

@@ -30,6 +30,7 @@ from .route.generate import evaluate_genes
 from .route.land_repair import land_legs
 from .route.member_eval import risk_evaluate_outcomes
 from .route.problem import RouteProblem
+from .seeding_budget import seeding_budget
 
 EXACT_CHOICE_RESERVE_S = 0.25  # wall time kept for the exact final choice and dense land check
 EXACT_CHOICE_SHARE = 0.28  # ... at most this share of a small budget (re-plans of 0.5 s)
@@ -68,8 +69,9 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
         ctx = dataclasses.replace(ctx, max_evaluations=max(
             ctx.max_evaluations - mean_evals, 1) if ctx.max_evaluations else 0)
     x_seed, sources, offsets = best_seeds_first(p, x_seed, sources, evaluate)
-    x_seed, sources, offsets, notes = fresh_seeds_if_stale(ctx, fast, evaluate, x_seed,
-                                                           sources, offsets)
+    x_seed, sources, offsets, notes = fresh_seeds_if_stale(
+        ctx, fast, evaluate, x_seed, sources, offsets,
+        seeding_budget(ctx.t_start, search_deadline_s(ctx)))
     ga = initial_ga(ctx, x_seed, offsets)
     # bests of one forecast only are kept for the exact final choice (a risk-aware best is
     # a measure over members the exact evaluator does not see)

@@ -100,14 +100,18 @@ def shifted_tracks(ev: RouteEvaluation, row: int, stretch: tuple[int, int]) -> l
 
 def track_repairs(problem: RouteProblem, env: Environment, land: Any, fast: Any,
                   ev: RouteEvaluation, row: int,
-                  evaluate: Callable[[np.ndarray], RouteEvaluation]
+                  evaluate: Callable[[np.ndarray], RouteEvaluation],
+                  spent: Callable[[], bool] = lambda: False
                   ) -> tuple[np.ndarray, list[str], bool]:
     """Genes and source names of route `row` re-timed and shifted round its broken stretch
     (none when it is not broken), and whether one of them is feasible; while none of a
     round's repairs is, the least broken of them is repaired in turn (a storm too wide for
-    one shift, a lateness the shift added), up to REPAIR_ROUNDS rounds."""
+    one shift, a lateness the shift added), up to REPAIR_ROUNDS rounds and only while
+    `spent()` (the seeding phase's share of the budget) says there is time."""
     genes, names, feasible = [], [], False
     for _ in range(REPAIR_ROUNDS):
+        if spent():
+            break
         stretch = broken_stretch(ev, row)
         if stretch is None:
             break

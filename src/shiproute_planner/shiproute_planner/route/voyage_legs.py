@@ -58,22 +58,29 @@ def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMa
     kept = previous_arrival(previous_plan, b, position) if under_way else None
     ap_dep: Approach | None
     ap_arr: Approach | None
+    # under way past (or off) the previous plan's departure approach, the ship needs its
+    # own coastal passage from where it is (a strait it is in), as a cold plan gets
+    own_dep = under_way and rest is None and coastal is not None and not is_gate(a)
     if kept is not None:  # under way to the same port: the arrival approach stays as planned
         ap_dep, ap_arr = None, kept
+        if own_dep:
+            ap_dep, _ = lane_approaches(a, b, approach_nm * M_PER_NM, with_dep=True,
+                                        with_arr=False, coastal=coastal, dep_min_m=0.0)
     else:
         ap_dep, ap_arr = lane_approaches(
             a, b, approach_nm * M_PER_NM,
-            with_dep=(not under_way or (coastal is not None and previous_plan is None))
-            and not is_gate(a), with_arr=not is_gate(b),  # gates lie in open water
+            with_dep=(not under_way or own_dep) and not is_gate(a),
+            with_arr=not is_gate(b),  # gates lie in open water
             coastal=coastal, dep_min_m=0.0 if under_way else None)
     notes: list[str] = []
-    if coastal is not None and kept is None:  # computed on the fine grid, not the lane's cut
+    if coastal is not None:  # computed on the fine grid, not the lane's cut
         rules = passage_rules(lim.under_keel)
-        if rest is None:
+        if rest is None and (kept is None or own_dep):
             ap_dep, said = computed_approach(ap_dep, a.name, False, rules)
             notes += said
-        ap_arr, said = computed_approach(ap_arr, b.name, True, rules)
-        notes += said
+        if kept is None:
+            ap_arr, said = computed_approach(ap_arr, b.name, True, rules)
+            notes += said
     if rest is not None:
         ap_dep = rest
     mine_dep, mine_arr = approaches_at(given, a, b)

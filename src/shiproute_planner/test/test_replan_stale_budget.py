@@ -1,0 +1,149 @@
+"""A stale re-plan (the demo's: Busan -> Long Beach, forecast cycle 2 of the March storm)
+from a ship 30 NM abeam of the previous plan and 6 h behind it: it ends feasible where a
+cold plan from the same position with the same evaluation budget does, and when building
+its seeds stalls (a first use: coastal cells resolved, a kernel compiled, on a loaded
+machine) the seeding phase stops at its share of the budget and the GA still runs its
+generations within the budget."""
+
+from __future__ import annotations
+
+import functools
+import time
+
+import numpy as np
+import pytest
+from shiproute_core.geodesy import direct, inverse
+from shiproute_core.units import M_PER_NM
+from shiproute_planner.plan_position import position_after
+from shiproute_planner.plan_timing import tolerated_overrun_s
+from shiproute_planner.planning import plan
+from shiproute_planner.request import PlanOptions, VoyageRequest, voyage_times
+from shiproute_planner.seeding_budget import SEEDING_MIN_S, SEEDING_SHARE, seeding_budget
+
+from shiproute_planner import ga_seeds, track_repairs
+
+HOURS_ALONG = 60.0  # past the Tsugaru Strait, in the open North Pacific
+ABEAM_NM = 30.0
+LATE_H = 6.0
+REPLAN_EVALUATIONS = 6_000  # about what a 3-s budget buys on an idle 2-core machine
+BUDGET_S = 3.0
+LOAD_FACTOR = 3.0  # CI machines are loaded: wall times are asserted with this slack
+STALL_S = 1.6  # a first-use stall of one seed conversion: over the seeding share of 3 s
+
+
+def _voyage(depart_s: float | None = None) -> VoyageRequest:
+    depart, rta = voyage_times("2026-03-03T18:00:00Z", "2026-03-16T18:00:00Z")
+    return VoyageRequest("Busan", "Long Beach", depart if depart_s is None else depart_s, rta,
+                         "container_4600teu")
+
+
+@functools.lru_cache(maxsize=2)
+def _sampler(name: str):
+    from shiproute_weather.sampling.sampler import ForecastSampler
+    from shiproute_weather.scenarios.catalogue import scenario_dataset
+
+    return ForecastSampler(scenario_dataset(name))
+
+
+@pytest.fixture(scope="module")
+def previous(land_mask):
+    """Plan 1 on the first cycle, reproducible (route evaluations)."""
+    out = plan(_voyage(), PlanOptions(land=land_mask, budget_s=600.0, max_evaluations=4_000,
+                                      seed=0), _sampler("storm_march"))
+    assert out.feasible
+    return out
+
+
+@pytest.fixture(scope="module")
+def position(previous):
+    """(lat, lon, time) ABEAM_NM to starboard of plan 1 HOURS_ALONG after its departure,
+    LATE_H later than plan 1 is there."""
+    lat, lon, t = position_after(previous, HOURS_ALONG)
+    lat1, lon1, _ = position_after(previous, HOURS_ALONG + 1.0)
+    course, _ = inverse(lon, lat, lon1, lat1)
+    plon, plat = direct(lon, lat, float(course) + 90.0, ABEAM_NM * M_PER_NM)
+    return float(plat), float(plon), t + LATE_H * 3600.0
+
+
+def _plan2(previous, position, land_mask, **options):
+    return plan(_voyage(position[2]), PlanOptions(land=land_mask, position=position,
+                                                  previous_plan=previous, seed=0, **options),
+                _sampler("storm_march_cycle2"))
+
+
+def test_stale_re_plan_is_feasible_where_a_cold_plan_from_the_ship_is(previous, position,
+                                                                      land_mask):
+    lon, lat, t = previous.track()
+    k = int(np.searchsorted(t, position[2]))
+    # the ship is off plan 1: ~ABEAM_NM from its track, behind its schedule
+    _, d = inverse(np.full(lon.size, position[1]), np.full(lon.size, position[0]), lon, lat)
+    assert float(d.min()) / M_PER_NM > 0.5 * ABEAM_NM
+    assert 0 < k < lon.size
+    cold = _plan2(None, position, land_mask, budget_s=600.0,
+                  max_evaluations=REPLAN_EVALUATIONS)
+    re_plan = _plan2(previous, position, land_mask, budget_s=600.0,
+                     max_evaluations=REPLAN_EVALUATIONS)
+    # the stale path is the one under test: plan 1's remainder no longer holds
+    assert any(w.startswith("re-plan: no route seeded from the previous_plan")
+               for w in re_plan.warnings), re_plan.warnings
+    assert cold.feasible, cold.infeasible_reasons  # the scenario has a feasible answer
+    assert re_plan.feasible, re_plan.infeasible_reasons
+    assert re_plan.generations >= 1
+
+
+def test_a_stalled_seeding_phase_leaves_the_ga_its_generations_within_budget(
+        previous, position, land_mask, monkeypatch):
+    calls = []
+
+    def stalling(convert):
+        def stalled(*args, **kwargs):
+            calls.append(convert)
+            if len(calls) > 1:  # the given seeds' own conversion comes first: not stalled
+                time.sleep(STALL_S)  # what a first use costs a conversion on a loaded machine
+            return convert(*args, **kwargs)
+        return stalled
+
+    # every conversion of repairs and fresh seeds stalls: without a seeding budget a repair
+    # round and the fresh seeds take the whole search, and the GA gets no generation
+    monkeypatch.setattr(track_repairs, "track_to_genes", stalling(track_repairs.track_to_genes))
+    monkeypatch.setattr(ga_seeds, "track_to_genes", stalling(ga_seeds.track_to_genes))
+    assert STALL_S > SEEDING_SHARE * BUDGET_S and 2 * STALL_S > BUDGET_S
+    t0 = time.perf_counter()
+    out = _plan2(previous, position, land_mask, budget_s=BUDGET_S, with_baseline=False)
+    wall_s = time.perf_counter() - t0
+    assert out.generations >= 1
+    assert any("seeding stopped after" in w for w in out.warnings), out.warnings
+    assert out.extra["timing_s"]["search"] <= LOAD_FACTOR * BUDGET_S
+    assert wall_s <= LOAD_FACTOR * (BUDGET_S + tolerated_overrun_s(BUDGET_S))
+
+
+def test_the_seeding_share_bounds_long_searches_and_keeps_short_ones_their_repairs():
+    now = time.perf_counter()
+    assert seeding_budget(now, 2.75).share_s() == pytest.approx(SEEDING_SHARE * 2.75)
+    # a 0.5-s re-plan's span (~0.3 s of search): at least SEEDING_MIN_S, at most 60 % of it
+    short = seeding_budget(now, 0.3).share_s()
+    assert short == pytest.approx(min(SEEDING_MIN_S, 0.6 * 0.3))
+    assert not seeding_budget(now, float("inf")).spent()
+    assert seeding_budget(now - 10.0, 3.0).spent()
+
+
+TSUGARU_WEST = (41.33, 139.71)  # the replayed ship in the demo, at the strait's western mouth
+TSUGARU_EAST_LON = 141.4  # the strait's eastern gate lies east of this
+
+
+def test_a_ship_late_for_its_strait_gets_its_own_passage_as_a_cold_plan_would(previous,
+                                                                              land_mask):
+    # the demo's case: the replayed ship reaches the Tsugaru Strait after plan 1 expected it
+    # through (plan 1's departure approach is over by time); the re-plan once searched from
+    # the ship through the strait in 12-h stages and ended on land or infeasible
+    _, _, t = previous.track()
+    first_span_start = previous.optimised_spans[0][0]
+    now = float(t[first_span_start]) + 6 * 3600.0  # past plan 1's approach by time
+    position = (*TSUGARU_WEST, now)
+    outs = [_plan2(prev, position, land_mask, budget_s=600.0, max_evaluations=2_300)
+            for prev in (None, previous)]
+    for out in outs:
+        assert out.feasible, out.infeasible_reasons
+        p_lon, _, _ = out.track()
+        start = out.optimised_spans[0][0]
+        assert p_lon[start] > TSUGARU_EAST_LON  # the search starts past the strait
