@@ -5,6 +5,7 @@ re-plan's given seeds are all infeasible on a new forecast."""
 from __future__ import annotations
 
 import dataclasses
+import math
 import time
 from collections.abc import Callable
 
@@ -101,7 +102,9 @@ def with_cold_seeds(ctx: MethodContext, fast: FastEvaluator | None, x_seed: np.n
     present = set(sources)
     tracks = [s for s in all_seeds(cold) if s.source not in present]
     left_s = budget.deadline_s - time.perf_counter()
-    fit = len(tracks) if per_track_s <= 0 else int(left_s / per_track_s)
+    # a search without a deadline (an evaluation budget only) affords every track
+    fit = (len(tracks) if per_track_s <= 0 or not math.isfinite(left_s)
+           else min(len(tracks), int(left_s / per_track_s)))
     if fit < MIN_COLD_TRACKS:
         return x_seed, sources, ""
     kept = affordable(tracks, fit)
