@@ -145,8 +145,15 @@ def _line(msg, t0: float) -> str:
     pct = 100.0 * saved / msg.baseline_fuel_t if msg.baseline_fuel_t else float("nan")
     return (f"plan {msg.plan_id}  cycle {msg.cycle_id:<24} fuel {msg.total_fuel_t:7.1f} t  "
             f"ETA {iso(msg.eta)} ({eta_h:+.1f} h vs RTA {iso(msg.rta)})  saved "
-            f"{saved:+.1f} t ({pct:+.1f} %) vs constant RPM  compute {msg.compute_time_s:.2f} s"
+            f"{saved:+.1f} t ({pct:+.1f} %) vs constant RPM{_infeasible_baseline(msg)}  "
+            f"compute {msg.compute_time_s:.2f} s"
             f"  feasible={msg.feasible}  [{time.monotonic() - t0:.0f} s]")
+
+
+def _infeasible_baseline(msg) -> str:
+    """' (infeasible)' when the plan says its constant-RPM baseline breaks a constraint."""
+    return " (infeasible)" if any(w.startswith("baseline (") and " is infeasible (" in w
+                                  for w in msg.warnings) else ""
 
 
 def _replan_words(msg) -> list[str]:

@@ -61,6 +61,7 @@ def assemble_plan(ports, problems, results, baselines, sources, approaches, env,
     b_ok = all(bool(b[2].feasible[0]) for b in baselines) if baselines else False
     b_track = tuple((float(la), float(lo)) for e in base_parts
                     for lo, la in zip(e.lon_deg[0], e.lat_deg[0], strict=True))
+    said = baseline_words(baselines, b_ok)
     return RoutePlan(
         plan_id=uuid.uuid4().hex[:12], method=method, seed_source=sources[0],
         objective=objective, ship_name=getattr(spec, "name", ""), cycle_id=env.cycle_id,
@@ -76,5 +77,18 @@ def assemble_plan(ports, problems, results, baselines, sources, approaches, env,
         vessel_max_wave_m=float(problems[0].limits.max_hs_m or float("nan")),
         vessel_max_wind_m_s=float(problems[0].limits.max_wind_m_s or float("nan")),
         baseline_track=b_track, leg_rtas_s=tuple(leg_rtas), optimised_spans=tuple(spans),
-        extra={"fixed_passages": tuple(fixed)} if fixed else {},
+        extra={"fixed_passages": tuple(fixed)} if fixed else {}, warnings=said,
     )
+
+
+def baseline_words(baselines: list, feasible: bool) -> tuple[str, ...]:
+    """The warning that the fuel comparison is against a baseline the ship could not sail
+    (its constraint flags named), so a negative or large saving is read for what it is."""
+    if feasible or not baselines:
+        return ()
+    flags = 0
+    for b in baselines:
+        flags |= int(b[2].flags[0])
+    why = "; ".join(reasons_of(flags)) or "constraints"
+    return (f"baseline ({'+'.join(sorted({b[0] for b in baselines}))}, constant RPM) is "
+            f"infeasible ({why}): the fuel saving is against a route the ship could not sail",)

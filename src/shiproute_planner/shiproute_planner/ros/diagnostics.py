@@ -64,7 +64,8 @@ def plan_log_line(plan: RoutePlan, reason: str) -> str:
     return (
         f"plan {plan.plan_id} cycle {plan.cycle_id}: fuel {plan.total_fuel_t:.1f} t, "
         f"ETA-RTA {(plan.eta_s - plan.rta_s) / 3600:+.1f} h, saved {plan.fuel_saving_t:.1f} t "
-        f"vs constant RPM, {plan.compute_time_s:.2f} s, {plan.generations} gens, "
+        f"vs constant RPM{'' if plan.baseline_feasible else ' (infeasible)'}, "
+        f"{plan.compute_time_s:.2f} s, {plan.generations} gens, "
         f"feasible={plan.feasible}"
         + (" (kept previous plan)" if plan.extra.get("replan", {}).get("kept_previous")
            else "") + f" ({reason})"
