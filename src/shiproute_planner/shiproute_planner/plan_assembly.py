@@ -61,14 +61,15 @@ def assemble_plan(ports, problems, results, baselines, sources, approaches, env,
     b_ok = all(bool(b[2].feasible[0]) for b in baselines) if baselines else False
     b_track = tuple((float(la), float(lo)) for e in base_parts
                     for lo, la in zip(e.lon_deg[0], e.lat_deg[0], strict=True))
-    said = baseline_words(baselines, b_ok)
+    b_method = "+".join(sorted({b[0] for b in baselines})) if baselines else ""
+    said = baseline_words(baselines, b_method, b_ok)
     return RoutePlan(
         plan_id=uuid.uuid4().hex[:12], method=method, seed_source=sources[0],
         objective=objective, ship_name=getattr(spec, "name", ""), cycle_id=env.cycle_id,
         departure_s=depart_s, rta_s=rta_s, eta_s=eta, feasible=flags == 0,
         infeasible_reasons=reasons_of(flags), total_fuel_t=fuel, total_distance_nm=dist,
         total_time_s=eta - depart_s, baseline_fuel_t=b_fuel,
-        baseline_method="+".join(sorted({b[0] for b in baselines})) if baselines else "",
+        baseline_method=b_method,
         baseline_distance_nm=b_dist, baseline_eta_s=b_eta, baseline_feasible=b_ok,
         baseline_rpm=float(baselines[0][1]) if baselines else float("nan"),
         compute_time_s=compute_s, waypoints=tuple(wps),
@@ -81,7 +82,7 @@ def assemble_plan(ports, problems, results, baselines, sources, approaches, env,
     )
 
 
-def baseline_words(baselines: list, feasible: bool) -> tuple[str, ...]:
+def baseline_words(baselines: list, method: str, feasible: bool) -> tuple[str, ...]:
     """The warning that the fuel comparison is against a baseline the ship could not sail
     (its constraint flags named), so a negative or large saving is read for what it is."""
     if feasible or not baselines:
@@ -90,5 +91,5 @@ def baseline_words(baselines: list, feasible: bool) -> tuple[str, ...]:
     for b in baselines:
         flags |= int(b[2].flags[0])
     why = "; ".join(reasons_of(flags)) or "constraints"
-    return (f"baseline ({'+'.join(sorted({b[0] for b in baselines}))}, constant RPM) is "
+    return (f"baseline ({method}, constant RPM) is "
             f"infeasible ({why}): the fuel saving is against a route the ship could not sail",)

@@ -36,7 +36,7 @@ EXACT_CHOICE_RESERVE_S = 0.25  # wall time kept for the exact final choice and d
 EXACT_CHOICE_SHARE = 0.28  # ... at most this share of a small budget (re-plans of 0.5 s)
 EXACT_TOP_PER_S = 40.0  # final candidates re-evaluated exactly per second of budget (4..24)
 DENSE_CHECKS = 12  # feasible final candidates given the dense land check, best first
-EXACT_CHECK_EVERY = 15  # generations between records of the GA's best for the final choice
+RECORD_BEST_EVERY = 15  # generations between records of the GA's best for the final choice
 SHORT_SEARCH_S = 1.0  # a search this short publishes a clean seed rather than repair land
 # a risk-aware GA first runs on the members' mean forecast for this share of the budget and
 # seeds itself with that run's best candidates
@@ -184,7 +184,7 @@ def run_ga(ctx: MethodContext, ga: AskTellGA,
         x = offspring(ctx, ga)
         ev = evaluate(x)
         ga.tell(x, ev.violation, ev.objective)
-        if record and ga.generation % EXACT_CHECK_EVERY == 0 and ga.best[1] <= 0:
+        if record and ga.generation % RECORD_BEST_EVERY == 0 and ga.best[1] <= 0:
             record_best(ga.best[0], recorded)
         if ga.generation == 0:
             best_src = first_best_source(ev, sources)

@@ -17,6 +17,7 @@ if TYPE_CHECKING:
 
 STAGE_FIT_TOLERANCE = 1e-9  # stages: a window this much (relative) over whole stages is whole
 
+
 @dataclass(frozen=True)
 class RouteLimits:
     """Constraint limits; None disables a check. Seakeeping criteria as the thesis: 4/7/25 %."""
