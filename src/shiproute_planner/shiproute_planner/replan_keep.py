@@ -26,6 +26,7 @@ from .plan_prepare import PreparedVoyage
 from .plan_types import RoutePlan
 from .request import PlanOptions
 from .route.evaluation import RouteEvaluation
+from .route.evaluation_join import joined
 from .route.problem import RouteProblem
 from .route.sail_fixed_point import sail_track
 
@@ -99,18 +100,23 @@ def leg_ends(rem: Remainder, prep: PreparedVoyage) -> list[int] | str:
     return ends
 
 
-def _span_in(spans: tuple[tuple[int, int], ...], rem: Remainder, s: int, e: int
-             ) -> tuple[int, int] | None:
-    """The first previous span (a, b) ending within remainder nodes (s, e], as local nodes."""
-    for a, b in spans:
+def _spans_in(spans: tuple[tuple[int, int], ...], rem: Remainder, s: int, e: int
+              ) -> list[tuple[int, int]]:
+    """Every previous span (a, b) ending within remainder nodes (s, e], as local nodes, in
+    sailing order: a leg of this voyage may hold several of the previous plan's spans (a
+    strait the previous plan passed between two spans that this voyage's leg does not
+    split at)."""
+    out = []
+    for a, b in sorted(spans):
         la, lb = max(_local(rem, a), s), _local(rem, b)
-        if s <= la < lb <= e and rem.prev_index[lb] == b:
-            return la, lb
-    return None
+        if s <= la < lb <= e and rem.prev_index[lb] == b and (not out or la >= out[-1][1]):
+            out.append((la, lb))
+    return out
 
 
-Part = tuple[int, int, str]  # (first node, last node, kind: pre | span | post | fixed)
+Part = tuple[int, int, str]  # (first node, last node, kind: pre | span | between | post | fixed)
 DECIDING = "span"  # the kind whose land test decides (an optimised span)
+BETWEEN = "between"  # a computed passage between two optimised spans of one leg (informs)
 
 
 def leg_parts(rem: Remainder, previous: RoutePlan, prep: PreparedVoyage, k: int, s: int,
@@ -120,14 +126,19 @@ def leg_parts(rem: Remainder, previous: RoutePlan, prep: PreparedVoyage, k: int,
         return [(s, e, "fixed")]
     spans = (tuple(previous.extra.get("fixed_passages", ())) if k in prep.canal_legs
              else previous.optimised_spans)
-    span = _span_in(tuple(spans), rem, s, e)
-    if span is None:
+    found = _spans_in(tuple(spans), rem, s, e)
+    if not found:
         return f"its leg to {prep.ports[k + 1].name} has no planned span left"
-    a, b = span
-    parts = [(s, a, "pre")] if a > s else []
-    parts.append((a, b, "fixed" if k in prep.canal_legs else DECIDING))
-    if b < e:
-        parts.append((b, e, "post"))
+    if k in prep.canal_legs:
+        found = found[:1]
+    kind = "fixed" if k in prep.canal_legs else DECIDING
+    parts = [(s, found[0][0], "pre")] if found[0][0] > s else []
+    for i, (a, b) in enumerate(found):
+        if i and a > found[i - 1][1]:
+            parts.append((found[i - 1][1], a, BETWEEN))
+        parts.append((a, b, kind))
+    if found[-1][1] < e:
+        parts.append((found[-1][1], e, "post"))
     return parts
 
 
@@ -184,16 +195,18 @@ def carried_legs(prep: PreparedVoyage, options: PlanOptions) -> CarriedLegs | st
         parts = leg_parts(rem, previous, prep, k, s, e)
         if isinstance(parts, str):
             return parts
-        sailed: dict[str, RouteEvaluation] = {}
+        sailed: list[tuple[str, RouteEvaluation]] = []
         for part in parts:
-            sailed[part[2]] = ev = _sail(prep, rem, part, t)
+            ev = _sail(prep, rem, part, t)
+            sailed.append((part[2], ev))
             t = float(ev.eta_s[0])
-        main = sailed.get(DECIDING, sailed.get("fixed"))
-        assert main is not None  # every leg has its span or its fixed passage
-        results.append(main)
+        outer = {kind: ev for kind, ev in sailed if kind in ("pre", "post")}
+        # every span of the leg decides (a passage between two of them informs)
+        results.append(joined([(ev, kind != BETWEEN) for kind, ev in sailed
+                               if kind not in ("pre", "post")]))
         sources.append("canal" if k in prep.canal_legs else "strait" if k in prep.strait_legs
                        else "previous_plan")
-        approaches.append((sailed.get("pre"), sailed.get("post")))
+        approaches.append((outer.get("pre"), outer.get("post")))
         arrivals.append(t)
         s = e
     return CarriedLegs(tuple(results), tuple(sources), tuple(approaches), tuple(arrivals))
