@@ -151,9 +151,8 @@ def _line(msg, t0: float) -> str:
 
 
 def _infeasible_baseline(msg) -> str:
-    """' (infeasible)' when the plan says its constant-RPM baseline breaks a constraint."""
-    return " (infeasible)" if any(w.startswith("baseline (") and " is infeasible (" in w
-                                  for w in msg.warnings) else ""
+    """' (infeasible)' when the plan's constant-RPM baseline breaks a constraint."""
+    return "" if msg.baseline_feasible else " (infeasible)"
 
 
 def _replan_words(msg) -> list[str]:
