@@ -24,6 +24,7 @@ from .objectives import objective_block
 from .plan_legs import LegRun
 from .plan_prepare import PreparedVoyage
 from .plan_types import RoutePlan
+from .replan_retime import retimed_legs
 from .request import PlanOptions
 from .route.evaluation import RouteEvaluation
 from .route.evaluation_join import joined
@@ -35,6 +36,8 @@ PASSAGE_WINDOW_S = 30 * 86400.0  # a fixed part has no RTA of its own (the plan'
 SAME_DEPARTURE_S = 60.0  # the same departure (a re-plan at the port) or RTA within this
 OBJECTIVE_EPS = 1e-6  # relative: a new plan this close to the carried one is not "worse"
 FEW_GENERATIONS = 20  # a wall-time search shorter than this is stated in the plan
+RUN_OWN_WORDS = ("re-plan:", "re-timed:", "not re-timed:")  # the new search's, not the kept
+# plan's
 
 
 @dataclass(frozen=True)
@@ -150,6 +153,8 @@ class CarriedLegs:
     sources: tuple[str, ...]
     approaches: tuple[tuple[RouteEvaluation | None, RouteEvaluation | None], ...]
     arrivals: tuple[float, ...]
+    said: str = ""  # what re-timing the remainder did ("" nothing)
+    retimed: bool = False  # re-timed to arrive on time (`replan_retime`)
 
 
 def _sail(prep: PreparedVoyage, rem: Remainder, part: Part, t0: float) -> RouteEvaluation:
@@ -209,7 +214,11 @@ def carried_legs(prep: PreparedVoyage, options: PlanOptions) -> CarriedLegs | st
         approaches.append((outer.get("pre"), outer.get("post")))
         arrivals.append(t)
         s = e
-    return CarriedLegs(tuple(results), tuple(sources), tuple(approaches), tuple(arrivals))
+    # a remainder hours early (the ship ahead of the previous plan's times) is slowed down
+    timed = retimed_legs(prep, results, sources, approaches, rem.start_s,
+                         "the previous plan's remainder")
+    return CarriedLegs(timed.results, tuple(sources), timed.approaches, timed.arrivals,
+                       timed.said, timed.retimed)
 
 
 def carried_run(legs: CarriedLegs, run: LegRun) -> LegRun:
@@ -218,7 +227,8 @@ def carried_run(legs: CarriedLegs, run: LegRun) -> LegRun:
         run, results=list(legs.results), sources=list(legs.sources),
         approaches=list(legs.approaches), arrivals=list(legs.arrivals), member_legs=[],
         baselines=list(run.baselines), problems=list(run.problems),
-        warnings=[w for w in run.warnings if not w.startswith("re-plan:")])
+        warnings=[w for w in run.warnings if not w.startswith(RUN_OWN_WORDS)]
+        + ([legs.said] if legs.said else []))
 
 
 def objective_value(plan: RoutePlan) -> float:
@@ -263,6 +273,7 @@ def kept_or_new(new: RoutePlan, carried_legs: CarriedLegs | str, prep: PreparedV
     ok, value, fuel = precheck(carried_legs, prep)
     block = {"carried": True, "previous_remaining_objective": value,
              "previous_remaining_fuel_t": fuel, "previous_remaining_feasible": ok,
+             "previous_remaining_retimed": carried_legs.retimed,
              "new_objective": objective_value(new), "new_feasible": new.feasible,
              "generations": run.generations, "kept_previous": False}
 

@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 from shiproute_core.geodesy import direct, inverse
 
+from .replan_retime import TARGET_BEFORE_RTA_S, retimed_rpm
 from .route.environment import Environment
 from .route.evaluation import RouteEvaluation
 from .route.problem import RouteProblem
@@ -22,7 +23,7 @@ from .route.seeding import TrackSeed, track_to_genes
 # RPM factor up to the cut; the legs after it get the factor that keeps the arrival time
 # (speed ~ RPM), so a copy reaches the broken stretch earlier or later by up to ~10 %
 RETIME_FACTORS = (0.91, 0.96, 1.04, 1.09)
-ARRIVAL_MARGIN_S = 1800.0  # re-timed copies aim this long before the RTA
+ARRIVAL_MARGIN_S = TARGET_BEFORE_RTA_S  # re-timed copies aim this long before the RTA
 # lateral shift of the broken stretch's nodes, in mean leg lengths (half of it on the node
 # before and after the stretch), to either side
 SHIFTS_LEGS = (0.5, 1.0, 2.0)
@@ -57,15 +58,10 @@ def retimed_tracks(problem: RouteProblem, ev: RouteEvaluation, row: int,
     for cut in sorted({max(stretch[0], 1), stretch[1]}):
         if cut >= dur.size:
             continue
-        before, after = float(dur[:cut].sum()), float(dur[cut:].sum())
         for f in RETIME_FACTORS:
-            left_s = window_s - before / f
-            if left_s <= 0.0 or after <= 0.0:
-                continue
-            r = rpm.copy()
-            r[:cut] *= f
-            r[cut:] *= after / left_s
-            out.append(TrackSeed("previous_plan_retimed", lon, lat, r))
+            r = retimed_rpm(rpm, dur, cut, window_s, f)
+            if r is not None:
+                out.append(TrackSeed("previous_plan_retimed", lon, lat, r))
     return out
 
 
