@@ -103,15 +103,19 @@ def track_repairs(problem: RouteProblem, env: Environment, land: Any, fast: Any,
     (none when it is not broken), and whether one of them is feasible; while none of a
     round's repairs is, the least broken of them is repaired in turn (a storm too wide for
     one shift, a lateness the shift added), up to REPAIR_ROUNDS rounds and only while
-    `spent()` (the seeding phase's share of the budget) says there is time."""
+    `spent()` (the seeding phase's share of the budget) says there is time. The first
+    round always runs (a stale re-plan without repairs rarely ends feasible), with only the
+    re-timed tracks when the share is spent already."""
     genes, names, feasible = [], [], False
-    for _ in range(REPAIR_ROUNDS):
-        if spent():
+    for round_no in range(REPAIR_ROUNDS):
+        short = spent()
+        if short and round_no > 0:
             break
         stretch = broken_stretch(ev, row)
         if stretch is None:
             break
-        seeds = retimed_tracks(problem, ev, row, stretch) + shifted_tracks(ev, row, stretch)
+        seeds = retimed_tracks(problem, ev, row, stretch) + (
+            [] if short else shifted_tracks(ev, row, stretch))
         if not seeds:
             break
         x = track_to_genes(problem, env, seeds, land, fan_deg=REPAIR_FAN_DEG,
