@@ -34,8 +34,8 @@ TIMED_SLOPES = (-0.08, -0.04, 0.04, 0.08)
 
 
 def fresh_seeds_fit(ctx: MethodContext) -> bool:
-    """Whether the span's search is long enough to put a cold plan's seeds (baseline, ~25
-    more tracks) before the repairs of a stale re-plan's seeds."""
+    """Whether the span's search is long enough for a cold plan's seeds (baseline, ~25
+    more tracks) after the repairs of a stale re-plan's seeds."""
     if ctx.max_evaluations:
         return ctx.max_evaluations >= FRESH_SEEDS_MIN_EVALUATIONS
     return ctx.budget_s >= FRESH_SEEDS_MIN_BUDGET_S
@@ -65,19 +65,15 @@ def fresh_seeds_if_stale(ctx: MethodContext, fast: FastEvaluator | None,
     why = "; ".join(reasons_of(int(ev.flags[k]))) or "constraints violated"
     stale = f"re-plan: no route seeded from the {name} is feasible on this forecast ({why})"
     p = ctx.problem
-    # a cold plan's seeds (a re-plan is to end feasible where a cold plan from the ship
-    # would) and the repairs of the given seeds, while the seeding budget lasts; a short
-    # search lives on its repairs, so there they come first, and a short wall-time search
-    # (a 0.5-s re-plan's ~0.3-s span) has no room for ~0.1-0.2 s of cold seeds after them
-    cold_first = fresh_seeds_fit(ctx)
+    # the repairs of the given seeds first (cheap, and what a short search lives on), then
+    # a cold plan's seeds while the seeding budget lasts (a re-plan is to end feasible
+    # where a cold plan from the ship would); a short wall-time search (a 0.5-s re-plan's
+    # ~0.3-s span) has no room for ~0.1-0.2 s of cold seeds after its repairs
     fresh = ""
     per_track_s = budget.elapsed_s() / max(len(sources), 1)  # the given seeds' conversion
-    if cold_first:
-        x_seed, sources, fresh = with_cold_seeds(ctx, fast, x_seed, sources, budget,
-                                                 per_track_s)
     x_seed, sources, said = with_repairs(ctx, fast, x_seed, sources, given, ev, evaluate,
                                          budget)
-    if not cold_first and ctx.max_evaluations and not budget.spent():
+    if (fresh_seeds_fit(ctx) or ctx.max_evaluations) and not budget.spent():
         x_seed, sources, fresh = with_cold_seeds(ctx, fast, x_seed, sources, budget,
                                                  per_track_s)
     if budget.spent():
@@ -95,12 +91,15 @@ def with_cold_seeds(ctx: MethodContext, fast: FastEvaluator | None, x_seed: np.n
     """The seeds plus the seeds a cold plan from the same start would have (baseline, great
     circle, sea lane, via points north and south) that are not in yet, as many as the
     seeding budget's rest affords at `per_track_s` per track (the given seeds' conversion
-    cost: one conversion cannot be stopped half way), and the plan's word."""
+    cost: one conversion cannot be stopped half way), and the plan's word ("": no room for
+    them in the seeding share)."""
     p = ctx.problem
     base = ctx.baseline or compute_baseline(p, ctx.env, ctx.land)
     cold = dataclasses.replace(ctx, seeds=[], gene_seeds=[], baseline=base)
     present = set(sources)
     tracks = [s for s in all_seeds(cold) if s.source not in present]
+    if not tracks:
+        return x_seed, sources, "; a cold plan's seeds are all among them already"
     left_s = budget.deadline_s - time.perf_counter()
     # a search without a deadline (an evaluation budget only) affords every track
     fit = (len(tracks) if per_track_s <= 0 or not math.isfinite(left_s)
