@@ -143,3 +143,37 @@ def test_the_rpm_factor_fills_the_window_and_keeps_the_legs_before_the_cut():
     out = retimed_rpm(rpm, dur, 2, 50.0, 1.25)
     np.testing.assert_allclose(out, [75.0, 87.5, 80.0 * 20 / 34, 90.0 * 20 / 34])
     assert retimed_rpm(rpm, dur, 2, 20.0) is None  # nothing left for the later legs
+
+
+DEMO_SHIP = (41.04, 139.14)  # the demo's replayed ship when cycle 2 arrives: past the
+DEMO_SHIP_H = 35.0  # Tsugaru approach (it sails the constant-RPM baseline, not plan 1)
+
+
+@pytest.fixture(scope="module")
+def demo_plan1(land_mask):
+    """The demo's plan 1 on cycle 1 from Busan (reproducible: route evaluations), on the
+    half-precision forecast the planner node keeps."""
+    from shiproute_weather.sampling.sampler import ForecastSampler
+    from shiproute_weather.scenarios.catalogue import scenario_dataset
+
+    sampler = ForecastSampler(scenario_dataset("storm_march"), dtype=np.float16)
+    out = plan(_voyage(), PlanOptions(land=land_mask, budget_s=600.0, max_evaluations=4_000,
+                                      seed=0), sampler)
+    assert out.feasible
+    return out
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_the_demo_re_plan_on_cycle_2_is_feasible_and_on_time(demo_plan1, land_mask, seed):
+    from shiproute_weather.sampling.sampler import ForecastSampler
+    from shiproute_weather.scenarios.catalogue import scenario_dataset
+
+    cycle2 = ForecastSampler(scenario_dataset("storm_march_cycle2"), dtype=np.float16)
+    voyage = _voyage()
+    position = (*DEMO_SHIP, voyage.depart_s + DEMO_SHIP_H * 3600.0)
+    out = plan(voyage, PlanOptions(land=land_mask, budget_s=600.0, max_evaluations=2_500,
+                                   seed=seed, previous_plan=demo_plan1, position=position),
+               cycle2)
+    assert out.feasible, out.infeasible_reasons
+    target_s = voyage.rta_s - TARGET_BEFORE_RTA_S
+    assert abs(out.eta_s - target_s) <= 3600.0, [w for w in out.warnings if "re-timed" in w]
