@@ -147,7 +147,7 @@ def with_repairs(ctx: MethodContext, fast: FastEvaluator | None, x_seed: np.ndar
     k = int(np.argmin(ev.violation))
     bent = detour_genes(x_seed[given[k]], p.n_stages, broken_legs(ev, k), lo, hi)
     tracked, names, fixed = track_repairs(p, ctx.env, ctx.land, fast, ev, k, evaluate,
-                                          budget.spent)
+                                          budget.spent, budget.overrun)
     detour = f"{sources[given[k]]}_detour"
     cand = np.concatenate([tracked, bent])
     names += [detour] * len(bent)
@@ -200,6 +200,34 @@ def seed_genes(ctx: MethodContext, seeds: list[TrackSeed], fast: FastEvaluator |
             x_seed = np.concatenate([x_seed, clip_genes(p, genes[None, :])])
             sources.append(name)
     return x_seed, sources
+
+
+def bounded_seed_genes(ctx: MethodContext, seeds: list[TrackSeed], fast: FastEvaluator | None,
+                       budget: SeedingBudget) -> tuple[np.ndarray, list[str], tuple[str, ...]]:
+    """`seed_genes` of a re-plan's seeds within the seeding share: the given seeds, the
+    baseline and the other tracks first, their timed variants (earlier/later copies) only
+    while `budget` lasts, in the order `seeds` gives them; and the plan's words when timed
+    variants were left out. A conversion cannot be stopped half way, and under load the
+    given seeds' one conversion took 1 s of a 3-s re-plan whose seeding share was 0.3 s.
+    A cold plan (no given seeds) converts its seeds in one pass, as before."""
+    timed = [i for i, s in enumerate(seeds) if s.source.endswith("_timed")]
+    if not ctx.seeds or not timed:
+        x, names = seed_genes(ctx, seeds, fast)
+        return x, names, ()
+    core = [i for i in range(len(seeds)) if i not in set(timed)]
+    x_core, names_core = seed_genes(ctx, [seeds[i] for i in core], fast)
+    if budget.spent():
+        return x_core, names_core, (
+            f"seeding: {len(timed)} timed copies of the seed tracks left out (the seeding "
+            f"share, {budget.share_s():.2f} s, was spent converting the others)",)
+    x_timed, _ = seed_genes(dataclasses.replace(ctx, gene_seeds=[]),
+                            [seeds[i] for i in timed], fast)
+    n = len(seeds)
+    x = np.empty((n + len(x_core) - len(core), x_core.shape[1]))
+    x[core] = x_core[:len(core)]
+    x[timed] = x_timed
+    x[n:] = x_core[len(core):]  # the ready gene seeds come after the tracks
+    return x, [s.source for s in seeds] + names_core[len(core):], ()
 
 
 def best_seeds_first(p: RouteProblem, x_seed: np.ndarray, sources: list[str],

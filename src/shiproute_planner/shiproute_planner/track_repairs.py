@@ -97,7 +97,8 @@ def shifted_tracks(ev: RouteEvaluation, row: int, stretch: tuple[int, int]) -> l
 def track_repairs(problem: RouteProblem, env: Environment, land: Any, fast: Any,
                   ev: RouteEvaluation, row: int,
                   evaluate: Callable[[np.ndarray], RouteEvaluation],
-                  spent: Callable[[], bool] = lambda: False
+                  spent: Callable[[], bool] = lambda: False,
+                  overrun: Callable[[], bool] = lambda: False
                   ) -> tuple[np.ndarray, list[str], bool]:
     """Genes and source names of route `row` re-timed and shifted round its broken stretch
     (none when it is not broken), and whether one of them is feasible; while none of a
@@ -105,11 +106,12 @@ def track_repairs(problem: RouteProblem, env: Environment, land: Any, fast: Any,
     one shift, a lateness the shift added), up to REPAIR_ROUNDS rounds and only while
     `spent()` (the seeding phase's share of the budget) says there is time. The first
     round always runs (a stale re-plan without repairs rarely ends feasible), with only the
-    re-timed tracks when the share is spent already."""
+    re-timed tracks when the share is spent already, unless `overrun()` says the seeding
+    stalled far past its share."""
     genes, names, feasible = [], [], False
     for round_no in range(REPAIR_ROUNDS):
         short = spent()
-        if short and round_no > 0:
+        if short and (round_no > 0 or overrun()):
             break
         stretch = broken_stretch(ev, row)
         if stretch is None:
