@@ -109,7 +109,7 @@ def _spans_in(spans: tuple[tuple[int, int], ...], rem: Remainder, s: int, e: int
     sailing order: a leg of this voyage may hold several of the previous plan's spans (a
     strait the previous plan passed between two spans that this voyage's leg does not
     split at)."""
-    out = []
+    out: list[tuple[int, int]] = []
     for a, b in sorted(spans):
         la, lb = max(_local(rem, a), s), _local(rem, b)
         if s <= la < lb <= e and rem.prev_index[lb] == b and (not out or la >= out[-1][1]):
