@@ -13,41 +13,21 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 import numpy as np
 from shiproute_core.flags import FLAG_RTA
 
+from .plan_prepare import PreparedVoyage
 from .route.evaluation import RouteEvaluation
 from .route.problem import RouteProblem
 from .route.sail_fixed_point import sail_track
+from .rpm_factor import TARGET_BEFORE_RTA_S, retimed_rpm
 
-if TYPE_CHECKING:  # the planner's prepared voyage (its import would close a cycle through
-    # the seed GA, which shares `retimed_rpm`)
-    from .plan_prepare import PreparedVoyage
-
-TARGET_BEFORE_RTA_S = 1800.0  # a re-timed route aims this long before the RTA
 OFF_TARGET_S = 1800.0  # arrivals this close to the target are left as they are
 SETTLED_S = 300.0  # a re-sail this close to the target needs no correction
 MAX_SAILS = 3  # re-sails of one route (first factor, corrections, later legs only)
 PART_WINDOW_S = 30 * 86400.0  # a part has no RTA of its own (the plan's is checked after)
 FUEL_EPS = 1e-6  # relative: a re-timed route this close in fuel is not "worse"
-
-
-def retimed_rpm(rpm: np.ndarray, duration_s: np.ndarray, cut: int, window_s: float,
-                factor_before: float = 1.0) -> np.ndarray | None:
-    """`rpm` per leg with the legs before `cut` scaled by `factor_before` and the legs from
-    `cut` on by the factor that makes them take what is left of `window_s` (leg times scale
-    as 1 / RPM: speed ~ RPM); None when nothing is left of the window."""
-    before_s = float(np.sum(duration_s[:cut]))
-    after_s = float(np.sum(duration_s[cut:]))
-    left_s = window_s - before_s / factor_before
-    if left_s <= 0.0 or after_s <= 0.0:
-        return None
-    out = np.asarray(rpm, dtype=float).copy()
-    out[:cut] *= factor_before
-    out[cut:] *= after_s / left_s
-    return out
 
 
 @dataclass(frozen=True)

@@ -14,11 +14,11 @@ from typing import Any
 import numpy as np
 from shiproute_core.geodesy import direct, inverse
 
-from .replan_retime import TARGET_BEFORE_RTA_S, retimed_rpm
 from .route.environment import Environment
 from .route.evaluation import RouteEvaluation
 from .route.problem import RouteProblem
 from .route.seeding import TrackSeed, track_to_genes
+from .rpm_factor import TARGET_BEFORE_RTA_S, retimed_rpm
 
 # RPM factor up to the cut; the legs after it get the factor that keeps the arrival time
 # (speed ~ RPM), so a copy reaches the broken stretch earlier or later by up to ~10 %

@@ -19,10 +19,10 @@ from shiproute_planner.plan_prepare import prepare_voyage
 from shiproute_planner.plan_setup import make_environment, route_limits
 from shiproute_planner.planning import plan
 from shiproute_planner.replan_keep import carried_legs, precheck
-from shiproute_planner.replan_retime import retimed_rpm
 from shiproute_planner.request import PlanOptions, VoyageRequest, voyage_times
 from shiproute_planner.route.problem import RouteProblem
 from shiproute_planner.route.sail import sail_tracks
+from shiproute_planner.rpm_factor import retimed_rpm
 
 SHIP = "container_4600teu"
 HOURS_ALONG = 48.0
