@@ -156,8 +156,10 @@ def _infeasible_baseline(msg) -> str:
 
 
 def _replan_words(msg) -> list[str]:
-    """What a plan says about its search and the previous plan (kept, or a short search)."""
-    return [w for w in msg.warnings if w.startswith(("kept previous plan", "search: "))]
+    """What a plan says about its search, the previous plan (kept, or a short search) and
+    its arrival time (re-timed, or why not)."""
+    return [w for w in msg.warnings
+            if w.startswith(("kept previous plan", "search: ", "re-timed: ", "not re-timed: "))]
 
 
 def main(argv: list[str] | None = None) -> int:
