@@ -126,7 +126,8 @@ def build_messages() -> dict[str, Any]:
         warnings=["depth not checked: no bathymetry given"],
         trigger="new forecast cycle storm-2026030312",
         total_fuel_t=812.75, total_distance_nm=5_120.4, total_time_s=935_200.0,
-        baseline_fuel_t=math.nan, compute_time_s=0.842, waypoints=waypoints)
+        baseline_fuel_t=math.nan, baseline_feasible=True, compute_time_s=0.842,
+        waypoints=waypoints)
     return {"ForecastField": fields[3], "ForecastSlice": forecast_slice, "ForecastCycle": cycle,
             "ShipState": ship, "RpmStage": stages[5], "RpmProfile": profile,
             "RouteWaypoint": waypoints[0], "RoutePlan": route}

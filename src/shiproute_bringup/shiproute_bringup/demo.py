@@ -151,14 +151,15 @@ def _line(msg, t0: float) -> str:
 
 
 def _infeasible_baseline(msg) -> str:
-    """' (infeasible)' when the plan says its constant-RPM baseline breaks a constraint."""
-    return " (infeasible)" if any(w.startswith("baseline (") and " is infeasible (" in w
-                                  for w in msg.warnings) else ""
+    """' (infeasible)' when the plan's constant-RPM baseline breaks a constraint."""
+    return "" if msg.baseline_feasible else " (infeasible)"
 
 
 def _replan_words(msg) -> list[str]:
-    """What a plan says about its search and the previous plan (kept, or a short search)."""
-    return [w for w in msg.warnings if w.startswith(("kept previous plan", "search: "))]
+    """What a plan says about its search, the previous plan (kept, or a short search) and
+    its arrival time (re-timed, or why not)."""
+    return [w for w in msg.warnings
+            if w.startswith(("kept previous plan", "search: ", "re-timed: ", "not re-timed: "))]
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -34,8 +34,8 @@ TIMED_SLOPES = (-0.08, -0.04, 0.04, 0.08)
 
 
 def fresh_seeds_fit(ctx: MethodContext) -> bool:
-    """Whether the span's search is long enough to put a cold plan's seeds (baseline, ~25
-    more tracks) before the repairs of a stale re-plan's seeds."""
+    """Whether the span's search is long enough for a cold plan's seeds (baseline, ~25
+    more tracks) after the repairs of a stale re-plan's seeds."""
     if ctx.max_evaluations:
         return ctx.max_evaluations >= FRESH_SEEDS_MIN_EVALUATIONS
     return ctx.budget_s >= FRESH_SEEDS_MIN_BUDGET_S
@@ -65,19 +65,15 @@ def fresh_seeds_if_stale(ctx: MethodContext, fast: FastEvaluator | None,
     why = "; ".join(reasons_of(int(ev.flags[k]))) or "constraints violated"
     stale = f"re-plan: no route seeded from the {name} is feasible on this forecast ({why})"
     p = ctx.problem
-    # a cold plan's seeds (a re-plan is to end feasible where a cold plan from the ship
-    # would) and the repairs of the given seeds, while the seeding budget lasts; a short
-    # search lives on its repairs, so there they come first, and a short wall-time search
-    # (a 0.5-s re-plan's ~0.3-s span) has no room for ~0.1-0.2 s of cold seeds after them
-    cold_first = fresh_seeds_fit(ctx)
+    # the repairs of the given seeds first (cheap, and what a short search lives on), then
+    # a cold plan's seeds while the seeding budget lasts (a re-plan is to end feasible
+    # where a cold plan from the ship would); a short wall-time search (a 0.5-s re-plan's
+    # ~0.3-s span) has no room for ~0.1-0.2 s of cold seeds after its repairs
     fresh = ""
     per_track_s = budget.elapsed_s() / max(len(sources), 1)  # the given seeds' conversion
-    if cold_first:
-        x_seed, sources, fresh = with_cold_seeds(ctx, fast, x_seed, sources, budget,
-                                                 per_track_s)
     x_seed, sources, said = with_repairs(ctx, fast, x_seed, sources, given, ev, evaluate,
                                          budget)
-    if not cold_first and ctx.max_evaluations and not budget.spent():
+    if (fresh_seeds_fit(ctx) or ctx.max_evaluations) and not budget.spent():
         x_seed, sources, fresh = with_cold_seeds(ctx, fast, x_seed, sources, budget,
                                                  per_track_s)
     if budget.spent():
@@ -95,12 +91,15 @@ def with_cold_seeds(ctx: MethodContext, fast: FastEvaluator | None, x_seed: np.n
     """The seeds plus the seeds a cold plan from the same start would have (baseline, great
     circle, sea lane, via points north and south) that are not in yet, as many as the
     seeding budget's rest affords at `per_track_s` per track (the given seeds' conversion
-    cost: one conversion cannot be stopped half way), and the plan's word."""
+    cost: one conversion cannot be stopped half way), and the plan's word ("": no room for
+    them in the seeding share)."""
     p = ctx.problem
     base = ctx.baseline or compute_baseline(p, ctx.env, ctx.land)
     cold = dataclasses.replace(ctx, seeds=[], gene_seeds=[], baseline=base)
     present = set(sources)
     tracks = [s for s in all_seeds(cold) if s.source not in present]
+    if not tracks:
+        return x_seed, sources, "; a cold plan's seeds are all among them already"
     left_s = budget.deadline_s - time.perf_counter()
     # a search without a deadline (an evaluation budget only) affords every track
     fit = (len(tracks) if per_track_s <= 0 or not math.isfinite(left_s)
@@ -148,7 +147,7 @@ def with_repairs(ctx: MethodContext, fast: FastEvaluator | None, x_seed: np.ndar
     k = int(np.argmin(ev.violation))
     bent = detour_genes(x_seed[given[k]], p.n_stages, broken_legs(ev, k), lo, hi)
     tracked, names, fixed = track_repairs(p, ctx.env, ctx.land, fast, ev, k, evaluate,
-                                          budget.spent)
+                                          budget.spent, budget.overrun)
     detour = f"{sources[given[k]]}_detour"
     cand = np.concatenate([tracked, bent])
     names += [detour] * len(bent)
@@ -201,6 +200,34 @@ def seed_genes(ctx: MethodContext, seeds: list[TrackSeed], fast: FastEvaluator |
             x_seed = np.concatenate([x_seed, clip_genes(p, genes[None, :])])
             sources.append(name)
     return x_seed, sources
+
+
+def bounded_seed_genes(ctx: MethodContext, seeds: list[TrackSeed], fast: FastEvaluator | None,
+                       budget: SeedingBudget) -> tuple[np.ndarray, list[str], tuple[str, ...]]:
+    """`seed_genes` of a re-plan's seeds within the seeding share: the given seeds, the
+    baseline and the other tracks first, their timed variants (earlier/later copies) only
+    while `budget` lasts, in the order `seeds` gives them; and the plan's words when timed
+    variants were left out. A conversion cannot be stopped half way, and under load the
+    given seeds' one conversion took 1 s of a 3-s re-plan whose seeding share was 0.3 s.
+    A cold plan (no given seeds) converts its seeds in one pass, as before."""
+    timed = [i for i, s in enumerate(seeds) if s.source.endswith("_timed")]
+    if not ctx.seeds or not timed:
+        x, names = seed_genes(ctx, seeds, fast)
+        return x, names, ()
+    core = [i for i in range(len(seeds)) if i not in set(timed)]
+    x_core, names_core = seed_genes(ctx, [seeds[i] for i in core], fast)
+    if budget.spent():
+        return x_core, names_core, (
+            f"seeding: {len(timed)} timed copies of the seed tracks left out (the seeding "
+            f"share, {budget.share_s():.2f} s, was spent converting the others)",)
+    x_timed, _ = seed_genes(dataclasses.replace(ctx, gene_seeds=[]),
+                            [seeds[i] for i in timed], fast)
+    n = len(seeds)
+    x = np.empty((n + len(x_core) - len(core), x_core.shape[1]))
+    x[core] = x_core[:len(core)]
+    x[timed] = x_timed
+    x[n:] = x_core[len(core):]  # the ready gene seeds come after the tracks
+    return x, [s.source for s in seeds] + names_core[len(core):], ()
 
 
 def best_seeds_first(p: RouteProblem, x_seed: np.ndarray, sources: list[str],

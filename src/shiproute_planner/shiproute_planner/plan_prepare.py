@@ -182,7 +182,8 @@ def prepare_voyage(request: VoyageRequest, options: PlanOptions,
     if len(ports) > 2:
         call_at = {k + 1: c for k, c in enumerate(calls) if c is not None}
         sched_legs, sched, notes, rate = voyage_schedule(
-            ports, call_at, canal_legs, depart_s, rta_s, env.model, lim.rpm_min, lim.rpm_max)
+            ports, call_at, canal_legs, depart_s, rta_s, env.model, lim.rpm_min, lim.rpm_max,
+            land if options.position is not None else None)
         warnings += notes
         leg_rtas = [*sched.arrival_s[:-1], rta_s]  # the last leg aims at the RTA itself
     env = dataclasses.replace(env, sampler=prepare_forecast(

@@ -37,6 +37,7 @@ from .plan_setup import TimeLike, to_posix_s
 from .plan_timing import PlanClock, previous_checks_s
 from .plan_types import RoutePlan
 from .replan_keep import carried_legs, kept_or_new, with_search_effort
+from .replan_retime import retimed_legs
 from .request import (
     CancelHook,
     ForecastInput,
@@ -76,10 +77,24 @@ def plan(request: VoyageRequest, options: PlanOptions | None = None,
     carried = carried_legs(prep, options)
     clock.lap("set-up")
     run = sail_legs(request, options, prep, clock)
+    if options.previous_plan is not None:  # a re-plan's short search may arrive hours early
+        run = retimed_run(prep, run)
     new = finished_plan(request, options, prep, run, clock)
     return with_search_effort(kept_or_new(
         new, carried, prep, options, run,
         lambda legs: finished_plan(request, options, prep, legs, clock)), options)
+
+
+def retimed_run(prep: PreparedVoyage, run: LegRun) -> LegRun:
+    """`run` with its legs re-timed to arrive on time (`replan_retime`), and its words."""
+    timed = retimed_legs(prep, run.results, run.sources, run.approaches, prep.depart_s,
+                         "the new search's route")
+    if not timed.said:
+        return run
+    return dataclasses.replace(run, results=list(timed.results),
+                               approaches=list(timed.approaches),
+                               arrivals=list(timed.arrivals),
+                               warnings=[*run.warnings, timed.said])
 
 
 def finished_plan(request: VoyageRequest, options: PlanOptions, prep: PreparedVoyage,

@@ -24,8 +24,10 @@ from .objectives import objective_block
 from .plan_legs import LegRun
 from .plan_prepare import PreparedVoyage
 from .plan_types import RoutePlan
+from .replan_retime import retimed_legs
 from .request import PlanOptions
 from .route.evaluation import RouteEvaluation
+from .route.evaluation_join import joined
 from .route.problem import RouteProblem
 from .route.sail_fixed_point import sail_track
 
@@ -34,6 +36,8 @@ PASSAGE_WINDOW_S = 30 * 86400.0  # a fixed part has no RTA of its own (the plan'
 SAME_DEPARTURE_S = 60.0  # the same departure (a re-plan at the port) or RTA within this
 OBJECTIVE_EPS = 1e-6  # relative: a new plan this close to the carried one is not "worse"
 FEW_GENERATIONS = 20  # a wall-time search shorter than this is stated in the plan
+RUN_OWN_WORDS = ("re-plan:", "re-timed:", "not re-timed:")  # the new search's, not the kept
+# plan's
 
 
 @dataclass(frozen=True)
@@ -99,18 +103,23 @@ def leg_ends(rem: Remainder, prep: PreparedVoyage) -> list[int] | str:
     return ends
 
 
-def _span_in(spans: tuple[tuple[int, int], ...], rem: Remainder, s: int, e: int
-             ) -> tuple[int, int] | None:
-    """The first previous span (a, b) ending within remainder nodes (s, e], as local nodes."""
-    for a, b in spans:
+def _spans_in(spans: tuple[tuple[int, int], ...], rem: Remainder, s: int, e: int
+              ) -> list[tuple[int, int]]:
+    """Every previous span (a, b) ending within remainder nodes (s, e], as local nodes, in
+    sailing order: a leg of this voyage may hold several of the previous plan's spans (a
+    strait the previous plan passed between two spans that this voyage's leg does not
+    split at)."""
+    out: list[tuple[int, int]] = []
+    for a, b in sorted(spans):
         la, lb = max(_local(rem, a), s), _local(rem, b)
-        if s <= la < lb <= e and rem.prev_index[lb] == b:
-            return la, lb
-    return None
+        if s <= la < lb <= e and rem.prev_index[lb] == b and (not out or la >= out[-1][1]):
+            out.append((la, lb))
+    return out
 
 
-Part = tuple[int, int, str]  # (first node, last node, kind: pre | span | post | fixed)
+Part = tuple[int, int, str]  # (first node, last node, kind: pre | span | between | post | fixed)
 DECIDING = "span"  # the kind whose land test decides (an optimised span)
+BETWEEN = "between"  # a computed passage between two optimised spans of one leg (informs)
 
 
 def leg_parts(rem: Remainder, previous: RoutePlan, prep: PreparedVoyage, k: int, s: int,
@@ -120,14 +129,19 @@ def leg_parts(rem: Remainder, previous: RoutePlan, prep: PreparedVoyage, k: int,
         return [(s, e, "fixed")]
     spans = (tuple(previous.extra.get("fixed_passages", ())) if k in prep.canal_legs
              else previous.optimised_spans)
-    span = _span_in(tuple(spans), rem, s, e)
-    if span is None:
+    found = _spans_in(tuple(spans), rem, s, e)
+    if not found:
         return f"its leg to {prep.ports[k + 1].name} has no planned span left"
-    a, b = span
-    parts = [(s, a, "pre")] if a > s else []
-    parts.append((a, b, "fixed" if k in prep.canal_legs else DECIDING))
-    if b < e:
-        parts.append((b, e, "post"))
+    if k in prep.canal_legs:
+        found = found[:1]
+    kind = "fixed" if k in prep.canal_legs else DECIDING
+    parts = [(s, found[0][0], "pre")] if found[0][0] > s else []
+    for i, (a, b) in enumerate(found):
+        if i and a > found[i - 1][1]:
+            parts.append((found[i - 1][1], a, BETWEEN))
+        parts.append((a, b, kind))
+    if found[-1][1] < e:
+        parts.append((found[-1][1], e, "post"))
     return parts
 
 
@@ -139,6 +153,8 @@ class CarriedLegs:
     sources: tuple[str, ...]
     approaches: tuple[tuple[RouteEvaluation | None, RouteEvaluation | None], ...]
     arrivals: tuple[float, ...]
+    said: str = ""  # what re-timing the remainder did ("" nothing)
+    retimed: bool = False  # re-timed to arrive on time (`replan_retime`)
 
 
 def _sail(prep: PreparedVoyage, rem: Remainder, part: Part, t0: float) -> RouteEvaluation:
@@ -184,19 +200,25 @@ def carried_legs(prep: PreparedVoyage, options: PlanOptions) -> CarriedLegs | st
         parts = leg_parts(rem, previous, prep, k, s, e)
         if isinstance(parts, str):
             return parts
-        sailed: dict[str, RouteEvaluation] = {}
+        sailed: list[tuple[str, RouteEvaluation]] = []
         for part in parts:
-            sailed[part[2]] = ev = _sail(prep, rem, part, t)
+            ev = _sail(prep, rem, part, t)
+            sailed.append((part[2], ev))
             t = float(ev.eta_s[0])
-        main = sailed.get(DECIDING, sailed.get("fixed"))
-        assert main is not None  # every leg has its span or its fixed passage
-        results.append(main)
+        outer = {kind: ev for kind, ev in sailed if kind in ("pre", "post")}
+        # every span of the leg decides (a passage between two of them informs)
+        results.append(joined([(ev, kind != BETWEEN) for kind, ev in sailed
+                               if kind not in ("pre", "post")]))
         sources.append("canal" if k in prep.canal_legs else "strait" if k in prep.strait_legs
                        else "previous_plan")
-        approaches.append((sailed.get("pre"), sailed.get("post")))
+        approaches.append((outer.get("pre"), outer.get("post")))
         arrivals.append(t)
         s = e
-    return CarriedLegs(tuple(results), tuple(sources), tuple(approaches), tuple(arrivals))
+    # a remainder hours early (the ship ahead of the previous plan's times) is slowed down
+    timed = retimed_legs(prep, results, sources, approaches, rem.start_s,
+                         "the previous plan's remainder")
+    return CarriedLegs(timed.results, tuple(sources), timed.approaches, timed.arrivals,
+                       timed.said, timed.retimed)
 
 
 def carried_run(legs: CarriedLegs, run: LegRun) -> LegRun:
@@ -205,7 +227,8 @@ def carried_run(legs: CarriedLegs, run: LegRun) -> LegRun:
         run, results=list(legs.results), sources=list(legs.sources),
         approaches=list(legs.approaches), arrivals=list(legs.arrivals), member_legs=[],
         baselines=list(run.baselines), problems=list(run.problems),
-        warnings=[w for w in run.warnings if not w.startswith("re-plan:")])
+        warnings=[w for w in run.warnings if not w.startswith(RUN_OWN_WORDS)]
+        + ([legs.said] if legs.said else []))
 
 
 def objective_value(plan: RoutePlan) -> float:
@@ -250,6 +273,7 @@ def kept_or_new(new: RoutePlan, carried_legs: CarriedLegs | str, prep: PreparedV
     ok, value, fuel = precheck(carried_legs, prep)
     block = {"carried": True, "previous_remaining_objective": value,
              "previous_remaining_fuel_t": fuel, "previous_remaining_feasible": ok,
+             "previous_remaining_retimed": carried_legs.retimed,
              "new_objective": objective_value(new), "new_feasible": new.feasible,
              "generations": run.generations, "kept_previous": False}
 

@@ -16,7 +16,7 @@ from .ga.islands import IslandGA
 from .ga.loop import AskTellGA, GAConfig, SeedGA
 from .ga.ranking import deb_order, is_better
 from .ga_refine import REFINE_EVERY, REFINE_ROUNDS, ga_share_of, refine_best
-from .ga_seeds import all_seeds, best_seeds_first, fresh_seeds_if_stale, seed_genes
+from .ga_seeds import all_seeds, best_seeds_first, bounded_seed_genes, fresh_seeds_if_stale
 from .geo.full_land import final_land
 from .geo.landmask import LandMask
 from .method_context import MethodContext, MethodResult, Progress
@@ -62,7 +62,8 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
             return ev
         return fast.evaluate(x) if fast is not None else evaluate_genes(p, env, ctx.land, x)
 
-    x_seed, sources = seed_genes(ctx, seeds, fast)
+    budget = seeding_budget(ctx.t_start, search_deadline_s(ctx))
+    x_seed, sources, left_out = bounded_seed_genes(ctx, seeds, fast, budget)
     mean_gens = mean_evals = 0
     if risk is not None and fast is not None:
         x_seed, sources, mean_gens, mean_evals = with_mean_optimum(ctx, fast, x_seed, sources)
@@ -70,8 +71,8 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
             ctx.max_evaluations - mean_evals, 1) if ctx.max_evaluations else 0)
     x_seed, sources, offsets = best_seeds_first(p, x_seed, sources, evaluate)
     x_seed, sources, offsets, notes = fresh_seeds_if_stale(
-        ctx, fast, evaluate, x_seed, sources, offsets,
-        seeding_budget(ctx.t_start, search_deadline_s(ctx)))
+        ctx, fast, evaluate, x_seed, sources, offsets, budget)
+    notes = (*left_out, *notes)
     ga = initial_ga(ctx, x_seed, offsets)
     # bests of one forecast only are kept for the exact final choice (a risk-aware best is
     # a measure over members the exact evaluator does not see)

@@ -16,6 +16,9 @@ SEEDING_SHARE = 0.3
 # generations: its seeding gets at least this long, within SEEDING_MAX_SHARE of the search
 SEEDING_MIN_S = 0.25
 SEEDING_MAX_SHARE = 0.6
+# a seeding phase that took this many times its share has stalled (a first use on a loaded
+# machine): even the work that otherwise always runs (the first round of repairs) is skipped
+OVERRUN_FACTOR = 2.0
 
 
 @dataclass(frozen=True)
@@ -28,6 +31,11 @@ class SeedingBudget:
     def spent(self) -> bool:
         """Whether the seeding phase has used its share: build no more seeds."""
         return time.perf_counter() >= self.deadline_s
+
+    def overrun(self) -> bool:
+        """Whether the seeding phase has taken OVERRUN_FACTOR times its share: it stalled,
+        and the GA needs what is left of the search."""
+        return self.elapsed_s() >= OVERRUN_FACTOR * self.share_s()
 
     def elapsed_s(self) -> float:
         """Seconds the seeding phase has taken so far."""

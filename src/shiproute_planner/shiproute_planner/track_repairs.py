@@ -18,11 +18,12 @@ from .route.environment import Environment
 from .route.evaluation import RouteEvaluation
 from .route.problem import RouteProblem
 from .route.seeding import TrackSeed, track_to_genes
+from .rpm_factor import TARGET_BEFORE_RTA_S, retimed_rpm
 
 # RPM factor up to the cut; the legs after it get the factor that keeps the arrival time
 # (speed ~ RPM), so a copy reaches the broken stretch earlier or later by up to ~10 %
 RETIME_FACTORS = (0.91, 0.96, 1.04, 1.09)
-ARRIVAL_MARGIN_S = 1800.0  # re-timed copies aim this long before the RTA
+ARRIVAL_MARGIN_S = TARGET_BEFORE_RTA_S  # re-timed copies aim this long before the RTA
 # lateral shift of the broken stretch's nodes, in mean leg lengths (half of it on the node
 # before and after the stretch), to either side
 SHIFTS_LEGS = (0.5, 1.0, 2.0)
@@ -57,15 +58,10 @@ def retimed_tracks(problem: RouteProblem, ev: RouteEvaluation, row: int,
     for cut in sorted({max(stretch[0], 1), stretch[1]}):
         if cut >= dur.size:
             continue
-        before, after = float(dur[:cut].sum()), float(dur[cut:].sum())
         for f in RETIME_FACTORS:
-            left_s = window_s - before / f
-            if left_s <= 0.0 or after <= 0.0:
-                continue
-            r = rpm.copy()
-            r[:cut] *= f
-            r[cut:] *= after / left_s
-            out.append(TrackSeed("previous_plan_retimed", lon, lat, r))
+            r = retimed_rpm(rpm, dur, cut, window_s, f)
+            if r is not None:
+                out.append(TrackSeed("previous_plan_retimed", lon, lat, r))
     return out
 
 
@@ -101,21 +97,27 @@ def shifted_tracks(ev: RouteEvaluation, row: int, stretch: tuple[int, int]) -> l
 def track_repairs(problem: RouteProblem, env: Environment, land: Any, fast: Any,
                   ev: RouteEvaluation, row: int,
                   evaluate: Callable[[np.ndarray], RouteEvaluation],
-                  spent: Callable[[], bool] = lambda: False
+                  spent: Callable[[], bool] = lambda: False,
+                  overrun: Callable[[], bool] = lambda: False
                   ) -> tuple[np.ndarray, list[str], bool]:
     """Genes and source names of route `row` re-timed and shifted round its broken stretch
     (none when it is not broken), and whether one of them is feasible; while none of a
     round's repairs is, the least broken of them is repaired in turn (a storm too wide for
     one shift, a lateness the shift added), up to REPAIR_ROUNDS rounds and only while
-    `spent()` (the seeding phase's share of the budget) says there is time."""
+    `spent()` (the seeding phase's share of the budget) says there is time. The first
+    round always runs (a stale re-plan without repairs rarely ends feasible), with only the
+    re-timed tracks when the share is spent already, unless `overrun()` says the seeding
+    stalled far past its share."""
     genes, names, feasible = [], [], False
-    for _ in range(REPAIR_ROUNDS):
-        if spent():
+    for round_no in range(REPAIR_ROUNDS):
+        short = spent()
+        if short and (round_no > 0 or overrun()):
             break
         stretch = broken_stretch(ev, row)
         if stretch is None:
             break
-        seeds = retimed_tracks(problem, ev, row, stretch) + shifted_tracks(ev, row, stretch)
+        seeds = retimed_tracks(problem, ev, row, stretch) + (
+            [] if short else shifted_tracks(ev, row, stretch))
         if not seeds:
             break
         x = track_to_genes(problem, env, seeds, land, fan_deg=REPAIR_FAN_DEG,

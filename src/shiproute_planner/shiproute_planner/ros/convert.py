@@ -66,6 +66,7 @@ def plan_to_msg(plan: RoutePlan, stamp: Time) -> RoutePlanMsg:
     msg.total_distance_nm = float(plan.total_distance_nm)
     msg.total_time_s = float(plan.total_time_s)
     msg.baseline_fuel_t = float(plan.baseline_fuel_t)
+    msg.baseline_feasible = bool(plan.baseline_feasible)
     msg.compute_time_s = float(plan.compute_time_s)
     msg.waypoints = [_waypoint_msg(w) for w in plan.waypoints]
     calls = plan.extra.get("port_calls", ())

@@ -86,6 +86,44 @@ def sea_distance_m(lon0: float, lat0: float, lon1: float, lat1: float) -> float:
     return max(float(np.sum(inverse(lon[:-1], lat[:-1], lon[1:], lat[1:])[1])), direct)
 
 
+HOP_SAMPLE_M = 2.0 * M_PER_NM  # a ship's hop onto the sea lane is tested for land this often
+HOP_TRIES = 12  # joins tried, shortest first, before the lane as searoute gives it is taken
+
+
+def sea_distance_under_way_m(land: Any, lon0: float, lat0: float, lon1: float,
+                             lat1: float) -> float:
+    """Length [m] of the way from a ship at sea (lon0, lat0) to (lon1, lat1): a straight hop
+    over open water onto the shortest sea lane, joined where hop and rest of the lane are
+    shortest. searoute snaps a position at sea to its network's nearest node, which may lie
+    behind the ship: a ship at 39.71N 136.65E bound for the Tsugaru Strait got a lane via
+    41.77N 135.96E, 315 NM for 183 NM of open water, and a schedule that had it dawdle
+    to the strait and meet cycle 2's storm beyond it."""
+    import searoute
+    from shiproute_core.geodesy import great_circle_points, unwrap_near
+
+    direct = float(inverse(lon0, lat0, lon1, lat1)[1])
+    try:
+        feat = searoute.searoute([float(wrap_lon(lon0)), lat0], [float(wrap_lon(lon1)), lat1])
+        c = np.asarray(feat["geometry"]["coordinates"], dtype=float)
+    except Exception:  # searoute has no lane here: the great circle is all we know
+        return direct
+    if c.ndim != 2 or c.shape[0] < 2:
+        return direct
+    lon = np.unwrap(np.concatenate([c[:, 0], [lon1]]), period=360.0)
+    lon = lon - np.round((lon[0] - unwrap_near(lon[0], lon0)) / 360.0) * 360.0
+    lat = np.concatenate([c[:, 1], [lat1]])
+    seg = np.atleast_1d(inverse(lon[:-1], lat[:-1], lon[1:], lat[1:])[1])
+    rest = np.concatenate([np.cumsum(seg[::-1])[::-1], [0.0]])  # lane from point i on
+    hop = np.atleast_1d(inverse(np.full(lon.size, lon0), np.full(lon.size, lat0), lon, lat)[1])
+    total = hop + rest
+    for i in np.argsort(total, kind="stable")[:HOP_TRIES]:
+        n = int(max(2, np.ceil(hop[i] / HOP_SAMPLE_M) + 1))
+        h_lon, h_lat = great_circle_points(lon0, lat0, float(lon[i]), float(lat[i]), n)
+        if not np.any(land.is_land(np.asarray(h_lon), np.asarray(h_lat))):
+            return max(float(total[i]), direct)
+    return max(float(hop[0] + rest[0]), direct)  # the lane as searoute gives it
+
+
 def calm_fuel_rate(model: Any, rpm_min: float, rpm_max: float) -> FuelRate:
     """The ship model's calm-water fuel rate over its RPM range, fitted for the schedule."""
     from ..ship import SeaState
@@ -98,9 +136,11 @@ def calm_fuel_rate(model: Any, rpm_min: float, rpm_max: float) -> FuelRate:
 
 
 def leg_specs(ports: Sequence[Port], calls: dict[int, PortCall],
-              canal_legs: dict[int, Any]) -> list[LegSpec]:
+              canal_legs: dict[int, Any], land: Any = None) -> list[LegSpec]:
     """One LegSpec per leg ports[k] -> ports[k+1]; `calls` maps an end-port index of `ports`
-    to its call, `canal_legs` a leg index to (canal, reversed)."""
+    to its call, `canal_legs` a leg index to (canal, reversed). With `land` the first port
+    is a ship at sea (a re-plan under way), which joins the sea lane where it is shortest
+    (`sea_distance_under_way_m`)."""
     from shiproute_planner.route.canals import canal_line
 
     out = []
@@ -115,8 +155,10 @@ def leg_specs(ports: Sequence[Port], calls: dict[int, PortCall],
             out.append(LegSpec(b.name, length, length / (canal.transit_kn * KNOT_M_S),
                                earliest, latest, berth))
             continue
-        d = sea_distance_m(round(a.lon_deg, 4), round(a.lat_deg, 4), round(b.lon_deg, 4),
-                           round(b.lat_deg, 4))
+        ends = (round(a.lon_deg, 4), round(a.lat_deg, 4), round(b.lon_deg, 4),
+                round(b.lat_deg, 4))
+        d = (sea_distance_under_way_m(land, *ends) if k == 0 and land is not None
+             else sea_distance_m(*ends))
         out.append(LegSpec(b.name, d, None, earliest, latest, berth))
     return out
 
@@ -129,10 +171,11 @@ def cube_law_rate(v_min_m_s: float = 4.0, v_max_m_s: float = 12.0) -> FuelRate:
 
 def voyage_schedule(ports: Sequence[Port], calls: dict[int, PortCall],
                     canal_legs: dict[int, Any], depart_s: float, rta_s: float, model: Any,
-                    rpm_min: float, rpm_max: float
+                    rpm_min: float, rpm_max: float, under_way_land: Any = None
                     ) -> tuple[list[LegSpec], Any, list[str], FuelRate]:
     """(legs, Schedule, notes, fuel rate): the fuel-optimal schedule of a multi-port voyage
-    (the rate re-schedules the legs left as each leg is planned)."""
+    (the rate re-schedules the legs left as each leg is planned); `under_way_land` (the
+    land mask) when the voyage starts at a ship at sea."""
     from .schedule import plan_schedule
 
     notes: list[str] = []
@@ -142,5 +185,5 @@ def voyage_schedule(ports: Sequence[Port], calls: dict[int, PortCall],
         rate = cube_law_rate()
         notes.append(f"leg schedule estimated with the propeller (cube) law: the ship model "
                      f"gives no calm-water fuel rate ({exc})")
-    legs = leg_specs(ports, calls, canal_legs)
+    legs = leg_specs(ports, calls, canal_legs, under_way_land)
     return legs, plan_schedule(legs, depart_s, rta_s, rate), notes, rate
