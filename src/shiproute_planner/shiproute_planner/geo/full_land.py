@@ -22,7 +22,7 @@ import shapely
 
 from .gshhg import LandPolygons, finest_resolution
 from .land_kernels import raster_lookup
-from .landmask import LandMask, default_land_mask, land_raster_built
+from .landmask import LandMask, coast_distance_built, default_land_mask, land_raster_built
 from .nav_grid import land_in_box
 from .raster import COAST, LAND
 
@@ -129,10 +129,14 @@ def final_land() -> FinalLand:
 
 def first_builds() -> tuple[str, ...]:
     """The land rasters a planner's warm-up will build for this machine the first time
-    (stored in the data directory, then memory-mapped): the search's and the final test's."""
-    return tuple(f"the GSHHG {RESOLUTION_WORDS[res]}-resolution land raster"
-                 for res in sorted({"i", finest_resolution()}, reverse=True)
-                 if not land_raster_built(res))
+    (stored in the data directory, then memory-mapped): the search's and the final test's,
+    and the search's distance to the coast."""
+    rasters = tuple(f"the GSHHG {RESOLUTION_WORDS[res]}-resolution land raster"
+                    for res in sorted({"i", finest_resolution()}, reverse=True)
+                    if not land_raster_built(res))
+    distance = () if coast_distance_built("i") else (
+        "the GSHHG intermediate-resolution distance to the coast",)
+    return rasters + distance
 
 
 def first_builds_clause(built: tuple[str, ...]) -> str:
