@@ -98,7 +98,7 @@ class TiledLand:
                 if not len(block):
                     continue
                 if shift:
-                    block = shapely.transform(block, lambda xy, dx=shift: xy + (dx, 0.0))
+                    block = shapely.transform(block, lambda xy, dx=shift: xy + np.array([dx, 0.0]))
                 clipped = shapely.clip_by_rect(block, lon_min, lat_min, lon_max, lat_max)
                 out.extend(g for g in clipped if not g.is_empty)
         return out
