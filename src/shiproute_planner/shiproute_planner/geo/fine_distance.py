@@ -4,12 +4,13 @@
 Each tile holds `FINE_PER_TILE` x `FINE_PER_TILE` cells (0.0025 deg, ~280 m) of one uint8:
 0 for cells on land or touching the coastline, else 1 + a lower bound of the distance from any
 point of the cell to land in `UNIT_NM` steps, capped at `CAP_NM`. A tile is built from the
-land clipped to the tile padded by the cap: the coastline, segmentized at half a cell, marks
-its cells and their eight neighbours (so the coastline lies at least half a cell inside that
-band); each connected patch of other cells is land or sea by one exact point test; sea cells
-get scipy's Euclidean distance to the band (longitude spacing shrunk by the cosine of the
-padded tile's most poleward latitude: a lower bound within the padding), minus a cell
-diagonal plus half a cell. Tiles are kept in a slot map (tile row, column -> slot) that a
+land clipped to the tile padded by the cap: the coastline, sampled every `SAMPLE_CELLS`
+cells, marks the cells its samples fall in (a band one cell wide, so channels a few cells
+wide stay open); each connected patch of other cells is land or sea by one exact point test
+(a coastline stretch between two samples can cut the corner of a patch cell by at most half
+the sample spacing, ~30 m); sea cells get scipy's Euclidean distance to the band (longitude
+spacing shrunk by the cosine of the padded tile's most poleward latitude: a lower bound
+within the padding), minus a cell diagonal and half the sample spacing. Tiles are kept in a slot map (tile row, column -> slot) that a
 compiled walk reads, and saved in the data directory (`save`) so a machine builds each once.
 """
 
@@ -25,10 +26,11 @@ import numpy as np
 
 from .coast_distance import NM_PER_DEG
 
-FINE_DISTANCE_VERSION = 1  # in the cache file name: bump when the tiles change
+FINE_DISTANCE_VERSION = 2  # in the cache file name: bump when the tiles change
 TILE_DEG = 0.5
 FINE_PER_TILE = 200  # cells per tile side: 0.0025 deg
 UNIT_NM = 0.05  # distance step of the stored values
+SAMPLE_CELLS = 0.2  # coastline sample spacing [cells]: no coastline point is farther from one
 CAP_NM = 6.0  # the largest distance stored: above the largest clearance a plan may ask (5 NM)
 TILE_ROWS, TILE_COLS = round(180.0 / TILE_DEG), round(360.0 / TILE_DEG)
 LandNear = Callable[[float, float, float, float], list]  # box -> clipped shapely geometries
@@ -55,13 +57,12 @@ def build_tile(ti: int, tj: int, land_near: LandNear, contains: Contains) -> np.
     band = np.zeros((n_r, n_c), dtype=bool)
     if parts:
         edges = shapely.segmentize(shapely.boundary(np.array(parts, dtype=object)),
-                                   0.5 * fine_deg)
+                                   SAMPLE_CELLS * fine_deg)
         xy = shapely.get_coordinates(edges)
         r = np.floor((xy[:, 1] - b_lat0) / fine_deg).astype(np.int64)
         c = np.floor((xy[:, 0] - b_lon0) / fine_deg).astype(np.int64)
         ok = (r >= 0) & (r < n_r) & (c >= 0) & (c < n_c)
         band[r[ok], c[ok]] = True
-        band = ndimage.binary_dilation(band, structure=np.ones((3, 3), dtype=bool))
     labels, n_labels = ndimage.label(~band)
     flat = labels.ravel()
     cells = np.flatnonzero(flat)
@@ -74,7 +75,7 @@ def build_tile(ti: int, tj: int, land_near: LandNear, contains: Contains) -> np.
     sea = ~is_land[labels]  # label 0 (the band) counts as land
     if band.any():
         d = ndimage.distance_transform_edt(~band, sampling=(fine_nm, fine_nm * shrink))
-        d = d - math.hypot(fine_nm, fine_nm * shrink) + 0.5 * fine_nm * shrink
+        d = d - math.hypot(fine_nm, fine_nm * shrink) - 0.5 * SAMPLE_CELLS * fine_nm
     else:
         d = np.full((n_r, n_c), np.inf)
     units = np.floor(np.clip(d, 0.0, CAP_NM) / UNIT_NM).astype(np.int64) + 1
@@ -143,6 +144,24 @@ class FineDistance:
             slots.ravel()[keys] = np.arange(n0, n0 + keys.size, dtype=np.int32)
             self.grids, self.slots = grids, slots
             return int(keys.size)
+
+    def add_box(self, lon_min_deg: float, lon_max_deg: float, lat_min_deg: float,
+                lat_max_deg: float, coast_dist: np.ndarray, cell_deg: float, reach_nm: float
+                ) -> int:
+        """Build every tile of a box (longitudes may run past 180) holding a level-0 cell
+        (`coast_dist`, 0.1 NM, cells of `cell_deg`) within `reach_nm` of the coast: the
+        tiles a walk with clearances up to about `reach_nm` can meet. How many were new."""
+        from .coast_distance import UNIT_NM as L0_UNIT_NM
+
+        per_tile = round(TILE_DEG / cell_deg)
+        near = np.abs(np.asarray(coast_dist)) * L0_UNIT_NM < reach_nm
+        tiles = near.reshape(TILE_ROWS, per_tile, TILE_COLS, per_tile).any(axis=(1, 3))
+        i0 = max(int((lat_min_deg + 90.0) // TILE_DEG), 0)
+        i1 = min(int((lat_max_deg + 90.0) // TILE_DEG), TILE_ROWS - 1)
+        cols = np.unique(np.arange(int((lon_min_deg + 180.0) // TILE_DEG),
+                                   int((lon_max_deg + 180.0) // TILE_DEG) + 1) % TILE_COLS)
+        ii, jj = np.nonzero(tiles[i0:i1 + 1][:, cols])
+        return self.add((ii + i0) * TILE_COLS + cols[jj])
 
     def distance_nm(self, lon_deg: np.ndarray, lat_deg: np.ndarray) -> np.ndarray:
         """Lower bound of the distance to land [NM] at each point; 0 on or touching land, at
