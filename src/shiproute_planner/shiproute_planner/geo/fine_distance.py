@@ -10,8 +10,9 @@ wide stay open); each connected patch of other cells is land or sea by one exact
 (a coastline stretch between two samples can cut the corner of a patch cell by at most half
 the sample spacing, ~30 m); sea cells get scipy's Euclidean distance to the band (longitude
 spacing shrunk by the cosine of the padded tile's most poleward latitude: a lower bound
-within the padding), minus a cell diagonal and half the sample spacing. Tiles are kept in a slot map (tile row, column -> slot) that a
-compiled walk reads, and saved in the data directory (`save`) so a machine builds each once.
+within the padding), minus a cell diagonal and half the sample spacing. Tiles are kept in a
+slot map (tile row, column -> slot) that a compiled walk reads, and saved in the data
+directory (`save`) so a machine builds each once.
 """
 
 from __future__ import annotations
