@@ -89,7 +89,7 @@ class TiledLand:
         box may run past 180 deg: pieces across it come shifted by 360 deg)."""
         b = self.tile_deg * BLOCK_TILES
         n_rows, n_cols = round(180.0 / b), round(360.0 / b)
-        out = []
+        out: list = []
         for bi in range(max(int((lat_min + 90.0) // b), 0),
                         min(int((lat_max + 90.0) // b), n_rows - 1) + 1):
             for bj in range(int((lon_min + 180.0) // b), int((lon_max + 180.0) // b) + 1):

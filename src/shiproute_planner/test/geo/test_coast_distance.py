@@ -5,10 +5,10 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from shiproute_core.units import M_PER_NM
 from shiproute_planner.geo.coast_distance import NM_PER_DEG, UNIT_NM, coast_distance
 from shiproute_planner.geo.raster import COAST, LAND, SEA
 
-NM_M = 1852.0
 # one sphere arcminute vs the WGS 84 geodesic: a meridian degree is >= 59.7 NM at the equator
 SPHERE_SLACK = 60.0 / 59.6
 
@@ -30,7 +30,7 @@ def _true_distance_nm(land_mask, lon: float, lat: float) -> float:
         "EPSG:4326", f"+proj=aeqd +lat_0={lat} +lon_0={lon} +ellps=WGS84", always_xy=True)
     rings = shapely.transform(shapely.boundary(np.array(parts, dtype=object)),
                               lambda xy: np.column_stack(aeqd.transform(xy[:, 0], xy[:, 1])))
-    return float(np.min(shapely.distance(shapely.Point(0.0, 0.0), rings))) / NM_M
+    return float(np.min(shapely.distance(shapely.Point(0.0, 0.0), rings))) / M_PER_NM
 
 
 @pytest.mark.parametrize("centre", [(-6.3, 49.9), (5.0, 60.5), (140.5, 41.5), (25.5, 37.5),

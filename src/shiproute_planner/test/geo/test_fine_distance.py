@@ -5,9 +5,9 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from shiproute_core.units import M_PER_NM
 from shiproute_planner.geo.fine_distance import CAP_NM, FINE_PER_TILE, TILE_DEG, FineDistance
 
-NM_M = 1852.0
 SPHERE_SLACK = 60.0 / 59.6  # sphere arcminutes vs WGS 84 geodesic NM (see test_coast_distance)
 
 
@@ -33,7 +33,7 @@ def _true_distance_nm(final, lon: float, lat: float) -> float:
         "EPSG:4326", f"+proj=aeqd +lat_0={lat} +lon_0={lon} +ellps=WGS84", always_xy=True)
     land = shapely.transform(np.array(parts, dtype=object),
                              lambda xy: np.column_stack(aeqd.transform(xy[:, 0], xy[:, 1])))
-    return float(np.min(shapely.distance(shapely.Point(0.0, 0.0), land))) / NM_M
+    return float(np.min(shapely.distance(shapely.Point(0.0, 0.0), land))) / M_PER_NM
 
 
 # Isles of Scilly, the Bosphorus, the Zhoushan islets, Sognefjord, Juan de Fuca

@@ -6,9 +6,9 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from shiproute_core.units import M_PER_NM
 from shiproute_planner.route.clearance import EPS_NM, ClearanceRule
 
-NM_M = 1852.0
 LOOSENESS_NM = 0.7  # level 1's looseness (a fine diagonal, the coastline band, one step)
 
 
@@ -53,7 +53,7 @@ def _dense_truth(final, lon0, lat0, lon1, lat1, rule, ends_lonlat):
 
     geod = pyproj.Geod(ellps="WGS84")
     _, _, length_m = geod.inv(lon0, lat0, lon1, lat1)
-    n = max(2, int(length_m / NM_M / 0.05) + 1)
+    n = max(2, int(length_m / M_PER_NM / 0.05) + 1)
     pts = np.array(geod.npts(lon0, lat0, lon1, lat1, n - 2))
     pts = np.vstack([[lon0, lat0], pts.reshape(-1, 2), [lon1, lat1]])
     c_lon, c_lat = 0.5 * (lon0 + lon1), 0.5 * (lat0 + lat1)
@@ -69,14 +69,14 @@ def _dense_truth(final, lon0, lat0, lon1, lat1, rule, ends_lonlat):
         land = shapely.union_all(shapely.transform(
             np.array(parts, dtype=object),
             lambda xy: np.column_stack(aeqd.transform(xy[:, 0], xy[:, 1]))))
-        dist = shapely.distance(shapely.points(x, y), land) / NM_M
+        dist = shapely.distance(shapely.points(x, y), land) / M_PER_NM
     else:
         dist = np.full(x.size, np.inf)
     end_nm = np.full(x.size, np.inf)
     for e_lon, e_lat in (ends_lonlat[:2], ends_lonlat[2:]):
         _, _, d_m = geod.inv(pts[:, 0], pts[:, 1], np.full(x.size, e_lon),
                              np.full(x.size, e_lat))
-        end_nm = np.minimum(end_nm, d_m / NM_M)
+        end_nm = np.minimum(end_nm, d_m / M_PER_NM)
     need = np.where(end_nm <= rule.free_radius_nm, 0.0,
                     np.where(end_nm <= rule.approach_zone_nm, rule.approach_nm,
                              rule.open_sea_nm))
