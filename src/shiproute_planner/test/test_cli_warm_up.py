@@ -26,9 +26,11 @@ def test_cli_plan_warms_up_outside_the_budget_and_searches(tmp_path, capsys):
 
 def test_warm_up_names_the_land_rasters_it_will_build_for_a_new_machine(tmp_path,
                                                                          monkeypatch):
-    """An empty data directory (a new machine) lacks every land raster: the warm-up says it
-    builds them (~40 s at full resolution, once); once stored, it says nothing of them."""
+    """An empty data directory (a new machine) lacks every land raster and the search's
+    distance to the coast: the warm-up says it builds them (~40 s at full resolution, once);
+    once stored, it says nothing of them."""
     from shiproute_planner.cli.warm_up import warm_up_note
+    from shiproute_planner.geo.coast_distance import COAST_DISTANCE_VERSION
     from shiproute_planner.geo.full_land import first_builds
     from shiproute_planner.geo.gshhg import finest_resolution
     from shiproute_planner.geo.landmask import cached_array_name
@@ -36,11 +38,15 @@ def test_warm_up_names_the_land_rasters_it_will_build_for_a_new_machine(tmp_path
     monkeypatch.setenv("SHIPROUTE_DATA_DIR", str(tmp_path))
     wanted = {"i", finest_resolution()}
     built = first_builds()
-    assert len(built) == len(wanted)
+    assert len(built) == len(wanted) + 1
     assert "intermediate-resolution land raster" in " ".join(built)
+    assert "distance to the coast" in built[-1]
     note = warm_up_note(2.0, built)
     assert "for this machine (once)" in note and built[0] in note
     for res in wanted:
         (tmp_path / cached_array_name("landmask", res, 0.05)).write_bytes(b"")
+    assert first_builds() == built[-1:]
+    (tmp_path / cached_array_name(f"coastdistance{COAST_DISTANCE_VERSION}", "i", 0.05)
+     ).write_bytes(b"")
     assert first_builds() == ()
     assert "for this machine" not in warm_up_note(2.0, first_builds())

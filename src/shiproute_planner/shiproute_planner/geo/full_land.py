@@ -22,7 +22,7 @@ import shapely
 
 from .gshhg import LandPolygons, finest_resolution
 from .land_kernels import raster_lookup
-from .landmask import LandMask, default_land_mask, land_raster_built
+from .landmask import LandMask, coast_distance_built, default_land_mask, land_raster_built
 from .nav_grid import land_in_box
 from .raster import COAST, LAND
 
@@ -83,6 +83,26 @@ class TiledLand:
                 out[sel[sel_out]] = True
         return out.reshape(np.shape(lon_deg))
 
+    def land_near(self, lon_min: float, lat_min: float, lon_max: float, lat_max: float
+                  ) -> list:
+        """Land clipped to a lon/lat box as shapely geometries, from the blocks' pieces (a
+        box may run past 180 deg: pieces across it come shifted by 360 deg)."""
+        b = self.tile_deg * BLOCK_TILES
+        n_rows, n_cols = round(180.0 / b), round(360.0 / b)
+        out: list = []
+        for bi in range(max(int((lat_min + 90.0) // b), 0),
+                        min(int((lat_max + 90.0) // b), n_rows - 1) + 1):
+            for bj in range(int((lon_min + 180.0) // b), int((lon_max + 180.0) // b) + 1):
+                shift = 360.0 * (bj // n_cols)
+                block = self._block(bi, bj % n_cols)
+                if not len(block):
+                    continue
+                if shift:
+                    block = shapely.transform(block, lambda xy, dx=shift: xy + np.array([dx, 0.0]))
+                clipped = shapely.clip_by_rect(block, lon_min, lat_min, lon_max, lat_max)
+                out.extend(g for g in clipped if not g.is_empty)
+        return out
+
     def clipped(self, lon_min: float, lat_min: float, lon_max: float, lat_max: float):
         """Land inside a lon/lat box (-180..180) as one geometry (clearance tests)."""
         parts = land_in_box(self.polygons, lon_min, lat_min, lon_max, lat_max, False)
@@ -129,10 +149,14 @@ def final_land() -> FinalLand:
 
 def first_builds() -> tuple[str, ...]:
     """The land rasters a planner's warm-up will build for this machine the first time
-    (stored in the data directory, then memory-mapped): the search's and the final test's."""
-    return tuple(f"the GSHHG {RESOLUTION_WORDS[res]}-resolution land raster"
-                 for res in sorted({"i", finest_resolution()}, reverse=True)
-                 if not land_raster_built(res))
+    (stored in the data directory, then memory-mapped): the search's and the final test's,
+    and the search's distance to the coast."""
+    rasters = tuple(f"the GSHHG {RESOLUTION_WORDS[res]}-resolution land raster"
+                    for res in sorted({"i", finest_resolution()}, reverse=True)
+                    if not land_raster_built(res))
+    distance = () if coast_distance_built("i") else (
+        "the GSHHG intermediate-resolution distance to the coast",)
+    return rasters + distance
 
 
 def first_builds_clause(built: tuple[str, ...]) -> str:

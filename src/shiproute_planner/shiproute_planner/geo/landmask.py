@@ -15,6 +15,7 @@ from typing import cast
 
 import numpy as np
 
+from .coast_distance import COAST_DISTANCE_VERSION, coast_distance
 from .datadir import data_dir
 from .fine_coast import FineCoast
 from .gshhg import load_land_polygons
@@ -80,6 +81,13 @@ class LandMask:
         """Chessboard distance [cells] from each raster cell to the nearest land or coastal
         cell (0 on them, at most 255): compiled scans skip open sea with it."""
         return self._cached_array("seadistance", lambda: sea_distance_cells(self.raster))
+
+    @functools.cached_property
+    def coast_distance(self) -> np.ndarray:
+        """Signed lower bound of each raster cell's distance to the coast [0.1 NM] (sea > 0,
+        land < 0, coast 0; `geo.coast_distance`): the land walk's jumps."""
+        return self._cached_array(f"coastdistance{COAST_DISTANCE_VERSION}",
+                                  lambda: coast_distance(self.raster, self.cell_deg))
 
     def is_land(self, lon_deg: np.ndarray, lat_deg: np.ndarray) -> np.ndarray:
         """True where a point is on land (raster, exact in coastal cells)."""
@@ -152,6 +160,14 @@ def land_raster_built(resolution: str, cell_deg: float = 0.05,
     first build, ~40 s at full resolution, is then not ahead)."""
     return ((cache_dir or data_dir()) / cached_array_name("landmask", resolution, cell_deg)
             ).is_file()
+
+
+def coast_distance_built(resolution: str, cell_deg: float = 0.05,
+                         cache_dir: Path | None = None) -> bool:
+    """True when the level-0 distance to the coast of `resolution` is already stored on this
+    machine (its first build takes a few seconds)."""
+    kind = f"coastdistance{COAST_DISTANCE_VERSION}"
+    return ((cache_dir or data_dir()) / cached_array_name(kind, resolution, cell_deg)).is_file()
 
 
 def sea_distance_cells(raster: np.ndarray, cap: int = 255) -> np.ndarray:

@@ -17,6 +17,7 @@ import numpy as np
 from numba import njit
 from shiproute_weather.sampling.interp_kernel import trilinear as _trilinear_parallel
 
+from ..geo.coast_distance import NM_PER_DEG, UNIT_NM
 from ..geo.land_kernels import FINE, chord_sample, segment_ends
 from . import _fast_kernels as fk
 from .legs import MIN_SOG_M_S  # the exact evaluator's floor of the final connection's speed
@@ -35,7 +36,6 @@ def _serial_copy(fn: Any, name: str) -> Any:
 # the sampler's kernel compiled serially: populations run in chunks on Python threads, and
 # numba's parallel launcher must not be entered from two threads at once
 trilinear = njit(cache=True, nogil=True)(_serial_copy(_trilinear_parallel, "trilinear_serial"))
-_GRADE_STEP = 8 * FINE  # samples per step once a leg is known to touch land
 
 
 @njit(cache=True, nogil=True)
@@ -177,8 +177,21 @@ def polyline_eta(track_lon, track_lat, rpm, depart_s, has_wx, data, times_s, lat
     eta[:] = t
 
 
+_GRADE_STEP = 8 * FINE  # samples per step after a hit, except across land interiors
+
+
 @njit(cache=True, nogil=True)
-def ga_land_hits(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, raster, sea_dist,
+def max_arc_per_step(arc_deg: float, steps: int) -> float:
+    """Upper bound of the arc [deg] between consecutive chord-fraction samples of a segment
+    of `arc_deg` in `steps` steps: the projected chord runs fastest at its middle, tan(a)/a
+    times the mean for half-arc a (1 % at 20 deg)."""
+    half = min(0.5 * arc_deg * math.pi / 180.0, 1.4)
+    ratio = math.tan(half) / half if half > 1e-9 else 1.0
+    return max(arc_deg / steps * ratio * (1.0 + 1e-9), 1e-12)
+
+
+@njit(cache=True, nogil=True)
+def ga_land_hits(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, raster, coast_dist,
                  cell_deg, spacing_deg, fine_keys, fine, missing, out):
     """Land samples per segment for the GA loop. A segment that met a coastal cell not yet
     resolved before its first land sample gets -1, to be scanned again once
@@ -188,40 +201,54 @@ def ga_land_hits(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, raster, 
     Candidate samples are every point the exact scan (`geo.land_kernels.scan_segments`) can
     visit: fractions k / steps of the chord with its refined step throughout. A sample counts
     in a land cell, and in a coastal cell when its fine cell is land (`fine` row of the cell
-    in sorted `fine_keys`; see `geo.fine_coast`). Samples in coarse cells with no land or
-    coast in or next to them are sea for sure and skipped by the cell's clear distance, and
-    so are samples closer than `sea_dist` (chessboard cells to the nearest land or coastal
-    cell); after the first hit the walk grades the rest in steps of four cells."""
+    in sorted `fine_keys`; see `geo.fine_coast`). Samples that provably lie in sea cells are
+    skipped: by the coarse cell's clear distance before the first hit, and by the signed
+    distance to the nearest coastal cell (`coast_dist`, 0.1 NM, `geo.coast_distance`). After
+    the first hit every later sample in a land or coastal cell counts (a violation graded by
+    the length on land): inland the walk jumps by the distance to the coast and counts the
+    samples jumped over, so a leg across a continent costs a few lookups. The count depends
+    only on the samples, not on the jumps taken or on which cells were resolved before."""
     n_lat, n_lon = raster.shape
     c_lat, c_lon = coarse.shape
     f = fine.shape[1]
     inv, c_inv = 1.0 / cell_deg, 1.0 / coarse_deg
+    unit_deg = UNIT_NM / NM_PER_DEG  # stored distance unit -> arc [deg]
     n_miss = 0
     for s in range(lon0.size):
         ax, ay, az, bx, by, bz, arc = segment_ends(lat0[s], lon0[s], lat1[s], lon1[s])
         steps = FINE * max(1, math.ceil(arc / spacing_deg))
-        # chord fractions run at most ~0.1 % faster than arc fractions for legs < 20 deg
-        per_step = max(0.9 * arc / steps, 1e-12)  # zero-length legs: one sample decides
+        per_step = max_arc_per_step(arc, steps)  # samples within D of one: D / per_step
         count = 0
         unresolved = False
         k = 0
         while k <= steps:
             la, lo = chord_sample(ax, ay, az, bx, by, bz, k / steps)
-            ci = min(max(int((la + 90.0) * c_inv), 0), c_lat - 1)
-            # chord samples come back with lo in [-180, 180] (atan2): no wrapping needed
-            cj = min(max(int((lo + 180.0) * c_inv), 0), c_lon - 1)
-            if not coarse[ci, cj] and clear_deg[ci, cj] > per_step:
-                k += 1 + int(clear_deg[ci, cj] / per_step)
-                continue
+            if not count:
+                ci = min(max(int((la + 90.0) * c_inv), 0), c_lat - 1)
+                # chord samples come back with lo in [-180, 180] (atan2): no wrapping needed
+                cj = min(max(int((lo + 180.0) * c_inv), 0), c_lon - 1)
+                if not coarse[ci, cj] and clear_deg[ci, cj] > per_step:
+                    k += 1 + int(clear_deg[ci, cj] / per_step)
+                    continue
             y = (la + 90.0) * inv
             x = (lo + 180.0) * inv
             i = min(max(int(y), 0), n_lat - 1)
             j = min(max(int(x), 0), n_lon - 1)
-            v = raster[i, j]
+            d = coast_dist[i, j]
             if count:  # on land already: the verdict stands, the count only grades it
-                count += _GRADE_STEP if v != 0 else 0
-                k += _GRADE_STEP
+                if d < 0:  # inland: every sample within -d is in land cells
+                    n = min(1 + int(-d * unit_deg / per_step), steps - k + 1)
+                else:  # sea or coast: one sample stands for the next _GRADE_STEP
+                    n = min(_GRADE_STEP, steps - k + 1)
+                    if d > 0 or raster[i, j] == 0:
+                        n = -n
+                count += max(n, 0)
+                k += abs(n)
                 continue
+            if d > 0:  # sea cell: every sample within d is in sea cells
+                k += 1 + int(d * unit_deg / per_step)
+                continue
+            v = raster[i, j]
             if v == 1:
                 count += 1
             elif v == 2:
@@ -234,12 +261,6 @@ def ga_land_hits(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, raster, 
                         n_miss += 1
                 elif fine[slot, min(int((y - i) * f), f - 1), min(int((x - j) * f), f - 1)]:
                     count += 1
-            elif sea_dist[i, j] > 1:
-                # cells within d - 1 of this one are sea: lat moves <= arc, lon <= arc / cos
-                d = sea_dist[i, j] - 1
-                cos_lat = math.cos(math.radians(min(abs(la) + (d + 1) * cell_deg, 89.0)))
-                k += 1 + int(d * cell_deg * cos_lat / per_step)
-                continue
             k += 1
         # an unresolved cell met before the first hit may be land: the count (a graded
         # violation) would then start later than once the cell is known, so the segment is

@@ -73,7 +73,7 @@ class FastEvaluator:
         if land is not None:
             self._coarse, self._clear, self._coarse_deg = coarse_land(land)
             self._raster = np.asarray(land.raster)
-            self._sea_dist = np.asarray(land.sea_distance_cells)
+            self._coast_dist = np.asarray(land.coast_distance)
 
     def evaluate(self, x: np.ndarray) -> RouteEvaluation:
         """Generate and evaluate routes from genes `x` (pop, 2n + 1): each thread's rows
@@ -236,7 +236,8 @@ class FastEvaluator:
                      ) -> None:
                 buf = np.empty(MISS_BUFFER, dtype=np.int64)
                 n = rk.ga_land_hits(x0[a:b], y0[a:b], x1[a:b], y1[a:b], self._coarse,
-                                    self._clear, self._coarse_deg, self._raster, self._sea_dist,
+                                    self._clear, self._coarse_deg, self._raster,
+                                    self._coast_dist,
                                     land.cell_deg, self.problem.land_spacing_deg,
                                     fine.keys, fine.fine, buf, got[a:b])
                 misses.append(buf[:n])

@@ -166,7 +166,7 @@ def test_ga_land_verdict_is_the_brute_force_one_and_agrees_with_the_exact_test(l
             part = np.empty(todo.size, dtype=np.int64)
             n = rk.ga_land_hits(lon0[todo], lat0[todo], lon1[todo], lat1[todo], coarse, clear,
                                 coarse_deg, np.asarray(land_mask.raster),
-                                np.asarray(land_mask.sea_distance_cells), land_mask.cell_deg,
+                                np.asarray(land_mask.coast_distance), land_mask.cell_deg,
                                 0.05, fine.keys, fine.fine, missing, part)
             got[todo] = part
             fine.add(missing[:n])

@@ -1,0 +1,141 @@
+"""Compiled clearance walk of great-circle segments on the signed distance to the coast.
+
+Sphere tracing: at each position of a segment the walk reads a lower bound d of the distance
+to land (level 0, `geo.coast_distance`, 0.05-deg cells; where that cannot decide, level 1,
+`geo.fine_distance`, full-resolution tiles of 0.0025 deg) and the clearance c the position
+needs (`route.clearance`: open sea, approach zone, free circle round the span ends). With
+d >= c + eps every point within d - c is clear and the walk jumps there; with c <= d < c + eps
+it steps eps (points within eps keep c - eps); below c the position is a violation. After the
+first violation the walk only grades it: inland it jumps by the distance to the sea and
+counts the samples jumped over, elsewhere one position stands for the next `GRADE_STEP`
+samples. Positions are in sample units of the exact scan's grid (chord fractions k / steps);
+a unit is at most `max_arc_per_step` of arc. A tile not yet built before the first violation
+makes the segment -1 and its key is written to `missing` (the caller builds, then rescans).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from ..geo.coast_distance import NM_PER_DEG
+from ..geo.coast_distance import UNIT_NM as L0_UNIT_NM
+from ..geo.fine_distance import FINE_PER_TILE, TILE_DEG
+from ..geo.fine_distance import UNIT_NM as L1_UNIT_NM
+from ..geo.land_kernels import FINE, segment_ends
+from ._route_kernel import max_arc_per_step
+
+GRADE_STEP = 8 * FINE  # samples one graded position stands for after a violation
+_D2R = math.pi / 180.0
+
+
+@njit(cache=True, nogil=True)
+def unit_vector(lat_deg: float, lon_deg: float):
+    """Unit vector (x, y, z) of a point on the sphere."""
+    la, lo = lat_deg * _D2R, lon_deg * _D2R
+    return math.cos(la) * math.cos(lo), math.cos(la) * math.sin(lo), math.sin(la)
+
+
+@njit(cache=True, nogil=True)
+def end_distance_nm(x: float, y: float, z: float, ends: np.ndarray) -> float:
+    """Arc [NM] from a point (unit vector) to the nearer span end (`ends`: two unit vectors)."""
+    dot = max(x * ends[0] + y * ends[1] + z * ends[2], x * ends[3] + y * ends[4] + z * ends[5])
+    return math.acos(min(max(dot, -1.0), 1.0)) / _D2R * NM_PER_DEG
+
+
+@njit(cache=True, nogil=True)
+def clearance_within_nm(q_nm: float, r_nm: float, rule: np.ndarray) -> float:
+    """The largest clearance [NM] any point within `r_nm` of a point `q_nm` from the nearer
+    span end needs: 0 within the free radius (rule[3]), the approach clearance (rule[1])
+    within the approach zone (rule[2]), the open-sea clearance (rule[0]) beyond."""
+    need = 0.0
+    if q_nm + r_nm > rule[3] and q_nm - r_nm <= rule[2]:
+        need = max(need, rule[1])
+    if q_nm + r_nm > rule[2]:
+        need = max(need, rule[0])
+    return need
+
+
+@njit(cache=True, nogil=True)
+def clearance_walk(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, coast_dist, cell_deg,
+                   spacing_deg, slots, grids, ends, rule, missing, out):
+    """Violations per segment (0 = clear; -1 = rescan after the tiles in `missing` are built);
+    returns how many tile keys were written to `missing`. `rule`: open-sea clearance,
+    approach clearance, approach zone, free radius, eps [NM]; `ends`: the span ends' unit
+    vectors (6,). A jump of length L from a point with bound d needs d - L at least the
+    clearance of every point it passes (`clearance_within_nm` over d)."""
+    n_lat, n_lon = coast_dist.shape
+    c_lat, c_lon = coarse.shape
+    inv, c_inv = 1.0 / cell_deg, 1.0 / coarse_deg
+    fine_inv = FINE_PER_TILE / TILE_DEG
+    n_fine_lat, n_fine_lon = slots.shape[0] * FINE_PER_TILE, slots.shape[1] * FINE_PER_TILE
+    c_max = max(rule[0], rule[1])
+    eps = rule[4]
+    n_miss = 0
+    for s in range(lon0.size):
+        ax, ay, az, bx, by, bz, arc = segment_ends(lat0[s], lon0[s], lat1[s], lon1[s])
+        steps = FINE * max(1, math.ceil(arc / spacing_deg))
+        per_nm = max_arc_per_step(arc, steps) * NM_PER_DEG  # NM per sample unit, at most
+        count = 0
+        unresolved = False
+        k = 0.0
+        while k <= steps:
+            f = k / steps
+            x, y, z = ax + f * (bx - ax), ay + f * (by - ay), az + f * (bz - az)
+            r = math.sqrt(x * x + y * y + z * z)
+            x, y, z = x / r, y / r, z / r
+            la = math.asin(max(min(z, 1.0), -1.0)) / _D2R
+            lo = math.atan2(y, x) / _D2R
+            if not count:
+                ci = min(max(int((la + 90.0) * c_inv), 0), c_lat - 1)
+                cj = min(max(int((lo + 180.0) * c_inv), 0), c_lon - 1)
+                room = clear_deg[ci, cj] * NM_PER_DEG - c_max
+                if not coarse[ci, cj] and room > per_nm:
+                    k += room / per_nm
+                    continue
+            i = min(max(int((la + 90.0) * inv), 0), n_lat - 1)
+            j = min(max(int((lo + 180.0) * inv), 0), n_lon - 1)
+            d0 = coast_dist[i, j] * L0_UNIT_NM
+            if d0 >= c_max + eps:  # sea far enough from the coast for any clearance
+                k += max((d0 - c_max) / per_nm, GRADE_STEP if count else 0.0)
+                continue
+            if d0 < 0.0:  # inland: every sample within -d0 is on land
+                n = min(1 + int(-d0 / per_nm), steps - int(k) + 1) if count else 1
+                count += n
+                k += n
+                continue
+            q = end_distance_nm(x, y, z, ends)
+            c = clearance_within_nm(q, d0, rule)
+            if d0 >= c + eps:
+                k += max((d0 - c) / per_nm, GRADE_STEP if count else 0.0)
+                continue
+            if count:  # a violation already: the count only grades it (level 0 only)
+                count += GRADE_STEP
+                k += GRADE_STEP
+                continue
+            gi = min(max(int((la + 90.0) * fine_inv), 0), n_fine_lat - 1)
+            gj = min(max(int((lo + 180.0) * fine_inv), 0), n_fine_lon - 1)
+            ti, tj = gi // FINE_PER_TILE, gj // FINE_PER_TILE
+            slot = slots[ti, tj]
+            if slot < 0:
+                key = ti * slots.shape[1] + tj
+                unresolved = True
+                if n_miss < missing.size and (n_miss == 0 or missing[n_miss - 1] != key):
+                    missing[n_miss] = key
+                    n_miss += 1
+                k += 1.0
+                continue
+            v = grids[slot, gi - ti * FINE_PER_TILE, gj - tj * FINE_PER_TILE]
+            d1 = -1.0 if v == 0 else (v - 1) * L1_UNIT_NM
+            c = clearance_within_nm(q, max(d1, 0.0), rule)
+            if d1 >= c + eps:
+                k += (d1 - c) / per_nm
+            elif d1 >= clearance_within_nm(q, eps, rule):
+                k += eps / per_nm  # hugging the clearance: points within eps keep c - eps
+            else:
+                count += 1
+                k += 1.0
+        out[s] = -1 if unresolved else count
+    return n_miss

@@ -1,0 +1,130 @@
+"""The clearance walk against geodesic distances to the full-resolution coastline (pyproj and
+shapely on the same polygons, points every ~0.05 NM): a leg it calls clear keeps its
+clearance everywhere (less the walk's eps), a leg it flags comes close to breaking it."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from shiproute_core.units import M_PER_NM
+from shiproute_planner.route.clearance import EPS_NM, ClearanceRule
+
+LOOSENESS_NM = 0.7  # level 1's looseness (a fine diagonal, the coastline band, one step)
+
+
+@pytest.fixture(scope="module")
+def walk_inputs():
+    from shiproute_planner.geo.fine_distance import default_fine_distance
+    from shiproute_planner.geo.full_land import final_land
+    from shiproute_planner.route.fast_eval import coarse_land
+
+    final = final_land()
+    coarse, clear, coarse_deg = coarse_land(final.mask)
+    return final, default_fine_distance(), coarse, clear, coarse_deg
+
+
+def _walk(walk_inputs, lon0, lat0, lon1, lat1, rule, ends_lonlat):
+    from shiproute_planner.route import _land_walk as lw
+
+    final, fine, coarse, clear, coarse_deg = walk_inputs
+    ends = np.array([*lw.unit_vector(ends_lonlat[1], ends_lonlat[0]),
+                     *lw.unit_vector(ends_lonlat[3], ends_lonlat[2])])
+    got = np.full(lon0.size, -1, dtype=np.int64)
+    todo = np.arange(lon0.size)
+    for _ in range(200):  # as the evaluator does: build the tiles met, rescan those legs
+        missing = np.empty(64, dtype=np.int64)  # small: exercises the full-buffer path
+        part = np.empty(todo.size, dtype=np.int64)
+        n = lw.clearance_walk(lon0[todo], lat0[todo], lon1[todo], lat1[todo], coarse, clear,
+                              coarse_deg, np.asarray(final.mask.coast_distance),
+                              final.mask.cell_deg, 0.05, fine.slots, fine.grids, ends,
+                              rule.kernel_array(), missing, part)
+        got[todo] = part
+        fine.add(missing[:n])
+        todo = todo[part < 0]
+        if not todo.size:
+            return got
+    raise AssertionError("tiles never all built")
+
+
+def _dense_truth(final, lon0, lat0, lon1, lat1, rule, ends_lonlat):
+    """(true distance to land [NM], clearance needed [NM]) at points ~0.05 NM apart."""
+    import pyproj
+    import shapely
+
+    geod = pyproj.Geod(ellps="WGS84")
+    _, _, length_m = geod.inv(lon0, lat0, lon1, lat1)
+    n = max(2, int(length_m / M_PER_NM / 0.05) + 1)
+    pts = np.array(geod.npts(lon0, lat0, lon1, lat1, n - 2))
+    pts = np.vstack([[lon0, lat0], pts.reshape(-1, 2), [lon1, lat1]])
+    c_lon, c_lat = 0.5 * (lon0 + lon1), 0.5 * (lat0 + lat1)
+    aeqd = pyproj.Transformer.from_crs(
+        "EPSG:4326", f"+proj=aeqd +lat_0={c_lat} +lon_0={c_lon} +ellps=WGS84", always_xy=True)
+    half = 0.4
+    parts = final.tiles.land_near(min(lon0, lon1) - half / np.cos(np.radians(c_lat)),
+                                  min(lat0, lat1) - half,
+                                  max(lon0, lon1) + half / np.cos(np.radians(c_lat)),
+                                  max(lat0, lat1) + half)
+    x, y = aeqd.transform(pts[:, 0], pts[:, 1])
+    if parts:
+        land = shapely.union_all(shapely.transform(
+            np.array(parts, dtype=object),
+            lambda xy: np.column_stack(aeqd.transform(xy[:, 0], xy[:, 1]))))
+        dist = shapely.distance(shapely.points(x, y), land) / M_PER_NM
+    else:
+        dist = np.full(x.size, np.inf)
+    end_nm = np.full(x.size, np.inf)
+    for e_lon, e_lat in (ends_lonlat[:2], ends_lonlat[2:]):
+        _, _, d_m = geod.inv(pts[:, 0], pts[:, 1], np.full(x.size, e_lon),
+                             np.full(x.size, e_lat))
+        end_nm = np.minimum(end_nm, d_m / M_PER_NM)
+    need = np.where(end_nm <= rule.free_radius_nm, 0.0,
+                    np.where(end_nm <= rule.approach_zone_nm, rule.approach_nm,
+                             rule.open_sea_nm))
+    return dist, need
+
+
+# the Isles of Scilly, the Zhoushan islets, Juan de Fuca; the Bosphorus (0.4-2 NM wide)
+# with the clearance of a narrow strait
+@pytest.mark.parametrize(("centre", "open_sea_nm"), [
+    ((-6.35, 49.92), 2.0), ((29.05, 41.1), 0.2), ((122.3, 30.0), 2.0), ((-123.6, 48.3), 2.0)])
+def test_walk_keeps_the_clearance_it_reports(walk_inputs, centre, open_sea_nm):
+    final = walk_inputs[0]
+    rng = np.random.default_rng(round(100 * centre[1]))
+    rule = ClearanceRule(open_sea_nm, min(0.5, open_sea_nm), 10.0)
+    lon0 = centre[0] + rng.uniform(-0.3, 0.3, 60)
+    lat0 = centre[1] + rng.uniform(-0.2, 0.2, 60)
+    course, length = rng.uniform(0.0, 2 * np.pi, 60), rng.uniform(0.02, 0.15, 60)
+    lon1 = lon0 + length * np.sin(course) / np.cos(np.radians(lat0))
+    lat1 = lat0 + length * np.cos(course)
+    # half the legs start at a span end (approach rule), half are open sea (ends far away)
+    got = np.empty(lon0.size, dtype=np.int64)
+    ends_of = []
+    for half in (slice(0, 30), slice(30, 60)):
+        ends = ((lon0[half.start], lat0[half.start], lon1[half.start], lat1[half.start])
+                if half.start == 0 else (0.0, 0.0, 0.0, 0.5))
+        ends_of += [ends] * 30
+        got[half] = _walk(walk_inputs, lon0[half], lat0[half], lon1[half], lat1[half], rule,
+                          ends)
+    assert np.all(got >= 0)
+    clear, flagged = 0, 0
+    for k in range(lon0.size):
+        dist, need = _dense_truth(final, lon0[k], lat0[k], lon1[k], lat1[k], rule, ends_of[k])
+        if got[k] == 0:
+            # 0.05 NM between the dense points: a point between them is that much closer
+            assert np.all(dist >= need - EPS_NM - 0.03), (k, float(np.min(dist - need)))
+            clear += 1
+        else:
+            assert np.any(dist < need + LOOSENESS_NM), (k, float(np.min(dist - need)))
+            flagged += 1
+    assert clear >= 3 and flagged >= 3  # both kinds of legs
+
+
+def test_walk_grades_a_leg_by_how_much_of_it_crosses_land(walk_inputs):
+    # eastward along 50 N from the Atlantic into France: the longer the leg runs over land,
+    # the larger the count
+    rule = ClearanceRule(0.0, 0.0, 0.0)
+    lon0 = np.full(4, -6.0)
+    lat = np.full(4, 48.0)
+    lon1 = np.array([-4.0, -2.0, 2.0, 6.0])
+    got = _walk(walk_inputs, lon0, lat, lon1, lat, rule, (0.0, 0.0, 0.0, 0.5))
+    assert got[0] > 0 and np.all(np.diff(got) > 0)
