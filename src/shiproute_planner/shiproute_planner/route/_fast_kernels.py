@@ -3,6 +3,7 @@ call, ellipsoidal geodesic steps, and the coarse land raster with its clear dist
 
 The ship model itself is `ship.fast_kernel.evaluate_kernel` (called, not copied); weather
 sampling is the weather package's `trilinear` kernel, called by `fast_eval` before these.
+`_var`, called a dozen times per point, is inlined (no reference counting of its arrays).
 """
 
 from __future__ import annotations
@@ -45,7 +46,7 @@ def wrap360(x):
     return x % 360.0  # zeros (+0.0 either way), NaN, far values
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def _var(wx, chan, isdir, k, p):
     """Value of variable k at point p (NaN if absent); directions in degrees 0..360."""
     c = chan[k]
