@@ -3,7 +3,6 @@ call, ellipsoidal geodesic steps, and the coarse land raster with its clear dist
 
 The ship model itself is `ship.fast_kernel.evaluate_kernel` (called, not copied); weather
 sampling is the weather package's `trilinear` kernel, called by `fast_eval` before these.
-`_var`, called a dozen times per point, is inlined (no reference counting of its arrays).
 """
 
 from __future__ import annotations
@@ -46,17 +45,22 @@ def wrap360(x):
     return x % 360.0  # zeros (+0.0 either way), NaN, far values
 
 
-@njit(cache=True, nogil=True, inline="always")
+@njit(cache=True, nogil=True)
+def _direction_deg(s, co):
+    """Direction [deg, 0..360) of a (sine, cosine) channel pair; NaN if either is NaN."""
+    if s != s or co != co:
+        return np.nan
+    return wrap360(math.degrees(math.atan2(s, co)))
+
+
+@njit(cache=True, nogil=True)
 def _var(wx, chan, isdir, k, p):
     """Value of variable k at point p (NaN if absent); directions in degrees 0..360."""
     c = chan[k]
     if c < 0:
         return np.nan
     if isdir[k]:
-        s, co = wx[c, p], wx[c + 1, p]
-        if s != s or co != co:
-            return np.nan
-        return wrap360(math.degrees(math.atan2(s, co)))
+        return _direction_deg(wx[c, p], wx[c + 1, p])
     return wx[c, p]
 
 
@@ -77,18 +81,29 @@ def fill_sea(wx, chan, isdir, sea, limits):
     n = sea.shape[1]
     pmin, pmax = limits[5, 0], limits[5, 1]
     hmax = limits[3, 1]
+    val = np.empty(len(SEA_VARIABLES))
     for p in range(n):
-        u = _nz(_var(wx, chan, isdir, 0, p), 0.0)
-        v = _nz(_var(wx, chan, isdir, 1, p), 0.0)
-        tot_hs = _nz(_var(wx, chan, isdir, 2, p), 0.0)
-        tot_t = _var(wx, chan, isdir, 4, p)
+        # every variable but the total sea's direction (needed only by fallbacks), read here
+        # rather than by a call per variable (each would count references to the arrays)
+        for k in range(val.size):
+            c = chan[k]
+            if k == 3 or c < 0:
+                val[k] = np.nan
+            elif isdir[k]:
+                val[k] = _direction_deg(wx[c, p], wx[c + 1, p])
+            else:
+                val[k] = wx[c, p]
+        u = _nz(val[0], 0.0)
+        v = _nz(val[1], 0.0)
+        tot_hs = _nz(val[2], 0.0)
+        tot_t = val[4]
         tot_t = _nz(_clip(tot_t, 0.5, 30.0) if tot_t == tot_t else tot_t, 8.0)
-        ws = _var(wx, chan, isdir, 5, p)
-        sw = _var(wx, chan, isdir, 6, p)
-        ws_dir = _var(wx, chan, isdir, 7, p)
-        sw_dir = _var(wx, chan, isdir, 8, p)
-        ws_t = _var(wx, chan, isdir, 9, p)
-        sw_t = _var(wx, chan, isdir, 10, p)
+        ws = val[5]
+        sw = val[6]
+        ws_dir = val[7]
+        sw_dir = val[8]
+        ws_t = val[9]
+        sw_t = val[10]
         if ws_t == ws_t:
             ws_t = _clip(ws_t, 0.5, 30.0)
         if sw_t == sw_t:
@@ -119,8 +134,8 @@ def fill_sea(wx, chan, isdir, sea, limits):
         sea[6, p] = _nz(sw_dir if has_sw and sw_dir == sw_dir else _var(wx, chan, isdir, 3, p),
                         0.0)
         sea[7, p] = _clip(_nz(sw_t if has_sw and sw_t == sw_t else tot_t, 8.0), pmin, pmax)
-        sea[8, p] = _nz(_var(wx, chan, isdir, 11, p), 0.0)
-        sea[9, p] = _nz(_var(wx, chan, isdir, 12, p), 0.0)
+        sea[8, p] = _nz(val[11], 0.0)
+        sea[9, p] = _nz(val[12], 0.0)
 
 
 @njit(cache=True, nogil=True)
