@@ -7,6 +7,7 @@ import math
 import numba
 import numpy as np
 
+from .angle_kernels import wrap360
 from .land_kernels import chord_sample, segment_ends
 
 # columns of the grid table (one row per grid, finest first)
@@ -23,7 +24,7 @@ def depth_at(lat: float, lon: float, data: np.ndarray, grids: np.ndarray) -> flo
             continue
         dlon = grids[g, DLON]
         n_lon = int(grids[g, N_LON])
-        dl = (lon - grids[g, LON0] + 0.5 * dlon) % 360.0 - 0.5 * dlon
+        dl = wrap360(lon - grids[g, LON0] + 0.5 * dlon) - 0.5 * dlon
         j = int(math.floor(dl / dlon + 0.5))  # noqa: RUF046 - numba
         if grids[g, PERIODIC] > 0.5:
             j = j % n_lon
@@ -57,7 +58,7 @@ def _finest_cell_deg(lat0: float, lon0: float, lat1: float, lon1: float,
             return max(grids[g, DLAT], grids[g, DLON])
         width = grids[g, N_LON] * grids[g, DLON]
         west = grids[g, LON0] - 0.5 * grids[g, DLON]
-        a = (min(lon0, lon1) - 0.5 - west) % 360.0
+        a = wrap360(min(lon0, lon1) - 0.5 - west)
         span = abs(lon1 - lon0) + 1.0
         if a <= width or a + span >= 360.0:
             return max(grids[g, DLAT], grids[g, DLON])
@@ -68,7 +69,7 @@ def _finest_cell_deg(lat0: float, lon0: float, lat1: float, lon1: float,
 def _block_of(lat: float, lon: float, block_deg: float, n_rows: int, n_cols: int):
     """(row, column) of a global block raster (row 0 at 90 S, column 0 at 180 W)."""
     i = min(max(int((lat + 90.0) / block_deg), 0), n_rows - 1)
-    j = min(max(int(((lon + 180.0) % 360.0) / block_deg), 0), n_cols - 1)
+    j = min(max(int(wrap360(lon + 180.0) / block_deg), 0), n_cols - 1)
     return i, j
 
 
@@ -209,7 +210,7 @@ def _cell_jump(lat: float, lon: float, cap: float, grids: np.ndarray, cell_min: 
         return 1
     dlat, dlon = grids[0, DLAT], grids[0, DLON]
     i = int(math.floor((lat - grids[0, LAT0]) / dlat + 0.5))  # noqa: RUF046 - numba
-    dl = (lon - grids[0, LON0] + 0.5 * dlon) % 360.0 - 0.5 * dlon
+    dl = wrap360(lon - grids[0, LON0] + 0.5 * dlon) - 0.5 * dlon
     j = int(math.floor(dl / dlon + 0.5))  # noqa: RUF046 - numba
     if grids[0, PERIODIC] > 0.5:
         j = j % n_lon

@@ -12,6 +12,7 @@ import math
 import numpy as np
 from numba import njit
 
+from ..geo.angle_kernels import wrap360
 from ..geo.clear_distance import clear_distance_deg  # noqa: F401 - polar-shrink reference
 from ..ship import fast_kernel as fk
 
@@ -29,20 +30,6 @@ G_M_S2 = 9.80665
 A_M = 6378137.0  # WGS 84
 F = 1.0 / 298.257223563
 E2 = F * (2.0 - F)
-
-
-@njit(cache=True, nogil=True)
-def wrap360(x):
-    """`x % 360.0` (Python's float modulo, bit for bit) without the library call where x lies
-    within one turn of [0, 360): fmod returns x there, or x - 360 exactly (Sterbenz), and
-    the sign correction adds 360 to a negative x."""
-    if 0.0 < x < 360.0:
-        return x
-    if 360.0 <= x < 720.0:
-        return x - 360.0
-    if -360.0 < x < 0.0:
-        return x + 360.0
-    return x % 360.0  # zeros (+0.0 either way), NaN, far values
 
 
 @njit(cache=True, nogil=True)
