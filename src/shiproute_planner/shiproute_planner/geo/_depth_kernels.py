@@ -7,10 +7,27 @@ import math
 import numba
 import numpy as np
 
+from .angle_kernels import wrap360
 from .land_kernels import chord_sample, segment_ends
 
 # columns of the grid table (one row per grid, finest first)
 LAT0, DLAT, LON0, DLON, N_LAT, N_LON, PERIODIC, OFFSET = range(8)
+_D2R = math.pi / 180.0  # as land_kernels
+
+
+@numba.njit(cache=True, nogil=True)
+def unit_vector(lat_deg: float, lon_deg: float):
+    """Unit vector of a point: `land_kernels.segment_ends`' arithmetic for one end (the
+    same bits, tested), so a scan can reuse a shared end's."""
+    la, lo = lat_deg * _D2R, lon_deg * _D2R
+    return math.cos(la) * math.cos(lo), math.cos(la) * math.sin(lo), math.sin(la)
+
+
+@numba.njit(cache=True, nogil=True)
+def ends_arc_deg(ax: float, ay: float, az: float, bx: float, by: float, bz: float) -> float:
+    """Great-circle arc [deg] between two unit vectors, as `land_kernels.segment_ends`."""
+    dot = min(1.0, max(-1.0, ax * bx + ay * by + az * bz))
+    return math.acos(dot) / _D2R
 
 
 @numba.njit(cache=True, nogil=True)
@@ -23,7 +40,7 @@ def depth_at(lat: float, lon: float, data: np.ndarray, grids: np.ndarray) -> flo
             continue
         dlon = grids[g, DLON]
         n_lon = int(grids[g, N_LON])
-        dl = (lon - grids[g, LON0] + 0.5 * dlon) % 360.0 - 0.5 * dlon
+        dl = wrap360(lon - grids[g, LON0] + 0.5 * dlon) - 0.5 * dlon
         j = int(math.floor(dl / dlon + 0.5))  # noqa: RUF046 - numba
         if grids[g, PERIODIC] > 0.5:
             j = j % n_lon
@@ -57,7 +74,7 @@ def _finest_cell_deg(lat0: float, lon0: float, lat1: float, lon1: float,
             return max(grids[g, DLAT], grids[g, DLON])
         width = grids[g, N_LON] * grids[g, DLON]
         west = grids[g, LON0] - 0.5 * grids[g, DLON]
-        a = (min(lon0, lon1) - 0.5 - west) % 360.0
+        a = wrap360(min(lon0, lon1) - 0.5 - west)
         span = abs(lon1 - lon0) + 1.0
         if a <= width or a + span >= 360.0:
             return max(grids[g, DLAT], grids[g, DLON])
@@ -68,7 +85,7 @@ def _finest_cell_deg(lat0: float, lon0: float, lat1: float, lon1: float,
 def _block_of(lat: float, lon: float, block_deg: float, n_rows: int, n_cols: int):
     """(row, column) of a global block raster (row 0 at 90 S, column 0 at 180 W)."""
     i = min(max(int((lat + 90.0) / block_deg), 0), n_rows - 1)
-    j = min(max(int(((lon + 180.0) % 360.0) / block_deg), 0), n_cols - 1)
+    j = min(max(int(wrap360(lon + 180.0) / block_deg), 0), n_cols - 1)
     return i, j
 
 
@@ -153,6 +170,7 @@ def segment_min_depth_skip(lon0: np.ndarray, lat0: np.ndarray, lon1: np.ndarray,
     (1, 1) array: no jumps). A dry sample (0 m) ends the leg's walk: nothing is shallower."""
     n_blat, n_blon = coarse.shape
     n_clat, n_clon = clear_deg.shape
+    end_lat, end_lon, ex, ey, ez = math.nan, math.nan, 0.0, 0.0, 0.0  # last end's unit vector
     for s in range(lon0.size):
         cap = cap_m[s]
         if not cap <= threshold_m:  # NaN or above the raster's threshold: the plain walk
@@ -163,7 +181,16 @@ def segment_min_depth_skip(lon0: np.ndarray, lat0: np.ndarray, lon1: np.ndarray,
         if math.isnan(cell):
             out[s] = math.nan
             continue
-        ax, ay, az, bx, by, bz, arc = segment_ends(lat0[s], lon0[s], lat1[s], lon1[s])
+        # a leg that starts where the last one ended (a route's next leg) reuses its unit
+        # vector; zeros are recomputed (+0 and -0 compare equal but may differ in sign)
+        if (lat0[s] == end_lat and lon0[s] == end_lon and end_lat != 0.0
+                and end_lon != 0.0):
+            ax, ay, az = ex, ey, ez
+        else:
+            ax, ay, az = unit_vector(lat0[s], lon0[s])
+        bx, by, bz = unit_vector(lat1[s], lon1[s])
+        end_lat, end_lon, ex, ey, ez = lat1[s], lon1[s], bx, by, bz
+        arc = ends_arc_deg(ax, ay, az, bx, by, bz)
         n = max(1, int(math.ceil(arc / (0.125 * cell))))  # noqa: RUF046 - numba
         step = arc / n
         # the most arc one sample step covers: chord fractions run up to tan(h)/h faster
@@ -209,7 +236,7 @@ def _cell_jump(lat: float, lon: float, cap: float, grids: np.ndarray, cell_min: 
         return 1
     dlat, dlon = grids[0, DLAT], grids[0, DLON]
     i = int(math.floor((lat - grids[0, LAT0]) / dlat + 0.5))  # noqa: RUF046 - numba
-    dl = (lon - grids[0, LON0] + 0.5 * dlon) % 360.0 - 0.5 * dlon
+    dl = wrap360(lon - grids[0, LON0] + 0.5 * dlon) - 0.5 * dlon
     j = int(math.floor(dl / dlon + 0.5))  # noqa: RUF046 - numba
     if grids[0, PERIODIC] > 0.5:
         j = j % n_lon

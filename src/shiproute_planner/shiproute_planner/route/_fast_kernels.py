@@ -12,6 +12,7 @@ import math
 import numpy as np
 from numba import njit
 
+from ..geo.angle_kernels import wrap360
 from ..geo.clear_distance import clear_distance_deg  # noqa: F401 - polar-shrink reference
 from ..ship import fast_kernel as fk
 
@@ -32,17 +33,11 @@ E2 = F * (2.0 - F)
 
 
 @njit(cache=True, nogil=True)
-def wrap360(x):
-    """`x % 360.0` (Python's float modulo, bit for bit) without the library call where x lies
-    within one turn of [0, 360): fmod returns x there, or x - 360 exactly (Sterbenz), and
-    the sign correction adds 360 to a negative x."""
-    if 0.0 < x < 360.0:
-        return x
-    if 360.0 <= x < 720.0:
-        return x - 360.0
-    if -360.0 < x < 0.0:
-        return x + 360.0
-    return x % 360.0  # zeros (+0.0 either way), NaN, far values
+def _direction_deg(s, co):
+    """Direction [deg, 0..360) of a (sine, cosine) channel pair; NaN if either is NaN."""
+    if s != s or co != co:
+        return np.nan
+    return wrap360(math.degrees(math.atan2(s, co)))
 
 
 @njit(cache=True, nogil=True)
@@ -52,10 +47,7 @@ def _var(wx, chan, isdir, k, p):
     if c < 0:
         return np.nan
     if isdir[k]:
-        s, co = wx[c, p], wx[c + 1, p]
-        if s != s or co != co:
-            return np.nan
-        return wrap360(math.degrees(math.atan2(s, co)))
+        return _direction_deg(wx[c, p], wx[c + 1, p])
     return wx[c, p]
 
 
@@ -76,18 +68,29 @@ def fill_sea(wx, chan, isdir, sea, limits):
     n = sea.shape[1]
     pmin, pmax = limits[5, 0], limits[5, 1]
     hmax = limits[3, 1]
+    val = np.empty(len(SEA_VARIABLES))
     for p in range(n):
-        u = _nz(_var(wx, chan, isdir, 0, p), 0.0)
-        v = _nz(_var(wx, chan, isdir, 1, p), 0.0)
-        tot_hs = _nz(_var(wx, chan, isdir, 2, p), 0.0)
-        tot_t = _var(wx, chan, isdir, 4, p)
+        # every variable but the total sea's direction (needed only by fallbacks), read here
+        # rather than by a call per variable (each would count references to the arrays)
+        for k in range(val.size):
+            c = chan[k]
+            if k == 3 or c < 0:
+                val[k] = np.nan
+            elif isdir[k]:
+                val[k] = _direction_deg(wx[c, p], wx[c + 1, p])
+            else:
+                val[k] = wx[c, p]
+        u = _nz(val[0], 0.0)
+        v = _nz(val[1], 0.0)
+        tot_hs = _nz(val[2], 0.0)
+        tot_t = val[4]
         tot_t = _nz(_clip(tot_t, 0.5, 30.0) if tot_t == tot_t else tot_t, 8.0)
-        ws = _var(wx, chan, isdir, 5, p)
-        sw = _var(wx, chan, isdir, 6, p)
-        ws_dir = _var(wx, chan, isdir, 7, p)
-        sw_dir = _var(wx, chan, isdir, 8, p)
-        ws_t = _var(wx, chan, isdir, 9, p)
-        sw_t = _var(wx, chan, isdir, 10, p)
+        ws = val[5]
+        sw = val[6]
+        ws_dir = val[7]
+        sw_dir = val[8]
+        ws_t = val[9]
+        sw_t = val[10]
         if ws_t == ws_t:
             ws_t = _clip(ws_t, 0.5, 30.0)
         if sw_t == sw_t:
@@ -118,8 +121,8 @@ def fill_sea(wx, chan, isdir, sea, limits):
         sea[6, p] = _nz(sw_dir if has_sw and sw_dir == sw_dir else _var(wx, chan, isdir, 3, p),
                         0.0)
         sea[7, p] = _clip(_nz(sw_t if has_sw and sw_t == sw_t else tot_t, 8.0), pmin, pmax)
-        sea[8, p] = _nz(_var(wx, chan, isdir, 11, p), 0.0)
-        sea[9, p] = _nz(_var(wx, chan, isdir, 12, p), 0.0)
+        sea[8, p] = _nz(val[11], 0.0)
+        sea[9, p] = _nz(val[12], 0.0)
 
 
 @njit(cache=True, nogil=True)

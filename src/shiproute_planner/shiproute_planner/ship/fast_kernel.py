@@ -3,7 +3,9 @@
 All tables are on uniform grids (O(1) lookups); the kernel mirrors ``physics`` term by
 term. Angles enter the tables through cos(relative angle) so that each wave system costs
 one cosine. The speed is found by a bracketed Newton iteration whose slope comes from the
-same tables.
+same tables. Helpers that take arrays are inlined into their callers (`inline="always"`):
+a compiled call counts references to each array argument with atomic operations, once per
+leg and Newton step otherwise; inlined, the results are the same bits.
 """
 
 from __future__ import annotations
@@ -42,14 +44,14 @@ def grid_cell(x0, dx, n, x):
     return i, u - i
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _lin_cos(tab, c):
     """Linear interpolation of ``tab`` given on a uniform grid of cosines -1..1."""
     i, f = grid_cell(-1.0, 2.0 / (tab.size - 1), tab.size, c)
     return tab[i] * (1.0 - f) + tab[i + 1] * f
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _lin_uniform(tab, x0, dx, x):
     """Linear interpolation on a uniform grid starting at x0 with spacing dx (clamped)."""
     i, f = grid_cell(x0, dx, tab.size, x)
@@ -67,7 +69,7 @@ def head_sea_taper(cos_rel):
     return 0.5 * (1.0 + math.cos(math.pi * x))
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _bilin(tab, iv, fv, it, ft, dv):
     """Bilinear value in (speed, period) and its slope along speed."""
     lo = tab[iv, it] * (1.0 - ft) + tab[iv, it + 1] * ft
@@ -75,7 +77,7 @@ def _bilin(tab, iv, fv, it, ft, dv):
     return lo * (1.0 - fv) + hi * fv, (hi - lo) / dv
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _add_m0(tab, hs2, iv, fv, it, ft, ir, fr, m0):
     """m0[s] += Hs^2 * trilinear(tab[..., s]) over (speed, period, cos angle)."""
     for dv in range(2):
@@ -88,7 +90,7 @@ def _add_m0(tab, hs2, iv, fv, it, ft, ir, fr, m0):
                     m0[s] += wgt * tab[iv + dv, it + dt, ir + dr, s]
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def resistance(v, par, r_calm, wake, u_ws, u_sw, a_ws, a_sw, it_ws, ft_ws, it_sw, ft_sw, w_fwd,
                w_side, caa):
     """Total resistance (N), its slope d/dV, wake fraction and its slope at ship speed v."""
@@ -129,7 +131,7 @@ def resistance(v, par, r_calm, wake, u_ws, u_sw, a_ws, a_sw, it_ws, ft_ws, it_sw
     return r, dr, w, dw
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _residual(v, inv_nd, k_thr, par, r_calm, wake, u_ws, u_sw, a_ws, a_sw, it_ws, ft_ws, it_sw,
               ft_sw, w_fwd, w_side, caa):
     """Thrust (1 - t) - total resistance (N) and its slope d/dV at ship speed v."""
@@ -142,7 +144,7 @@ def _residual(v, inv_nd, k_thr, par, r_calm, wake, u_ws, u_sw, a_ws, a_sw, it_ws
     return kt * k_thr - r, dkt * dj * k_thr - dr
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def _solve(n, par, r_calm, wake, u_ws, u_sw, a_ws, a_sw, it_ws, ft_ws, it_sw, ft_sw, w_fwd,
            w_side, caa):
     """Speed through water (m/s) at shaft speed n (rps): Newton kept inside a sign bracket."""
@@ -176,7 +178,7 @@ def _solve(n, par, r_calm, wake, u_ws, u_sw, a_ws, a_sw, it_ws, ft_ws, it_sw, ft
     return x
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _brake_power_kw(n, v, par, wake):
     """Brake power [kW] at shaft speed n (rps) and ship speed v (m/s): propeller torque."""
     d = par[P_D]
@@ -188,7 +190,7 @@ def _brake_power_kw(n, v, par, wake):
     return pb / par[P_ETA_S] * 1e-3
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _imo(par, v, hs, t_mean, cos_rel, peak, out):
     """OR the MSC.1/Circ.1228 flags of one wave system into out[0:4]."""
     if hs < par[P_MIN_HS]:

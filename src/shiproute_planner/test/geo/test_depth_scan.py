@@ -1,6 +1,6 @@
 """The optimiser's capped depth scan (open water crossed in clear-distance jumps, legs over
 threads) gives the plain walk's result, and its verdict is the brute-force one: the
-shallowest of every sample along the leg."""
+shallowest of every sample along the leg; a route's legs scan as they do one by one."""
 
 from __future__ import annotations
 
@@ -8,9 +8,11 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from shiproute_planner.geo import _depth_kernels as dk
 from shiproute_planner.geo.bathymetry import default_depth_files
 from shiproute_planner.geo.depth import load_bathymetry
 from shiproute_planner.geo.depth_scan import LEVELS_M, capped_min_depth_m, level_for
+from shiproute_planner.geo.land_kernels import segment_ends
 
 SKERKI = Path(__file__).parents[1] / "data" / "skerki_etopo2022_30s.nc"
 
@@ -67,3 +69,35 @@ def test_depth_levels_cover_caps_from_above():
     assert level_for(LEVELS_M[0] - 5.0) == LEVELS_M[0]
     assert all(level_for(v) == v for v in LEVELS_M)
     assert level_for(LEVELS_M[-1] + 1.0) is None and level_for(float("nan")) is None
+
+
+def test_unit_vectors_are_segment_ends_bit_for_bit():
+    rng = np.random.default_rng(13)
+    pts = rng.uniform([-90.0, -540.0, -90.0, -540.0], [90.0, 540.0, 90.0, 540.0], (2000, 4))
+    pts[:8] = [[0.0, -0.0, -0.0, 0.0], [90.0, 180.0, -90.0, -180.0], [1e-300, 0.0, 0.0, 0.0],
+               [45.0, 10.0, 45.0, 10.0], [-0.0, 0.0, 0.0, -0.0], [0.0, 360.0, 0.0, 0.0],
+               [60.0, 179.9, 60.0, -179.9], [-30.0, 0.0, 30.0, 180.0]]
+    for la0, lo0, la1, lo1 in pts:
+        want = segment_ends(la0, lo0, la1, lo1)
+        a, b = dk.unit_vector(la0, lo0), dk.unit_vector(la1, lo1)
+        got = (*a, *b, dk.ends_arc_deg(*a, *b))
+        assert np.array_equal(np.array(got).view(np.int64), np.array(want).view(np.int64))
+
+
+@pytest.mark.skipif(not default_depth_files(), reason="ETOPO5 (ferret-datasets) not installed")
+def test_a_route_scans_as_its_legs_one_by_one():
+    # consecutive legs share an end (the scan reuses its unit vector): each leg's depth is
+    # the one it gets alone, signed zeros at a shared end included
+    bathy = load_bathymetry([], with_default=True)
+    rng = np.random.default_rng(14)
+    starts = [(3.0, 55.0), (-50.0, 45.0), (142.5, -10.0), (-1.0, -1.0)]
+    nodes = [np.cumsum(np.vstack([s, rng.normal(0.0, 1.5, (40, 2))]), axis=0) for s in starts]
+    lon = np.concatenate([n[:, 0] for n in nodes] + [np.array([0.5, -0.0, 0.0, -0.5])])
+    lat = np.concatenate([n[:, 1] for n in nodes] + [np.array([0.5, 0.0, -0.0, 0.5])])
+    legs = (lon[:-1], lat[:-1], lon[1:], lat[1:])
+    cap = np.full(lon.size - 1, 25.0)
+    whole = capped_min_depth_m(bathy, *legs, cap)
+    alone = np.array([capped_min_depth_m(bathy, *(e[i:i + 1] for e in legs), cap[i:i + 1])[0]
+                      for i in range(cap.size)])
+    assert np.array_equal(whole, alone, equal_nan=True)
+    assert 0 < np.sum(whole < cap) < cap.size  # shallows and open water both met

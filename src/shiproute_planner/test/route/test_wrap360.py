@@ -1,4 +1,4 @@
-"""The compiled kernels' degree wrap (`_fast_kernels.wrap360`) is Python's `x % 360.0` bit
+"""The compiled kernels' degree wrap (`geo.angle_kernels.wrap360`) is Python's `x % 360.0` bit
 for bit, signed zeros and the round-up to 360.0 of tiny negative values included."""
 
 from __future__ import annotations
@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from shiproute_planner.route import _fast_kernels as fk
+from shiproute_planner.geo import angle_kernels as fk
 
 
 def _bits(x: float) -> bytes:
