@@ -11,12 +11,12 @@ routes sweep the same coasts generation after generation pays each cell once.
 
 from __future__ import annotations
 
-import os
 import threading
 from pathlib import Path
 
 import numpy as np
 
+from .datadir import save_npz_atomic
 from .raster import COAST
 
 
@@ -57,13 +57,8 @@ class FineCoast:
             if self.path is None or self.keys.size == self._saved:
                 return
             keys, fine = self.keys, self.fine
-        tmp = self.path.with_suffix(f".{os.getpid()}.tmp.npz")
-        try:
-            np.savez(tmp, keys=keys, fine=fine)
-            os.replace(tmp, self.path)
+        if save_npz_atomic(self.path, keys=keys, fine=fine):
             self._saved = keys.size
-        except OSError:
-            tmp.unlink(missing_ok=True)  # read-only data directory: keep it in memory only
 
     def add(self, keys: np.ndarray) -> int:
         """Resolve the coastal cells `keys` not yet known; returns how many were new."""

@@ -18,7 +18,6 @@ directory (`save`) so a machine builds each once.
 from __future__ import annotations
 
 import math
-import os
 import threading
 from collections.abc import Callable
 from pathlib import Path
@@ -26,6 +25,8 @@ from pathlib import Path
 import numpy as np
 
 from .coast_distance import NM_PER_DEG
+from .datadir import save_npz_atomic
+from .raster import patch_representatives
 
 FINE_DISTANCE_VERSION = 2  # in the cache file name: bump when the tiles change
 TILE_DEG = 0.5
@@ -64,12 +65,7 @@ def build_tile(ti: int, tj: int, land_near: LandNear, contains: Contains) -> np.
         c = np.floor((xy[:, 0] - b_lon0) / fine_deg).astype(np.int64)
         ok = (r >= 0) & (r < n_r) & (c >= 0) & (c < n_c)
         band[r[ok], c[ok]] = True
-    labels, n_labels = ndimage.label(~band)
-    flat = labels.ravel()
-    cells = np.flatnonzero(flat)
-    first = np.full(n_labels + 1, -1, dtype=np.int64)
-    first[flat[cells[::-1]]] = cells[::-1]
-    rep = first[1:]
+    labels, rep = patch_representatives(~band)
     rep_lat = b_lat0 + (rep // n_c + 0.5) * fine_deg
     rep_lon = b_lon0 + (rep % n_c + 0.5) * fine_deg
     is_land = np.concatenate([[True], np.asarray(contains(rep_lon, rep_lat), dtype=bool)])
@@ -122,13 +118,8 @@ class FineDistance:
             keys = np.flatnonzero(flat >= 0)
             keys = keys[np.argsort(flat[keys])]
             grids = self.grids
-        tmp = self.path.with_suffix(f".{os.getpid()}.tmp.npz")
-        try:
-            np.savez(tmp, keys=keys, grids=grids)
-            os.replace(tmp, self.path)
+        if save_npz_atomic(self.path, keys=keys, grids=grids):
             self._saved = keys.size
-        except OSError:
-            tmp.unlink(missing_ok=True)  # read-only data directory: keep them in memory only
 
     def add(self, keys: np.ndarray) -> int:
         """Build the tiles `keys` (row * TILE_COLS + column) not yet built; how many were new."""

@@ -33,6 +33,17 @@ def _edge_samples(polygons: LandPolygons, step_deg: float) -> tuple[np.ndarray, 
     return pts[:, 0], pts[:, 1]
 
 
+def patch_representatives(free: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Connected patches of the True cells of `free` (labels, 0 outside) and the flat index of
+    each patch's first cell in row-major order (one exact test classifies a whole patch)."""
+    labels, n_labels = ndimage.label(free)
+    flat = labels.ravel()
+    cells = np.flatnonzero(flat)
+    first = np.full(n_labels + 1, -1, dtype=np.int64)
+    first[flat[cells[::-1]]] = cells[::-1]
+    return labels, first[1:]
+
+
 def build_land_raster(polygons: LandPolygons, exact: ExactLand, cell_deg: float) -> np.ndarray:
     """uint8 raster (n_lat, n_lon) over lat -90..90, lon -180..180, row 0 at the south."""
     n_lat = round(180.0 / cell_deg)
@@ -43,12 +54,7 @@ def build_land_raster(polygons: LandPolygons, exact: ExactLand, cell_deg: float)
     coast = np.zeros((n_lat, n_lon), dtype=bool)
     coast[i, j] = True
     coast = ndimage.binary_dilation(coast, structure=np.ones((3, 3), dtype=bool))
-    labels, n_labels = ndimage.label(~coast)
-    flat = labels.ravel()
-    cells = np.flatnonzero(flat)
-    first = np.full(n_labels + 1, -1, dtype=np.int64)
-    first[flat[cells[::-1]]] = cells[::-1]
-    rep = first[1:]
+    labels, rep = patch_representatives(~coast)
     rep_lat = (rep // n_lon + 0.5) * cell_deg - 90.0
     rep_lon = (rep % n_lon + 0.5) * cell_deg - 180.0
     is_land = np.concatenate([[False], exact.contains(rep_lon, rep_lat)])

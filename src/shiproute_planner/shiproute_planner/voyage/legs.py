@@ -68,18 +68,25 @@ def lane_turns(lon0: float, lat0: float, lon1: float, lat1: float,
     return int(np.sum(turn > min_turn_deg))
 
 
-@functools.lru_cache(maxsize=256)
-def sea_distance_m(lon0: float, lat0: float, lon1: float, lat1: float) -> float:
-    """Length of the shortest sea lane between two points [m] (great circle if none)."""
+def _sea_lane(lon0: float, lat0: float, lon1: float, lat1: float) -> np.ndarray | None:
+    """searoute's lane between two points as (k, 2) lon/lat rows, or None where it has none
+    (the callers fall back on the great circle)."""
     import searoute
 
-    direct = float(inverse(lon0, lat0, lon1, lat1)[1])
     try:
         feat = searoute.searoute([float(wrap_lon(lon0)), lat0], [float(wrap_lon(lon1)), lat1])
         c = np.asarray(feat["geometry"]["coordinates"], dtype=float)
-    except Exception:  # searoute has no lane here: the great circle is all we know
-        return direct
-    if c.ndim != 2 or c.shape[0] < 2:
+    except Exception:  # searoute has no lane here
+        return None
+    return c if c.ndim == 2 and c.shape[0] >= 2 else None
+
+
+@functools.lru_cache(maxsize=256)
+def sea_distance_m(lon0: float, lat0: float, lon1: float, lat1: float) -> float:
+    """Length of the shortest sea lane between two points [m] (great circle if none)."""
+    direct = float(inverse(lon0, lat0, lon1, lat1)[1])
+    c = _sea_lane(lon0, lat0, lon1, lat1)
+    if c is None:
         return direct
     lon = np.concatenate([[lon0], c[:, 0], [lon1]])
     lat = np.concatenate([[lat0], c[:, 1], [lat1]])
@@ -98,16 +105,11 @@ def sea_distance_under_way_m(land: Any, lon0: float, lat0: float, lon1: float,
     behind the ship: a ship at 39.71N 136.65E bound for the Tsugaru Strait got a lane via
     41.77N 135.96E, 315 NM for 183 NM of open water, and a schedule that had it dawdle
     to the strait and meet cycle 2's storm beyond it."""
-    import searoute
     from shiproute_core.geodesy import great_circle_points, unwrap_near
 
     direct = float(inverse(lon0, lat0, lon1, lat1)[1])
-    try:
-        feat = searoute.searoute([float(wrap_lon(lon0)), lat0], [float(wrap_lon(lon1)), lat1])
-        c = np.asarray(feat["geometry"]["coordinates"], dtype=float)
-    except Exception:  # searoute has no lane here: the great circle is all we know
-        return direct
-    if c.ndim != 2 or c.shape[0] < 2:
+    c = _sea_lane(lon0, lat0, lon1, lat1)
+    if c is None:
         return direct
     lon = np.unwrap(np.concatenate([c[:, 0], [lon1]]), period=360.0)
     lon = lon - np.round((lon[0] - unwrap_near(lon[0], lon0)) / 360.0) * 360.0
