@@ -146,8 +146,8 @@ def retimed_route(prep: PreparedVoyage, pieces: Sequence[Piece], start_s: float,
     pieces = tuple(pieces)
     target_s = prep.rta_s - TARGET_BEFORE_RTA_S
     before = verdict(pieces, prep)
-    off_h = (before.arrival_s - target_s) / 3600.0
-    if abs(before.arrival_s - target_s) <= OFF_TARGET_S:
+    off_s = before.arrival_s - target_s
+    if abs(off_s) <= OFF_TARGET_S:
         return Retimed(pieces, "", False)
     base = np.concatenate([p.rpm() for p in pieces])
     window_s = target_s - start_s
@@ -174,10 +174,9 @@ def retimed_route(prep: PreparedVoyage, pieces: Sequence[Piece], start_s: float,
     after = verdict(current, prep)
     better = after.feasible and (not before.feasible
                                  or after.fuel_t <= before.fuel_t * (1.0 + FUEL_EPS))
-    early = f"{-off_h:.1f} h early" if off_h < 0 else f"{off_h:.1f} h late"
     if better and changed:
         from_leg = "" if cut == 0 else f" from leg {cut + 1} on"
-        said = (f"re-timed: {what} arrived {early} against its target (RTA - "
+        said = (f"re-timed: {what} arrived {off_target_words(off_s)} against its target (RTA - "
                 f"{TARGET_BEFORE_RTA_S / 3600.0:g} h); re-sailed at one RPM factor{from_leg}, "
                 f"now {(after.arrival_s - target_s) / 3600.0:+.1f} h, fuel "
                 f"{before.fuel_t:.1f} -> {after.fuel_t:.1f} t")
@@ -185,9 +184,18 @@ def retimed_route(prep: PreparedVoyage, pieces: Sequence[Piece], start_s: float,
     why = ("no time is left to re-time its legs" if not changed
            else "the re-timed route broke a constraint" if not after.feasible
            else "the re-timed route cost more fuel")
-    said = (f"not re-timed: {what} arrives {early} against its target (RTA - "
-            f"{TARGET_BEFORE_RTA_S / 3600.0:g} h); {why}")
-    return Retimed(pieces, said, False)
+    return Retimed(pieces, not_retimed_words(what, off_s, why), False)
+
+
+def off_target_words(off_s: float) -> str:
+    """An arrival `off_s` [s] from its target in words ("2.5 h early", "1.0 h late")."""
+    return f"{-off_s / 3600.0:.1f} h early" if off_s < 0 else f"{off_s / 3600.0:.1f} h late"
+
+
+def not_retimed_words(what: str, off_s: float, why: str) -> str:
+    """The plan's words for a route left as it was."""
+    return (f"not re-timed: {what} arrives {off_target_words(off_s)} against its target "
+            f"(RTA - {TARGET_BEFORE_RTA_S / 3600.0:g} h); {why}")
 
 
 Leg = RouteEvaluation | None
@@ -238,11 +246,8 @@ def retimed_legs(prep: PreparedVoyage, results: Sequence[RouteEvaluation],
         return unchanged
     why = not_retimable(prep)
     if why:
-        early = (f"{-off_s / 3600.0:.1f} h early" if off_s < 0
-                 else f"{off_s / 3600.0:.1f} h late")
-        said = (f"not re-timed: {what} arrives {early} against its target (RTA - "
-                f"{TARGET_BEFORE_RTA_S / 3600.0:g} h); {why}")
-        return RetimedLegs(tuple(results), tuple(approaches), arrivals, said, False)
+        return RetimedLegs(tuple(results), tuple(approaches), arrivals,
+                           not_retimed_words(what, off_s, why), False)
     out = retimed_route(prep, pieces, start_s, what)
     if not out.retimed:
         return RetimedLegs(tuple(results), tuple(approaches), arrivals, out.said, False)

@@ -23,7 +23,6 @@ from .rpm_factor import TARGET_BEFORE_RTA_S, retimed_rpm
 # RPM factor up to the cut; the legs after it get the factor that keeps the arrival time
 # (speed ~ RPM), so a copy reaches the broken stretch earlier or later by up to ~10 %
 RETIME_FACTORS = (0.91, 0.96, 1.04, 1.09)
-ARRIVAL_MARGIN_S = TARGET_BEFORE_RTA_S  # re-timed copies aim this long before the RTA
 # lateral shift of the broken stretch's nodes, in mean leg lengths (half of it on the node
 # before and after the stretch), to either side
 SHIFTS_LEGS = (0.5, 1.0, 2.0)
@@ -49,11 +48,11 @@ def retimed_tracks(problem: RouteProblem, ev: RouteEvaluation, row: int,
                    stretch: tuple[int, int]) -> list[TrackSeed]:
     """Route `row`'s track with its RPMs scaled by each of RETIME_FACTORS up to the start
     and up to the end of the broken stretch, and after that by the factor that brings it in
-    ARRIVAL_MARGIN_S before the RTA (times scale as 1 / RPM)."""
+    TARGET_BEFORE_RTA_S before the RTA (times scale as 1 / RPM)."""
     lon, lat = ev.lon_deg[row], ev.lat_deg[row]
     rpm = np.asarray(ev.legs["rpm"][row], dtype=float)
     dur = np.asarray(ev.legs["duration_s"][row], dtype=float)
-    window_s = problem.rta_s - ARRIVAL_MARGIN_S - float(ev.time_s[row, 0])
+    window_s = problem.rta_s - TARGET_BEFORE_RTA_S - float(ev.time_s[row, 0])
     out = []
     for cut in sorted({max(stretch[0], 1), stretch[1]}):
         if cut >= dur.size:
