@@ -122,8 +122,9 @@ def with_baseline_check(plan: RoutePlan) -> RoutePlan:
 
 def checked_plan(plan: RoutePlan, land: LandMask, limits: RouteLimits,
                  clearance_nm: float = 0.0) -> RoutePlan:
-    """The plan with the route check's findings in its warnings (and feasibility); `land`,
-    the optimiser's mask, is only named: the check runs on the finest coastline."""
+    """The plan with the route check's findings in its warnings (and feasibility); the check
+    runs on the finest coastline, the one the optimiser searched on with `limits.clearance`
+    (`land`, the mask of ports and seeds, is not used)."""
     if len(plan.waypoints) < 2:
         return plan
     plan = with_baseline_check(plan)
@@ -131,8 +132,8 @@ def checked_plan(plan: RoutePlan, land: LandMask, limits: RouteLimits,
     found = result.violations
     warnings = list(plan.warnings)
     warnings.append(f"land checked at {final_land().words} every 0.25 NM on every leg "
-                    f"(outside canals and {PORT_RADIUS_M / 1000.0:g} km round berths; the "
-                    f"optimiser searched on GSHHG resolution {land.resolution!r})")
+                    f"(outside canals and {PORT_RADIUS_M / 1000.0:g} km round berths); "
+                    f"search: {final_land().words}, {limits.clearance.words}")
     warnings += [f"route check: {v.line().strip()}" for v in found[:MAX_LISTED]]
     if len(found) > MAX_LISTED:
         warnings.append(f"route check: {len(found) - MAX_LISTED} more finding(s)")

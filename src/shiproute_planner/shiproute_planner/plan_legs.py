@@ -14,6 +14,7 @@ import numpy as np
 from .ensemble_report import MemberLeg
 from .errors import PlanCancelledError
 from .ga.pool import SeedPool
+from .geo.fine_distance import default_fine_distance
 from .method_context import MethodContext, MethodFn, compute_baseline
 from .methods import get_method
 from .plan_prepare import PreparedVoyage
@@ -248,6 +249,6 @@ def sail_legs(request: VoyageRequest, options: PlanOptions, prep: PreparedVoyage
             clock.lap("passages")
         else:
             plan_leg(prep, run, k, request, options, search)
-    prep.land.fine_coast.save()  # coastal cells this plan resolved: later processes use them
+    default_fine_distance().save()  # level-1 tiles this plan built: later processes use them
     return run
 

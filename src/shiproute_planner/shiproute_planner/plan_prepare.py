@@ -25,6 +25,7 @@ from .plan_setup import chosen_model, make_environment, route_limits, rta_warnin
 from .request import ForecastInput, PlanOptions, ShipInput, VoyageRequest
 from .river_passages import river_calls, river_times
 from .route.canals import Canal, route_canals
+from .route.clearance import ClearanceRule
 from .route.environment import Environment
 from .route.given_approach import Approach, load_approaches
 from .route.problem import RouteLimits
@@ -146,6 +147,8 @@ def prepare_voyage(request: VoyageRequest, options: PlanOptions,
     lim, warnings = depth_limits(lim, spec, request.bathymetry, request.default_bathymetry,
                                  request.ukc_margin_m)
     lim, zone_notes = zone_limits(lim, request.zones)
+    lim = dataclasses.replace(lim, clearance=ClearanceRule(
+        options.open_sea_clearance_nm, options.approach_clearance_nm, options.approach_zone_nm))
     warnings += zone_notes
     given = load_approaches(request.approaches_given)
     ports = resolve_ports(request, land)

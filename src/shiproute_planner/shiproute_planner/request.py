@@ -118,6 +118,10 @@ class PlanOptions:
     risk: RiskSpec | str | None = None  # plan on every ensemble member under this measure
     p_hs_max: float | None = None  # chance constraint P(Hs > limit) of a risk-aware plan
     p_late_max: float | None = None  # chance constraint P(late) of a risk-aware plan
+    # distance from the coast the search keeps (route.clearance.ClearanceRule; 0: off land)
+    open_sea_clearance_nm: float = 0.0
+    approach_clearance_nm: float = 0.0
+    approach_zone_nm: float = 10.0
 
 
 def voyage_times(depart: TimeLike, rta: TimeLike | timedelta) -> tuple[float, float]:

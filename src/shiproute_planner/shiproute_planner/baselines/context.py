@@ -8,6 +8,8 @@ planner's `LandMask` with the problem's land sampling spacing. Nothing here mode
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 from shiproute_core.flags import FLAG_HEADING_CHANGE, FLAG_LAND
 from shiproute_core.geodesy import direct, inverse
@@ -16,6 +18,7 @@ from ..geo.landmask import LandMask
 from ..route.constraints import leg_flags_and_violation
 from ..route.environment import Environment
 from ..route.evaluation import clear_ports
+from ..route.land_walk import LandWalk
 from ..route.legs import perf_arrays, sail_to
 from ..route.problem import RouteProblem
 from .legs import LegBatch
@@ -90,9 +93,14 @@ class PlannerLegSailor:
         _, dist = inverse(lon[:, 0], lat[:, 0], lon[:, 1], lat[:, 1])
         # the evaluator's own port clearance, so search and final evaluation agree exactly
         a_lon, a_lat, b_lon, b_lat = clear_ports(self.problem, lon, lat, dist[:, None])
-        samples = self.land.segment_land_samples(a_lon, a_lat, b_lon, b_lat,
-                                                 self.problem.land_spacing_deg)
+        # and its land test: the finest coastline with the problem's clearance
+        samples = self._walk.segments(a_lon, a_lat, b_lon, b_lat)
         return (np.asarray(samples) > 0).reshape(shape)
+
+    @functools.cached_property
+    def _walk(self) -> LandWalk:
+        """The evaluator's land test of this problem (`route.land_walk`)."""
+        return LandWalk(self.problem)
 
     def _calm(self, rpm: np.ndarray):
         from ..ship import SeaState

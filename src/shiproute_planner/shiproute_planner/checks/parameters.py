@@ -57,6 +57,15 @@ RANGES: dict[str, Range] = {
     "clearance_nm": Range(
         0.0, 50.0, "NM", "beyond 50 NM from land the Dover Strait, Malacca and every port "
         "approach become impassable"),
+    "open_sea_clearance_nm": Range(
+        0.0, 5.0, "NM", "open-sea passages keep about 2 NM; beyond 5 NM straits such as "
+        "Dover and Gibraltar close"),
+    "approach_clearance_nm": Range(
+        0.0, 3.0, "NM", "approaches and narrow straits keep about 0.5 NM; beyond 3 NM "
+        "most port approaches close"),
+    "approach_zone_nm": Range(
+        0.0, 200.0, "NM", "the approach clearance applies near the span ends; 200 NM "
+        "covers the longest approach"),
     "persistence_hours": Range(
         0.0, 240.0, "h", "a forecast's last fields say little of the weather days later; "
         "beyond 10 days give a climatology instead"),

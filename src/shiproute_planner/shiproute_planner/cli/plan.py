@@ -121,6 +121,15 @@ def build_parser() -> argparse.ArgumentParser:
                          "penalty_per_nm); repeatable")
     ap.add_argument("--clearance-nm", type=float, default=0.0,
                     help="distance from land [NM] the route check of the plan requires")
+    ap.add_argument("--open-sea-clearance-nm", type=float, default=0.0, metavar="NM",
+                    help="distance from land [NM] the search keeps in open sea (0-5, "
+                         "default 0: off land; e.g. 2)")
+    ap.add_argument("--approach-clearance-nm", type=float, default=0.0, metavar="NM",
+                    help="distance from land [NM] the search keeps within the approach zone "
+                         "of the span ends (0-3, default 0; e.g. 0.5)")
+    ap.add_argument("--approach-zone-nm", type=float, default=10.0, metavar="NM",
+                    help="radius [NM] round the span ends (ports, strait exits, the ship) "
+                         "where the approach clearance applies (0-200, default 10)")
     ap.add_argument("--approach", action="append", default=[], metavar="FILE.rtz",
                     help="coastal passage from/to a port (RTZ or GeoJSON, e.g. from the "
                          "ECDIS), sailed as given and checked; repeatable")
@@ -180,6 +189,9 @@ def main(argv: list[str]) -> int:
             persistence_h=args.persistence_hours, climatology=_climatology(args.climatology),
             bathymetry=args.bathymetry, default_bathymetry=not args.no_default_bathymetry,
             ukc_margin_m=args.ukc_margin, zones=args.zones, clearance_nm=args.clearance_nm,
+            open_sea_clearance_nm=args.open_sea_clearance_nm,
+            approach_clearance_nm=args.approach_clearance_nm,
+            approach_zone_nm=args.approach_zone_nm,
             approaches_given=args.approach, risk=risk)
         from ..geo.full_land import first_builds  # numba kernels: not for `--help`
 

@@ -80,7 +80,10 @@ def plan_from_parameters(p: Callable[[str], Any], forecast: Any, *, cycle_id: st
         method=str(p("method")), budget_s=budget_s, seed=int(p("rng_seed")) + seed_offset,
         stage_hours=float(p("stage_hours")) or None, previous_plan=previous,
         position=position, seed_pool_dir=str(p("seed_pool_dir")) or None, progress=progress,
-        cancel=cancel, cycle_id=cycle_id, **risk_keywords(p))
+        cancel=cancel, cycle_id=cycle_id,
+        open_sea_clearance_nm=float(p("open_sea_clearance_nm")),
+        approach_clearance_nm=float(p("approach_clearance_nm")),
+        approach_zone_nm=float(p("approach_zone_nm")), **risk_keywords(p))
     return plan(request, options, plan_forecast(forecast))
 
 

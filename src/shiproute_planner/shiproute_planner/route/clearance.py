@@ -3,7 +3,10 @@
 Open sea keeps `open_sea_nm`; within `approach_zone_nm` of either end of the optimised span
 (port or pilot station, strait passage exit, the ship's position on a re-plan) the route keeps
 `approach_nm`; within `approach_nm` + `FREE_MARGIN_NM` of an end only land itself counts
-(pilot stations and a ship's position can lie close to shore).
+(pilot stations and a ship's position can lie close to shore). The default keeps off land
+only: with the issue's 2 NM open sea / 0.5 NM near the ends, narrow passages farther than
+the zone from a span end (Uraga Suido into Tokyo Bay, the Kanmon Strait) close, and voyages
+through them end infeasible until straits get a clearance of their own.
 """
 
 from __future__ import annotations
@@ -26,8 +29,8 @@ APPROACH_ZONE_RANGE_NM = (0.0, 200.0)
 class ClearanceRule:
     """Distances from land [NM] a route keeps, by where it is."""
 
-    open_sea_nm: float = 2.0
-    approach_nm: float = 0.5
+    open_sea_nm: float = 0.0
+    approach_nm: float = 0.0
     approach_zone_nm: float = 10.0
 
     def __post_init__(self) -> None:
@@ -53,5 +56,7 @@ class ClearanceRule:
     @property
     def words(self) -> str:
         """The rule in words, as a plan states it."""
+        if self.open_sea_nm == 0.0 and self.approach_nm == 0.0:
+            return "no clearance (off land only)"
         return (f"clearance {self.open_sea_nm:g} NM open sea / {self.approach_nm:g} NM within "
                 f"{self.approach_zone_nm:g} NM of the span ends")

@@ -16,6 +16,7 @@ from shiproute_core.units import M_PER_NM
 from ..geo.landmask import LandMask
 from .constraints import leg_flags_and_violation
 from .environment import PERF_FIELDS
+from .land_walk import LandWalk
 from .problem import RouteProblem
 
 LEG_FIELDS = (*PERF_FIELDS, "heading_deg", "rpm", "distance_m", "duration_s", "fuel_t",
@@ -111,7 +112,8 @@ def finish(
         legs["land_samples"] = np.where(active, land_samples, 0)
     elif land is not None:
         lon0, lat0, lon1, lat1 = clear_ports(problem, lon, lat, legs["distance_m"])
-        samples = land.segment_land_samples(lon0, lat0, lon1, lat1, problem.land_spacing_deg)
+        # the GA's test (`land_walk`): the finest coastline with the problem's clearance
+        samples = LandWalk(problem).segments(lon0, lat0, lon1, lat1)
         legs["land_samples"] = np.where(active, samples, 0)
     else:
         legs["land_samples"] = np.zeros(active.shape, dtype=np.int64)

@@ -3,11 +3,12 @@ with the per-call overheads removed.
 
 One compiled call (`_route_kernel.generate_routes`) generates a whole population: per stage
 the weather package's trilinear kernel, the sea state, the ship model's kernel and a geodesic
-step (RK4 on the WGS 84 geodesic ODE instead of pyproj). Land: a coarse (0.5 deg, dilated)
-raster clears open-ocean legs (`coarse_land`); the rest are sampled at the exact scan's points
-against the 0.05-deg raster with coastal cells counted as land (`_route_kernel.ga_land_hits`),
-so a leg the GA calls clear is clear to the exact test too. Agreement with the exact evaluator
-is tested; the planner re-evaluates its final choice exactly. Constraints and totals:
+step (RK4 on the WGS 84 geodesic ODE instead of pyproj). Land: the finest coastline installed
+with the problem's clearance rule (`route.clearance`), walked on the signed distance to the
+coast (`_land_walk.clearance_walk`: coarse clear distances, level 0, level-1 tiles built as
+the walk meets them); a leg closer to land than the rule allows counts as on land. Agreement
+with the exact evaluator is tested; the planner re-evaluates its final choice exactly.
+Constraints and totals:
 `fast_finish` (compiled, the same bits as `evaluation.finish`).
 """
 
@@ -26,6 +27,7 @@ from .encoding import split_genes
 from .environment import PERF_FIELDS, Environment
 from .evaluation import RouteEvaluation
 from .fast_finish import Ends, Work, finish_fast, leg_cuts
+from .land_walk import LandWalk
 from .problem import RouteProblem
 
 # out_f rows / out_b rows of ship.fast_kernel.evaluate_kernel -> PERF_FIELDS
@@ -36,7 +38,6 @@ _B_ROWS = {"engine_limit_exceeded": 0, "surf_riding": 1, "parametric_roll": 2,
            "synchronous_roll": 3, "high_wave_group": 4}
 COARSE_FACTOR = 10  # 0.05 deg raster -> 0.5 deg near-land filter
 _COARSE: dict[int, tuple[np.ndarray, np.ndarray]] = {}
-MISS_BUFFER = 4096  # unresolved coastal cells one scan may report
 
 
 class FastEvaluator:
@@ -69,11 +70,7 @@ class FastEvaluator:
         self._members = None
         if env.sampler is not None and getattr(env.sampler, "members", None) is not None:
             self._members = env.sampler.members
-        self._coarse = None
-        if land is not None:
-            self._coarse, self._clear, self._coarse_deg = coarse_land(land)
-            self._raster = np.asarray(land.raster)
-            self._coast_dist = np.asarray(land.coast_distance)
+        self._walk = None if land is None else LandWalk(problem)  # the finest coastline
 
     def evaluate(self, x: np.ndarray) -> RouteEvaluation:
         """Generate and evaluate routes from genes `x` (pop, 2n + 1): each thread's rows
@@ -207,50 +204,21 @@ class FastEvaluator:
         return eta
 
     def _land_verdicts(self, ends: Ends, alongside: Work | None = None) -> np.ndarray:
-        """Land samples per leg (ends (pop, m) with the ports cut off) from the compiled scan
-        (`ga_land_hits`); coastal cells it meets for the first time are resolved exactly and
-        their legs scanned again. `alongside`: other work over the same legs, run with the
-        first scan on the same threads."""
+        """Violations per leg (ends (pop, m) with the ports cut off) from the compiled walk
+        (`_land_walk.clearance_walk`); tiles it meets for the first time are built and their
+        legs walked again. `alongside`: other work over the same legs, run with the first
+        walk on the same threads."""
         return self.segment_land_samples(*ends, alongside=alongside).reshape(ends[0].shape)
 
     def segment_land_samples(self, lon0: np.ndarray, lat0: np.ndarray, lon1: np.ndarray,
                              lat1: np.ndarray, alongside: Work | None = None) -> np.ndarray:
-        """The GA's land verdict (samples on land, 0 = clear) of great-circle segments
-        (flattened); needs a land mask. `alongside(a, b)`: work on segments a..b run in the
-        first pass's threads (one fan-out for both)."""
-        land = self.land
-        assert land is not None, "FastEvaluator built without a land mask"
-        ends = [np.ascontiguousarray(e, dtype=float).ravel() for e in (lon0, lat0, lon1, lat1)]
-        out = np.empty(ends[0].size, dtype=np.int64)
-        fine = land.fine_coast
-        todo = np.arange(out.size)
-        first = True
-        while todo.size:
-            x0, y0, x1, y1 = ends if first else [e[todo] for e in ends]
-            got = np.empty(todo.size, dtype=np.int64)
-            misses: list[np.ndarray] = []
-
-            def scan(a: int, b: int, x0: np.ndarray = x0, y0: np.ndarray = y0,
-                     x1: np.ndarray = x1, y1: np.ndarray = y1, got: np.ndarray = got,
-                     misses: list[np.ndarray] = misses, extra: Work | None = alongside
-                     ) -> None:
-                buf = np.empty(MISS_BUFFER, dtype=np.int64)
-                n = rk.ga_land_hits(x0[a:b], y0[a:b], x1[a:b], y1[a:b], self._coarse,
-                                    self._clear, self._coarse_deg, self._raster,
-                                    self._coast_dist,
-                                    land.cell_deg, self.problem.land_spacing_deg,
-                                    fine.keys, fine.fine, buf, got[a:b])
-                misses.append(buf[:n])
-                if extra is not None:
-                    extra(a, b)
-
-            in_chunks(todo.size, scan)
-            out[todo] = got
-            if any(m.size for m in misses):
-                fine.add(np.concatenate(misses))
-            todo = todo[got < 0]
-            first, alongside = False, None
-        return out
+        """The GA's verdict of great-circle segments (flattened): samples on land or closer
+        to the coast than the problem's clearance rule allows (0 = clear; `land_walk`);
+        needs a land mask. `alongside(a, b)`: work on segments a..b run in the first walk's
+        threads (one fan-out for both)."""
+        assert self._walk is not None, "FastEvaluator built without a land mask"
+        return self._walk.segments(*(np.ravel(e) for e in (lon0, lat0, lon1, lat1)),
+                                   alongside=alongside)
 
 
 def coarse_land(land: LandMask) -> tuple[np.ndarray, np.ndarray, float]:

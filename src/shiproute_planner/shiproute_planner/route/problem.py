@@ -10,6 +10,7 @@ from shiproute_core.geodesy import unwrap_near
 
 from ..errors import InvalidVoyageError
 from ..objectives import OBJECTIVES
+from .clearance import ClearanceRule
 
 if TYPE_CHECKING:
     from ..geo.zones import Zones
@@ -40,6 +41,8 @@ class RouteLimits:
     under_keel: UnderKeel | None = field(default=None, compare=False)
     # no-go / avoid zones (geo.zones.Zones): hard ones constrain, penalty ones cost
     zones: Zones | None = field(default=None, compare=False)
+    # distance from the coast the GA's land walk keeps (route.clearance)
+    clearance: ClearanceRule = field(default_factory=ClearanceRule)
 
 
 @dataclass(frozen=True)
