@@ -14,8 +14,10 @@ from .ga.loop import GAConfig
 from .geo.landmask import LandMask
 from .route.environment import Environment
 from .route.evaluation import RouteEvaluation, clear_ports
+from .route.land_walk import LandWalk
 from .route.problem import RouteProblem
 from .route.rta import constant_rpm_for_rta
+from .route.seed_repair import repaired_seed_track
 from .route.seeding import TrackSeed, great_circle_track, sea_lane_track
 
 
@@ -96,12 +98,15 @@ def baseline_track(problem: RouteProblem, land: LandMask) -> tuple[str, np.ndarr
     lon, lat = great_circle_track(problem)
     _, dist = inverse(lon[:-1], lat[:-1], lon[1:], lat[1:])
     ends = clear_ports(problem, lon[None, :], lat[None, :], dist[None, :])
-    hits = land.segment_land_samples(*ends, problem.land_spacing_deg)
+    hits = LandWalk(problem, land).segments(*ends)
     if hits.sum() == 0:
         return "great_circle", lon, lat
     lane = sea_lane_track(problem)
     if lane is None:
         return "great_circle", lon, lat
-    return "sea_lane", lane[0], lane[1]
+    # the lane's own geometry cuts headlands and narrow passages: detoured at full
+    # resolution, so the baseline and the seeds made from it start off land
+    lane_lon, lane_lat, _ = repaired_seed_track(problem, lane[0], lane[1])
+    return "sea_lane", lane_lon, lane_lat
 
 

@@ -249,6 +249,8 @@ def sail_legs(request: VoyageRequest, options: PlanOptions, prep: PreparedVoyage
             clock.lap("passages")
         else:
             plan_leg(prep, run, k, request, options, search)
-    default_fine_distance().save()  # level-1 tiles this plan built: later processes use them
+    # level-1 tiles and intermediate coastal cells this plan resolved: later processes use them
+    default_fine_distance().save()
+    prep.land.fine_coast.save()
     return run
 

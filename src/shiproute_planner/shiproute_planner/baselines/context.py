@@ -100,7 +100,7 @@ class PlannerLegSailor:
     @functools.cached_property
     def _walk(self) -> LandWalk:
         """The evaluator's land test of this problem (`route.land_walk`)."""
-        return LandWalk(self.problem)
+        return LandWalk(self.problem, self.land, exact_tight=True)
 
     def _calm(self, rpm: np.ndarray):
         from ..ship import SeaState

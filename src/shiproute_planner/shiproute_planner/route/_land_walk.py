@@ -3,7 +3,8 @@
 Sphere tracing: at each position of a segment the walk reads a lower bound d of the distance
 to land (level 0, `geo.coast_distance`, 0.05-deg cells; where that cannot decide, level 1,
 `geo.fine_distance`, full-resolution tiles of 0.0025 deg) and the clearance c the position
-needs (`route.clearance`: open sea, approach zone, free circle round the span ends). With
+needs (`route.clearance`: open sea, approach zone, free circle round the span ends, narrow
+water by the room raster `geo.narrow_water`). With
 d >= c + eps every point within d - c is clear and the walk jumps there; with c <= d < c + eps
 it steps eps (points within eps keep c - eps); below c the position is a violation. After the
 first violation the walk only grades it: inland it jumps by the distance to the sea and
@@ -11,6 +12,12 @@ counts the samples jumped over, elsewhere one position stands for the next `GRAD
 samples. Positions are in sample units of the exact scan's grid (chord fractions k / steps);
 a unit is at most `max_arc_per_step` of arc. A tile not yet built before the first violation
 makes the segment -1 and its key is written to `missing` (the caller builds, then rescans).
+Jumps are bounded with the clearance the span ends ask (narrow water only lowers it), so they
+are safe wherever the water type changes. Where the room is below the rule's tight room (water
+too narrow for a straight stage leg to follow the full-resolution coast) a search walk counts
+only land there, in `tight` instead of `out` (the caller keeps it only where the search's
+intermediate coastline agrees: a stage leg through a strait there is threaded at full
+resolution by the final repair); a check walk measures the narrow-water clearance there.
 """
 
 from __future__ import annotations
@@ -25,6 +32,7 @@ from ..geo.coast_distance import UNIT_NM as L0_UNIT_NM
 from ..geo.fine_distance import FINE_PER_TILE, TILE_DEG
 from ..geo.fine_distance import UNIT_NM as L1_UNIT_NM
 from ..geo.land_kernels import FINE, segment_ends
+from ..geo.narrow_water import UNIT_NM as ROOM_UNIT_NM
 from ._route_kernel import max_arc_per_step
 
 GRADE_STEP = 8 * FINE  # samples one graded position stands for after a violation
@@ -59,13 +67,26 @@ def clearance_within_nm(q_nm: float, r_nm: float, rule: np.ndarray) -> float:
 
 
 @njit(cache=True, nogil=True)
+def clearance_here_nm(q_nm: float, r_nm: float, room_nm: float, rule: np.ndarray) -> float:
+    """The clearance [NM] within `r_nm` of a point `q_nm` from the nearer span end in water of
+    `room_nm` (`geo.narrow_water`): narrow water (room below rule[5]) keeps at most the
+    approach clearance."""
+    c = clearance_within_nm(q_nm, r_nm, rule)
+    if room_nm < rule[5]:
+        c = min(c, rule[1])
+    return c
+
+
+@njit(cache=True, nogil=True)
 def clearance_walk(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, coast_dist, cell_deg,
-                   spacing_deg, slots, grids, ends, rule, missing, out):
+                   spacing_deg, slots, grids, ends, rule, room, missing, out, tight):
     """Violations per segment (0 = clear; -1 = rescan after the tiles in `missing` are built);
     returns how many tile keys were written to `missing`. `rule`: open-sea clearance,
-    approach clearance, approach zone, free radius, eps [NM]; `ends`: the span ends' unit
-    vectors (6,). A jump of length L from a point with bound d needs d - L at least the
-    clearance of every point it passes (`clearance_within_nm` over d)."""
+    approach clearance, approach zone, free radius, eps, narrow room, tight room [NM], search
+    (1: skip tight water, 0: measure it); `ends`: the span ends' unit vectors (6,); `room`:
+    uint8 room per level-0 cell [0.1 NM]; `tight` (out): a search walk's violations in tight
+    water, not in `out`. A jump of length L from a point with bound d needs d - L at
+    least the clearance of every point it passes (`clearance_within_nm` over d)."""
     n_lat, n_lon = coast_dist.shape
     c_lat, c_lon = coarse.shape
     inv, c_inv = 1.0 / cell_deg, 1.0 / coarse_deg
@@ -73,6 +94,7 @@ def clearance_walk(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, coast_
     n_fine_lat, n_fine_lon = slots.shape[0] * FINE_PER_TILE, slots.shape[1] * FINE_PER_TILE
     c_max = max(rule[0], rule[1])
     eps = rule[4]
+    search = rule[7] > 0.5
     n_miss = 0
     for s in range(lon0.size):
         ax, ay, az, bx, by, bz, arc = segment_ends(lat0[s], lon0[s], lat1[s], lon1[s])
@@ -80,6 +102,7 @@ def clearance_walk(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, coast_
         per_nm = max_arc_per_step(arc, steps) * NM_PER_DEG  # NM per sample unit, at most
         count = 0
         unresolved = False
+        tight[s] = 0
         k = 0.0
         while k <= steps:
             f = k / steps
@@ -91,9 +114,9 @@ def clearance_walk(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, coast_
             if not count:
                 ci = min(max(int((la + 90.0) * c_inv), 0), c_lat - 1)
                 cj = min(max(int((lo + 180.0) * c_inv), 0), c_lon - 1)
-                room = clear_deg[ci, cj] * NM_PER_DEG - c_max
-                if not coarse[ci, cj] and room > per_nm:
-                    k += room / per_nm
+                beyond = clear_deg[ci, cj] * NM_PER_DEG - c_max
+                if not coarse[ci, cj] and beyond > per_nm:
+                    k += beyond / per_nm
                     continue
             i = min(max(int((la + 90.0) * inv), 0), n_lat - 1)
             j = min(max(int((lo + 180.0) * inv), 0), n_lon - 1)
@@ -101,9 +124,14 @@ def clearance_walk(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, coast_
             if d0 >= c_max + eps:  # sea far enough from the coast for any clearance
                 k += max((d0 - c_max) / per_nm, GRADE_STEP if count else 0.0)
                 continue
+            room_nm = room[i, j] * ROOM_UNIT_NM
+            apart = search and room_nm < rule[6]  # tight water: counted apart
             if d0 < 0.0:  # inland: every sample within -d0 is on land
-                n = min(1 + int(-d0 / per_nm), steps - int(k) + 1) if count else 1
-                count += n
+                n = min(1 + int(-d0 / per_nm), steps - int(k) + 1) if count or apart else 1
+                if apart:
+                    tight[s] += n
+                else:
+                    count += n
                 k += n
                 continue
             q = end_distance_nm(x, y, z, ends)
@@ -132,8 +160,11 @@ def clearance_walk(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, coast_
             c = clearance_within_nm(q, max(d1, 0.0), rule)
             if d1 >= c + eps:
                 k += (d1 - c) / per_nm
-            elif d1 >= clearance_within_nm(q, eps, rule):
+            elif d1 >= (0.0 if apart else clearance_here_nm(q, eps, room_nm, rule)):
                 k += eps / per_nm  # hugging the clearance: points within eps keep c - eps
+            elif apart:
+                tight[s] += 1
+                k += 1.0
             else:
                 count += 1
                 k += 1.0

@@ -113,7 +113,7 @@ def finish(
     elif land is not None:
         lon0, lat0, lon1, lat1 = clear_ports(problem, lon, lat, legs["distance_m"])
         # the GA's test (`land_walk`): the finest coastline with the problem's clearance
-        samples = LandWalk(problem).segments(lon0, lat0, lon1, lat1)
+        samples = LandWalk(problem, land, exact_tight=True).segments(lon0, lat0, lon1, lat1)
         legs["land_samples"] = np.where(active, samples, 0)
     else:
         legs["land_samples"] = np.zeros(active.shape, dtype=np.int64)

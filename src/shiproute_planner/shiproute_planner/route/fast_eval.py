@@ -70,7 +70,7 @@ class FastEvaluator:
         self._members = None
         if env.sampler is not None and getattr(env.sampler, "members", None) is not None:
             self._members = env.sampler.members
-        self._walk = None if land is None else LandWalk(problem)  # the finest coastline
+        self._walk = None if land is None else LandWalk(problem, land)  # the finest coastline
 
     def evaluate(self, x: np.ndarray) -> RouteEvaluation:
         """Generate and evaluate routes from genes `x` (pop, 2n + 1): each thread's rows

@@ -1,10 +1,21 @@
 """The land test of every evaluated route: the clearance walk of one problem's legs.
 
 One object per problem holds what `_land_walk.clearance_walk` reads (the finest coastline's
-coarse clear distances and level 0, the shared level-1 tiles, the problem's clearance rule
-and span ends); `segments` walks legs on the planner's threads, builds the tiles the walk
-met for the first time and walks those legs again, so a verdict never depends on which
-tiles earlier plans built. The GA's evaluator and the exact one call the same test.
+coarse clear distances and level 0, the shared level-1 tiles, the room raster, the problem's
+clearance rule and span ends); `segments` walks legs on the planner's threads, builds the
+tiles the walk met for the first time and walks those legs again, so a verdict never depends
+on which tiles earlier plans built. Legs the walk marks as passing tight water (too narrow
+for a straight stage leg to follow the full-resolution coast) are tested there on the
+search's intermediate coastline (`_route_kernel.ga_land_hits`, exact in coastal cells); the
+final repair threads them at full resolution: a leg's violations there count only as far as
+that coastline confirms them (the smaller of the two counts), so a stage leg through a
+strait the intermediate coastline leaves open and a full-resolution detour through it both
+pass. Level 1 cannot tell a cell on land from one touching it, so a full-resolution detour
+hugging a ~0.4-NM channel (Hayatomo Seto) reads as land to both; the exact evaluator
+(`exact_tight`) settles tight-water land with the polygons instead, every 0.25 NM (the final
+check's test), so such a detour is feasible in the final choice. The GA's evaluator, the exact
+one, the seeds and the baselines call the same test; `search=False` measures the clearance
+in tight water too (the check).
 """
 
 from __future__ import annotations
@@ -14,19 +25,24 @@ from collections.abc import Callable
 import numpy as np
 
 from ..chunks import in_chunks
+from ..geo.landmask import LandMask
 from . import _land_walk as lw
+from . import _route_kernel as rk
 from .problem import RouteProblem
 
-MISS_BUFFER = 4096  # unbuilt level-1 tiles one walk may report
+MISS_BUFFER = 4096  # unbuilt level-1 tiles (or unresolved coastal cells) one walk may report
 Work = Callable[[int, int], None]
 
 
 class LandWalk:
     """The clearance walk of one problem (see the module docstring)."""
 
-    def __init__(self, problem: RouteProblem) -> None:
+    def __init__(self, problem: RouteProblem, land: LandMask | None = None,
+                 search: bool = True, exact_tight: bool = False) -> None:
         from ..geo.fine_distance import default_fine_distance
         from ..geo.full_land import final_land
+        from ..geo.landmask import default_land_mask
+        from ..geo.narrow_water import default_room
         from .fast_eval import coarse_land
 
         finest = final_land().mask
@@ -34,10 +50,14 @@ class LandWalk:
         self.coast_dist = np.asarray(finest.coast_distance)
         self.cell_deg = finest.cell_deg
         self.fine = default_fine_distance()
+        self.room = np.asarray(default_room())
         self.spacing_deg = problem.land_spacing_deg
-        self.rule = problem.limits.clearance.kernel_array()
+        self.rule = problem.limits.clearance.kernel_array(search)
         self.ends = np.array([*lw.unit_vector(problem.dep_lat_deg, problem.dep_lon_deg),
                               *lw.unit_vector(problem.arr_lat_deg, problem.arr_lon_deg)])
+        self.land = land if land is not None else default_land_mask()  # tight water's test
+        self._land_arrays: tuple | None = None
+        self.exact_tight = exact_tight
 
     def segments(self, lon0: np.ndarray, lat0: np.ndarray, lon1: np.ndarray,
                  lat1: np.ndarray, alongside: Work | None = None) -> np.ndarray:
@@ -47,31 +67,95 @@ class LandWalk:
         shape = np.shape(lon0)
         ends = [np.ascontiguousarray(e, dtype=float).ravel() for e in (lon0, lat0, lon1, lat1)]
         out = np.empty(ends[0].size, dtype=np.int64)
+        tight = np.zeros(ends[0].size, dtype=np.int64)
         todo = np.arange(out.size)
         first = True
         while todo.size:
             x0, y0, x1, y1 = ends if first else [e[todo] for e in ends]
             got = np.empty(todo.size, dtype=np.int64)
+            marks = np.zeros(todo.size, dtype=np.int64)
             misses: list[np.ndarray] = []
             slots, grids = self.fine.slots, self.fine.grids  # one consistent pair per pass
 
             def walk(a: int, b: int, x0: np.ndarray = x0, y0: np.ndarray = y0,
                      x1: np.ndarray = x1, y1: np.ndarray = y1, got: np.ndarray = got,
-                     misses: list[np.ndarray] = misses, extra: Work | None = alongside,
-                     slots: np.ndarray = slots, grids: np.ndarray = grids) -> None:
+                     marks: np.ndarray = marks, misses: list[np.ndarray] = misses,
+                     extra: Work | None = alongside, slots: np.ndarray = slots,
+                     grids: np.ndarray = grids) -> None:
                 buf = np.empty(MISS_BUFFER, dtype=np.int64)
                 n = lw.clearance_walk(x0[a:b], y0[a:b], x1[a:b], y1[a:b], self.coarse,
                                       self.clear, self.coarse_deg, self.coast_dist,
                                       self.cell_deg, self.spacing_deg, slots, grids, self.ends,
-                                      self.rule, buf, got[a:b])
+                                      self.rule, self.room, buf, got[a:b], marks[a:b])
                 misses.append(buf[:n])
                 if extra is not None:
                     extra(a, b)
 
             in_chunks(todo.size, walk)
             out[todo] = got
+            tight[todo] = marks
             if any(m.size for m in misses):
                 self.fine.add(np.concatenate(misses))
             todo = todo[got < 0]
             first, alongside = False, None
+        near = np.flatnonzero(tight)
+        if near.size:
+            part = [e[near] for e in ends]
+            confirmed = (self._exact_hits(*part) if self.exact_tight
+                         else self._intermediate_hits(*part))
+            out[near] += np.minimum(tight[near], confirmed)
         return out.reshape(shape)
+
+    def _intermediate_hits(self, lon0: np.ndarray, lat0: np.ndarray, lon1: np.ndarray,
+                           lat1: np.ndarray) -> np.ndarray:
+        """Land samples of segments on the search's intermediate coastline (coastal cells
+        resolved exactly as they are met; `_route_kernel.ga_land_hits`)."""
+        from .fast_eval import coarse_land
+
+        land = self.land
+        if self._land_arrays is None:
+            coarse, clear, coarse_deg = coarse_land(land)
+            self._land_arrays = (coarse, clear, coarse_deg, np.asarray(land.raster),
+                                 np.asarray(land.coast_distance))
+        coarse, clear, coarse_deg, raster, coast_dist = self._land_arrays
+        fine = land.fine_coast
+        ends = [np.ascontiguousarray(e, dtype=float) for e in (lon0, lat0, lon1, lat1)]
+        out = np.empty(ends[0].size, dtype=np.int64)
+        todo = np.arange(out.size)
+        while todo.size:
+            x0, y0, x1, y1 = [e[todo] for e in ends]
+            got = np.empty(todo.size, dtype=np.int64)
+            misses: list[np.ndarray] = []
+
+            def scan(a: int, b: int, x0: np.ndarray = x0, y0: np.ndarray = y0,
+                     x1: np.ndarray = x1, y1: np.ndarray = y1, got: np.ndarray = got,
+                     misses: list[np.ndarray] = misses) -> None:
+                buf = np.empty(MISS_BUFFER, dtype=np.int64)
+                n = rk.ga_land_hits(x0[a:b], y0[a:b], x1[a:b], y1[a:b], coarse, clear,
+                                    coarse_deg, raster, coast_dist, land.cell_deg,
+                                    self.spacing_deg, fine.keys, fine.fine, buf, got[a:b])
+                misses.append(buf[:n])
+
+            in_chunks(todo.size, scan)
+            out[todo] = got
+            if any(m.size for m in misses):
+                fine.add(np.concatenate(misses))
+            todo = todo[got < 0]
+        return out
+
+    @staticmethod
+    def _exact_hits(lon0: np.ndarray, lat0: np.ndarray, lon1: np.ndarray, lat1: np.ndarray
+                    ) -> np.ndarray:
+        """Points on full-resolution land (polygons) of segments sampled every 0.25 NM."""
+        from shiproute_core.geodesy import densify_track
+
+        from ..geo.full_land import final_land
+        from .land_repair import STEP_M
+
+        land = final_land()
+        out = np.empty(lon0.size, dtype=np.int64)
+        for s in range(lon0.size):
+            lon, lat = densify_track(lon0[s:s + 1].tolist() + lon1[s:s + 1].tolist(),
+                                     lat0[s:s + 1].tolist() + lat1[s:s + 1].tolist(), STEP_M)
+            out[s] = int(np.count_nonzero(land.contains(np.asarray(lon), np.asarray(lat))))
+        return out

@@ -21,6 +21,7 @@ from ..geo.landmask import LandMask
 from ..geo.sea_lanes import sea_lane_between
 from .encoding import clip_genes, join_genes
 from .environment import Environment
+from .land_walk import LandWalk
 from .legs import perf_arrays
 from .problem import RouteProblem
 
@@ -118,8 +119,7 @@ def track_to_genes(problem: RouteProblem, env: Environment, seeds: list[TrackSee
     # the GA's own land verdict when it has one (seeds it will not call land-crossing)
     land_hits = (None if land is None
                  else fast.segment_land_samples if fast is not None and fast.land is land
-                 else lambda x0, y0, x1, y1: land.segment_land_samples(
-                     x0, y0, x1, y1, problem.land_spacing_deg))
+                 else LandWalk(problem, land).segments)
     for i in range(n):
         r = rpm_at[rows, idx]
         sog, _, _, _ = sail(node_lon, node_lat, t, r, np.zeros(s_count))

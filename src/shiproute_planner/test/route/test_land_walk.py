@@ -16,17 +16,18 @@ LOOSENESS_NM = 0.7  # level 1's looseness (a fine diagonal, the coastline band, 
 def walk_inputs():
     from shiproute_planner.geo.fine_distance import default_fine_distance
     from shiproute_planner.geo.full_land import final_land
+    from shiproute_planner.geo.narrow_water import default_room
     from shiproute_planner.route.fast_eval import coarse_land
 
     final = final_land()
     coarse, clear, coarse_deg = coarse_land(final.mask)
-    return final, default_fine_distance(), coarse, clear, coarse_deg
+    return final, default_fine_distance(), coarse, clear, coarse_deg, np.asarray(default_room())
 
 
 def _walk(walk_inputs, lon0, lat0, lon1, lat1, rule, ends_lonlat):
     from shiproute_planner.route import _land_walk as lw
 
-    final, fine, coarse, clear, coarse_deg = walk_inputs
+    final, fine, coarse, clear, coarse_deg, room = walk_inputs
     ends = np.array([*lw.unit_vector(ends_lonlat[1], ends_lonlat[0]),
                      *lw.unit_vector(ends_lonlat[3], ends_lonlat[2])])
     got = np.full(lon0.size, -1, dtype=np.int64)
@@ -34,10 +35,12 @@ def _walk(walk_inputs, lon0, lat0, lon1, lat1, rule, ends_lonlat):
     for _ in range(200):  # as the evaluator does: build the tiles met, rescan those legs
         missing = np.empty(64, dtype=np.int64)  # small: exercises the full-buffer path
         part = np.empty(todo.size, dtype=np.int64)
+        tight = np.zeros(todo.size, dtype=np.int64)
+        # measured everywhere (the check's walk): the search leaves tight water to others
         n = lw.clearance_walk(lon0[todo], lat0[todo], lon1[todo], lat1[todo], coarse, clear,
                               coarse_deg, np.asarray(final.mask.coast_distance),
                               final.mask.cell_deg, 0.05, fine.slots, fine.grids, ends,
-                              rule.kernel_array(), missing, part)
+                              rule.kernel_array(search=False), room, missing, part, tight)
         got[todo] = part
         fine.add(missing[:n])
         todo = todo[part < 0]
@@ -46,10 +49,13 @@ def _walk(walk_inputs, lon0, lat0, lon1, lat1, rule, ends_lonlat):
     raise AssertionError("tiles never all built")
 
 
-def _dense_truth(final, lon0, lat0, lon1, lat1, rule, ends_lonlat):
-    """(true distance to land [NM], clearance needed [NM]) at points ~0.05 NM apart."""
+def _dense_truth(final, room, lon0, lat0, lon1, lat1, rule, ends_lonlat):
+    """(true distance to land [NM], clearance needed [NM]) at points ~0.05 NM apart; the
+    sea-area type (narrow water) is the room raster's at each point, an input of the rule."""
     import pyproj
     import shapely
+    from shiproute_planner.geo.narrow_water import UNIT_NM as ROOM_UNIT_NM
+    from shiproute_planner.route.clearance import NARROW_MARGIN_NM
 
     geod = pyproj.Geod(ellps="WGS84")
     _, _, length_m = geod.inv(lon0, lat0, lon1, lat1)
@@ -80,7 +86,11 @@ def _dense_truth(final, lon0, lat0, lon1, lat1, rule, ends_lonlat):
     need = np.where(end_nm <= rule.free_radius_nm, 0.0,
                     np.where(end_nm <= rule.approach_zone_nm, rule.approach_nm,
                              rule.open_sea_nm))
-    return dist, need
+    cell = final.mask.cell_deg
+    i = np.clip(((pts[:, 1] + 90.0) // cell).astype(int), 0, room.shape[0] - 1)
+    j = np.clip((((pts[:, 0] + 180.0) % 360.0) // cell).astype(int), 0, room.shape[1] - 1)
+    narrow = room[i, j] * ROOM_UNIT_NM < rule.open_sea_nm + NARROW_MARGIN_NM
+    return dist, np.where(narrow, np.minimum(need, rule.approach_nm), need)
 
 
 # the Isles of Scilly, the Zhoushan islets, Juan de Fuca; the Bosphorus (0.4-2 NM wide)
@@ -108,7 +118,8 @@ def test_walk_keeps_the_clearance_it_reports(walk_inputs, centre, open_sea_nm):
     assert np.all(got >= 0)
     clear, flagged = 0, 0
     for k in range(lon0.size):
-        dist, need = _dense_truth(final, lon0[k], lat0[k], lon1[k], lat1[k], rule, ends_of[k])
+        dist, need = _dense_truth(final, walk_inputs[5], lon0[k], lat0[k], lon1[k], lat1[k],
+                                  rule, ends_of[k])
         if got[k] == 0:
             # 0.05 NM between the dense points: a point between them is that much closer
             assert np.all(dist >= need - EPS_NM - 0.03), (k, float(np.min(dist - need)))

@@ -1,0 +1,86 @@
+"""Seed tracks repaired at full resolution before the search starts.
+
+The sea lane (`searoute`'s network, resampled to two points per stage) cuts headlands, narrow
+passages such as the Kanmon Strait and the clearance round islands: on the search's
+full-resolution test a seed and a baseline on it break the rule, and a route round a whole
+island ranks before them. Each leg of such a track with a point on full-resolution land or
+closer than the clearance rule asks (`route.clearance`, the search's: off land only in tight
+water) gets the final check's local detour (`route.land_repair`: fine navigable grid, the
+rule's distances preferred where there is room), so the baseline and the seeds made from it
+start clean; where no detour keeps the clearance, one off land at least (the search
+penalises what is left).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Callable
+
+import numpy as np
+from shiproute_core.geodesy import inverse
+from shiproute_core.units import M_PER_NM
+
+from .clearance import needed_clearance_nm
+from .land_repair import RepairRules, repaired_track
+from .problem import RouteProblem
+
+LEVEL1_SLACK_NM = 0.7  # level 1's looseness (a fine diagonal, the coastline band, one step)
+
+
+def rule_test(problem: RouteProblem) -> Callable[[np.ndarray, np.ndarray], np.ndarray]:
+    """Point test of the search's rule: True where a point is on full-resolution land or
+    closer to it than the problem's clearance rule asks (level-1 lower bound distances)."""
+    from ..geo.fine_distance import default_fine_distance
+    from ..geo.full_land import final_land
+    from ..geo.narrow_water import UNIT_NM as ROOM_UNIT_NM
+    from ..geo.narrow_water import default_room
+
+    land, fine, room = final_land(), default_fine_distance(), default_room()
+    rule = problem.limits.clearance
+    cell = land.mask.cell_deg
+
+    def breaks(lon: np.ndarray, lat: np.ndarray) -> np.ndarray:
+        lon, lat = np.asarray(lon, dtype=float), np.asarray(lat, dtype=float)
+        out = np.asarray(land.contains(lon, lat), dtype=bool)
+        if rule.open_sea_nm == 0.0 and rule.approach_nm == 0.0:
+            return out
+        ends = [(problem.dep_lon_deg, problem.dep_lat_deg),
+                (problem.arr_lon_deg, problem.arr_lat_deg)]
+        end_nm = np.min([np.asarray(inverse(lon, lat, np.full(lon.shape, e[0]),
+                                            np.full(lon.shape, e[1]))[1]) / M_PER_NM
+                         for e in ends], axis=0)
+        i = np.clip(((lat + 90.0) // cell).astype(np.int64), 0, room.shape[0] - 1)
+        j = np.clip((((lon + 180.0) % 360.0) // cell).astype(np.int64), 0, room.shape[1] - 1)
+        need = needed_clearance_nm(rule, end_nm, room[i, j] * ROOM_UNIT_NM)
+        near = need > 0.0
+        if near.any():
+            out[near] |= fine.distance_nm(lon[near], lat[near]) < need[near]
+        return out
+
+    return breaks
+
+
+def repaired_seed_track(problem: RouteProblem, lon: np.ndarray, lat: np.ndarray
+                        ) -> tuple[np.ndarray, np.ndarray, int]:
+    """(lon, lat, legs left unrepaired) of a seed track with the legs that break the search's
+    rule detoured (outside the problem's port clearance round both ends)."""
+    from ..coastal_passages import passage_rules
+    from .passages import best_land_polygons
+
+    rule = problem.limits.clearance
+    rules = RepairRules()
+    # the walk reads level 1, a lower bound up to ~0.7 NM below the true distance: the
+    # detours aim that much wider first
+    keep = {c + LEVEL1_SLACK_NM for c in (rule.open_sea_nm, rule.approach_nm) if c > 0.0}
+    rules = dataclasses.replace(rules, clearances_nm=tuple(sorted(
+        {*keep, *rules.clearances_nm}, reverse=True)))
+    from ..geo.full_land import final_land
+
+    polygons, base, skip = (best_land_polygons(), passage_rules(problem.limits.under_keel),
+                            problem.port_clearance_m)
+    lon, lat, _, _, left = repaired_track(lon, lat, rule_test(problem), polygons, base, rules,
+                                          skip, skip)
+    if left:  # no detour keeps the clearance: off land at least (the search penalises the rest)
+        lon, lat, _, _, left = repaired_track(lon, lat, final_land().contains, polygons, base,
+                                              rules, skip, skip)
+    return lon, lat, len(left)
