@@ -138,6 +138,7 @@ def checked_plan(plan: RoutePlan, land: LandMask, limits: RouteLimits,
     if len(found) > MAX_LISTED:
         warnings.append(f"route check: {len(found) - MAX_LISTED} more finding(s)")
     warnings += [f"route check: {n}" for n in result.notes]
+    warnings.append(clearance_words(plan, limits))
     planned = np.zeros(len(plan.waypoints) - 1, dtype=bool)
     for a, b in plan.optimised_spans or ((0, len(planned)),):
         planned[a:b] = True
@@ -150,3 +151,38 @@ def checked_plan(plan: RoutePlan, land: LandMask, limits: RouteLimits,
             plan, warnings=tuple(warnings), feasible=False, infeasible_reasons=tuple(
                 dict.fromkeys(f"route check: {v.kind} on leg {v.leg}" for v in bad)))
     return dataclasses.replace(plan, warnings=tuple(warnings))
+
+
+def clearance_shortfalls(plan: RoutePlan, limits: RouteLimits) -> list[tuple[int, float, float]]:
+    """(leg, lat, lon at the leg's start) of the optimised spans' legs closer to land than the
+    search's clearance rule, tight water included (`route.land_walk` in check mode: level-1
+    lower bounds of the distance, so a leg keeping the rule to ~0.7 NM may be listed)."""
+    from .route.land_walk import LandWalk
+    from .route.problem import RouteProblem
+
+    lon, lat, t = plan.track()
+    out = []
+    for a, b in plan.optimised_spans or ((0, len(plan.waypoints) - 1),):
+        if b <= a:
+            continue
+        span = RouteProblem(float(lon[a]), float(lat[a]), float(lon[b]), float(lat[b]),
+                            float(t[a]), max(float(t[b]), float(t[a]) + 3600.0), limits)
+        got = LandWalk(span, search=False).segments(lon[a:b], lat[a:b], lon[a + 1:b + 1],
+                                                    lat[a + 1:b + 1])
+        out += [(a + int(k), float(lat[a + k]), float(lon[a + k])) for k in np.flatnonzero(got)]
+    return out
+
+
+def clearance_words(plan: RoutePlan, limits: RouteLimits) -> str:
+    """The clearance the optimised spans keep, measured with the search's rule (never silent:
+    met, or the legs that fall short)."""
+    short = clearance_shortfalls(plan, limits)
+    rule = limits.clearance
+    if not short:
+        return f"clearance check: the optimised spans keep the search's rule ({rule.words})"
+    leg, la, lo = short[0]
+    return (f"clearance check: {len(short)} leg(s) of the optimised spans come closer to land "
+            f"than the rule ({rule.open_sea_nm:g} NM open sea / {rule.approach_nm:g} NM near "
+            f"span ends and in narrow water, measured on full-resolution distance lower "
+            f"bounds), first leg {leg} from {la:.3f}N {lo:.3f}E; in water narrower than twice "
+            f"the clearance (e.g. a strait) no route can keep it: check the chart")

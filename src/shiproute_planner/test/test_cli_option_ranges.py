@@ -33,6 +33,11 @@ BAD = [
     ("--ukc-margin", "-0.5", "ukc_margin_m"),
     ("--clearance-nm", "inf", "clearance_nm"),
     ("--clearance-nm", "-1", "clearance_nm"),
+    ("--open-sea-clearance-nm", "5.5", "open_sea_clearance_nm"),
+    ("--open-sea-clearance-nm", "-0.1", "open_sea_clearance_nm"),
+    ("--approach-clearance-nm", "3.5", "approach_clearance_nm"),
+    ("--approach-clearance-nm", "nan", "approach_clearance_nm"),
+    ("--approach-zone-nm", "250", "approach_zone_nm"),
     ("--seed", "-1", "rng_seed"),
     ("--persistence-hours", "-5", "persistence_hours"),
     ("--persistence-hours", "100000", "persistence_hours"),
@@ -66,7 +71,8 @@ def test_every_option_maps_to_a_node_parameter_range():
 
 
 @pytest.mark.parametrize("parameter", ["stage_hours", "ukc_margin_m", "clearance_nm",
-                                       "persistence_hours"])
+                                       "persistence_hours", "open_sea_clearance_nm",
+                                       "approach_clearance_nm", "approach_zone_nm"])
 def test_range_edges_are_accepted_and_just_outside_refused(parameter):
     rule = RANGES[parameter]
     option = next(o for o, (_d, p) in PLAN_OPTIONS.items() if p == parameter)

@@ -121,12 +121,12 @@ def build_parser() -> argparse.ArgumentParser:
                          "penalty_per_nm); repeatable")
     ap.add_argument("--clearance-nm", type=float, default=0.0,
                     help="distance from land [NM] the route check of the plan requires")
-    ap.add_argument("--open-sea-clearance-nm", type=float, default=0.0, metavar="NM",
+    ap.add_argument("--open-sea-clearance-nm", type=float, default=2.0, metavar="NM",
                     help="distance from land [NM] the search keeps in open sea (0-5, "
-                         "default 0: off land; e.g. 2)")
-    ap.add_argument("--approach-clearance-nm", type=float, default=0.0, metavar="NM",
+                         "default 2; 0: off land only)")
+    ap.add_argument("--approach-clearance-nm", type=float, default=0.5, metavar="NM",
                     help="distance from land [NM] the search keeps within the approach zone "
-                         "of the span ends (0-3, default 0; e.g. 0.5)")
+                         "of the span ends and in narrow water (0-3, default 0.5)")
     ap.add_argument("--approach-zone-nm", type=float, default=10.0, metavar="NM",
                     help="radius [NM] round the span ends (ports, strait exits, the ship) "
                          "where the approach clearance applies (0-200, default 10)")

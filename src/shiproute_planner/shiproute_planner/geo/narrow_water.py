@@ -1,16 +1,19 @@
 """How much room the water round each level-0 cell has: the sea-area type of the clearance rule.
 
-Per 0.05-deg cell of the finest coastline's level 0 (`geo.coast_distance`, a lower bound of
-the distance to land, 0 in the coastal band about two cells each side of a coast), the room
-is the largest level-0 distance within `ROOM_RADIUS_NM` of any point within `NARROW_REACH_NM`
-(a maximum filter, then a minimum filter, on discs scaled by the cosine of each latitude
-band). Why these radii: `ROOM_RADIUS_NM` = 10 NM is about half a coastal stage leg; near a
-straight coast in open water the room is then at least ~5 NM (the coastal band is ~6 NM
-wide), while in a channel or strait narrower than ~10 NM every cell is in the band and the
-room is ~0. The minimum over `NARROW_REACH_NM` = 5 NM carries a narrow passage's type out
-beyond its mouths, so a route leaving it is not held to the open-sea clearance while the
-coast is still near (the open-sea distance can only grow by the distance sailed). Stored as
-uint8 tenths of a NM (capped at 25.4 NM), built once per machine and memory-mapped.
+Per 0.05-deg cell of the finest coastline's level 0 (`geo.coast_distance`, a lower bound of the
+distance to land, 0 in the coastal band about two cells each side of a coast), the room is the
+largest level-0 distance within `ROOM_RADIUS_NM` of any point within `NARROW_REACH_NM` (a
+maximum filter, then a minimum filter, on discs scaled by the cosine of each latitude band);
+outside the band the bound's cell diagonal is added back (a mid estimate, not a bound: the room
+only sorts water into types, and without it a small island's own cells, ~5 NM under their true
+distance, read as narrow water). Why these radii: `ROOM_RADIUS_NM` = 10 NM is about half a
+coastal stage leg; near a straight coast in open water the room is then at least ~5 NM (the
+coastal band is ~6 NM wide), while in a channel or strait narrower than ~10 NM every cell is in
+the band and the room is ~0. The minimum over `NARROW_REACH_NM` = 5 NM carries a narrow
+passage's type out beyond its mouths, so a route leaving it is not held to the open-sea
+clearance while the coast is still near (the open-sea distance can only grow by the distance
+sailed). Stored as uint8 tenths of a NM (capped at 25.4 NM), built once per machine and
+memory-mapped.
 """
 
 from __future__ import annotations
@@ -23,7 +26,7 @@ import numpy as np
 
 from .coast_distance import NM_PER_DEG
 
-ROOM_VERSION = 1  # in the cache file name: bump when the definition changes
+ROOM_VERSION = 2  # in the cache file name: bump when the definition changes
 ROOM_RADIUS_NM = 10.0
 NARROW_REACH_NM = 5.0
 UNIT_NM = 0.1  # stored value * UNIT_NM = room [NM]
@@ -68,7 +71,9 @@ def room_raster(coast_dist: np.ndarray, cell_deg: float, coast_unit_nm: float) -
     """uint8 room [UNIT_NM] of each cell of a level-0 raster (`coast_dist` in
     `coast_unit_nm` steps; see the module docstring)."""
     scale = coast_unit_nm / UNIT_NM
-    clipped = np.clip(np.asarray(coast_dist, dtype=np.float32) * scale, 0, CAP_UNITS)
+    d = np.asarray(coast_dist, dtype=np.float32) * scale
+    diagonal = math.hypot(cell_deg, cell_deg) * NM_PER_DEG / UNIT_NM
+    clipped = np.clip(np.where(d > 0, d + diagonal, 0.0), 0, CAP_UNITS)
     values = np.floor(clipped).astype(np.uint8)
     room = _banded(values, cell_deg, ROOM_RADIUS_NM, maximum=True)
     return _banded(room, cell_deg, NARROW_REACH_NM, maximum=False)

@@ -37,8 +37,8 @@ APPROACH_ZONE_RANGE_NM = (0.0, 200.0)
 class ClearanceRule:
     """Distances from land [NM] a route keeps, by where it is."""
 
-    open_sea_nm: float = 0.0
-    approach_nm: float = 0.0
+    open_sea_nm: float = 2.0  # the issue's defaults: 2 NM in open sea,
+    approach_nm: float = 0.5  # 0.5 NM in straits, narrow water and approaches
     approach_zone_nm: float = 10.0
 
     def __post_init__(self) -> None:
