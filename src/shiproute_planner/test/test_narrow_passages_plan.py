@@ -1,0 +1,37 @@
+"""A voyage through narrow water at the default clearance (2 NM open sea, 0.5 NM near the span
+ends and in narrow water): Busan -> Yokohama goes through the Kanmon Strait and the Seto Inland
+Sea, as the sea lane does, not round Kyushu (~100 NM longer), and its plan is feasible."""
+
+from __future__ import annotations
+
+import numpy as np
+import pyproj
+from shiproute_core.units import M_PER_NM
+from shiproute_planner.plan_request import build_request, run_request
+
+
+def _lane_nm(a, b) -> float:
+    """Length [NM] of the `searoute` sea lane between two ports (an independent reference)."""
+    from shiproute_planner.geo.ports import lookup_port
+    from shiproute_planner.geo.sea_lanes import sea_lane_between
+
+    pa, pb = lookup_port(a), lookup_port(b)
+    lane = sea_lane_between(pa.lon_deg, pa.lat_deg, pb.lon_deg, pb.lat_deg)
+    _, _, d = pyproj.Geod(ellps="WGS84").inv(lane[:-1, 0], lane[:-1, 1], lane[1:, 0],
+                                             lane[1:, 1])
+    return float(np.sum(d)) / M_PER_NM
+
+
+def test_busan_yokohama_goes_through_kanmon_at_the_default_clearance():
+    req = build_request(origin="Busan", destination="Yokohama", depart="2026-03-03T12:00Z",
+                        rta="3d", budget="300ev", seed=101)
+    plan = run_request(req)
+    assert plan.feasible, plan.infeasible_reasons
+    lon, lat, _ = plan.track()
+    # through the Kanmon Strait (33.9-34.0 N, 130.8-131.1 E) into the Inland Sea
+    assert np.any((lat > 33.85) & (lat < 34.05) & (lon > 130.8) & (lon < 131.1))
+    assert np.any((lat > 33.6) & (lat < 34.7) & (lon > 131.5) & (lon < 135.0))
+    # as long as the sea lane, not round Kyushu (at least ~100 NM more)
+    _, _, d = pyproj.Geod(ellps="WGS84").inv(lon[:-1], lat[:-1], lon[1:], lat[1:])
+    assert float(np.sum(d)) / M_PER_NM < 1.08 * _lane_nm("Busan", "Yokohama")
+    assert any("clearance 2 NM open sea / 0.5 NM" in w for w in plan.warnings)
