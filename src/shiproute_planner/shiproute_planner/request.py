@@ -119,7 +119,7 @@ class PlanOptions:
     p_hs_max: float | None = None  # chance constraint P(Hs > limit) of a risk-aware plan
     p_late_max: float | None = None  # chance constraint P(late) of a risk-aware plan
     # distance from the coast the search keeps (route.clearance.ClearanceRule; 0: off land)
-    open_sea_clearance_nm: float = 2.0
+    open_sea_clearance_nm: float = 0.0
     approach_clearance_nm: float = 0.5
     approach_zone_nm: float = 10.0
 

