@@ -184,6 +184,9 @@ def plan_voyage(
     risk: str | RiskSpec | None = None,
     p_hs_max: float | None = None,
     p_late_max: float | None = None,
+    open_sea_clearance_nm: float = 0.0,
+    approach_clearance_nm: float = 0.5,
+    approach_zone_nm: float = 10.0,
 ) -> RoutePlan:
     """Plan a voyage and return a frozen RoutePlan (`plan` with keyword arguments).
 
@@ -231,6 +234,8 @@ def plan_voyage(
     the chance constraints P(Hs > limit) <= `p_hs_max` and P(late) <= `p_late_max` (None: 0);
     without it an ensemble is planned on its members' mean. Either way an ensemble plan
     states its spread over the members (`ensemble_report`).
+    `open_sea_clearance_nm`, `approach_clearance_nm` (near the span ends, within
+    `approach_zone_nm`, and in narrow water): the search's clearance rule (`route.clearance`).
     """
     depart_s, rta_s = voyage_times(depart, rta)
     request = VoyageRequest(
@@ -250,5 +255,7 @@ def plan_voyage(
         with_baseline=with_baseline, previous_plan=previous_plan, position=position,
         seed_pool_dir=seed_pool_dir, progress=progress, cancel=cancel, limits=limits,
         land=land, cycle_id=cycle_id, persistence_h=persistence_h,
-        climatology=climatology, risk=risk, p_hs_max=p_hs_max, p_late_max=p_late_max)
+        climatology=climatology, risk=risk, p_hs_max=p_hs_max, p_late_max=p_late_max,
+        open_sea_clearance_nm=open_sea_clearance_nm,
+        approach_clearance_nm=approach_clearance_nm, approach_zone_nm=approach_zone_nm)
     return plan(request, options, forecast)

@@ -17,7 +17,6 @@ from __future__ import annotations
 import numpy as np
 
 from ..chunks import in_chunks
-from ..geo.clear_distance import banded_clear_distance_deg
 from ..geo.landmask import LandMask
 from . import _fast_kernels as fk
 from . import _finish_kernel as kf
@@ -27,7 +26,7 @@ from .encoding import split_genes
 from .environment import PERF_FIELDS, Environment
 from .evaluation import RouteEvaluation
 from .fast_finish import Ends, Work, finish_fast, leg_cuts
-from .land_walk import LandWalk
+from .land_walk import COARSE_FACTOR, LandWalk, coarse_land  # noqa: F401 (re-exported)
 from .problem import RouteProblem
 
 # out_f rows / out_b rows of ship.fast_kernel.evaluate_kernel -> PERF_FIELDS
@@ -36,8 +35,6 @@ _F_ROWS = {"stw_m_s": 0, "sog_m_s": 1, "cog_deg": 2, "brake_power_kw": 3, "fuel_
            "p_deck_wetness": 9, "p_propeller_emergence": 10}
 _B_ROWS = {"engine_limit_exceeded": 0, "surf_riding": 1, "parametric_roll": 2,
            "synchronous_roll": 3, "high_wave_group": 4}
-COARSE_FACTOR = 10  # 0.05 deg raster -> 0.5 deg near-land filter
-_COARSE: dict[int, tuple[np.ndarray, np.ndarray]] = {}
 
 
 class FastEvaluator:
@@ -217,27 +214,8 @@ class FastEvaluator:
         needs a land mask. `alongside(a, b)`: work on segments a..b run in the first walk's
         threads (one fan-out for both)."""
         assert self._walk is not None, "FastEvaluator built without a land mask"
-        return self._walk.segments(*(np.ravel(e) for e in (lon0, lat0, lon1, lat1)),
-                                   alongside=alongside)
-
-
-def coarse_land(land: LandMask) -> tuple[np.ndarray, np.ndarray, float]:
-    """The land scan's near-land filter of `land` (built once per mask): the coarse raster
-    (`COARSE_FACTOR` cells, land or coast in or next to a block), per block the arc [deg] to
-    the nearest flagged block, the larger of the polar-shrink bound and each latitude band's
-    (`geo.clear_distance`; about 1.4 times the polar jumps along mid-latitude routes, the
-    same samples decide), and the block size [deg]."""
-    key = id(land)
-    coarse_deg = land.cell_deg * COARSE_FACTOR
-    if key not in _COARSE:
-        coarse = fk.coarse_land_raster(np.asarray(land.raster), COARSE_FACTOR)
-        # both are lower bounds of the arc to land: so is the larger (the banded one is
-        # capped at its reach, the polar one is not)
-        clear = np.maximum(banded_clear_distance_deg(coarse, coarse_deg),
-                           fk.clear_distance_deg(coarse, coarse_deg))
-        _COARSE[key] = (coarse, np.ascontiguousarray(clear))
-    coarse, clear = _COARSE[key]
-    return coarse, clear, coarse_deg
+        return self._walk.segments(np.ravel(lon0), np.ravel(lat0), np.ravel(lon1),
+                                   np.ravel(lat1), alongside=alongside)
 
 
 def fast_evaluator(problem: RouteProblem, env: Environment,

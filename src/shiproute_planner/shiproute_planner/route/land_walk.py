@@ -25,11 +25,15 @@ from collections.abc import Callable
 import numpy as np
 
 from ..chunks import in_chunks
+from ..geo.clear_distance import banded_clear_distance_deg
 from ..geo.landmask import LandMask
+from . import _fast_kernels as fk
 from . import _land_walk as lw
 from . import _route_kernel as rk
 from .problem import RouteProblem
 
+COARSE_FACTOR = 10  # 0.05 deg raster -> 0.5 deg near-land filter
+_COARSE: dict[int, tuple[np.ndarray, np.ndarray]] = {}
 MISS_BUFFER = 4096  # unbuilt level-1 tiles (or unresolved coastal cells) one walk may report
 Work = Callable[[int, int], None]
 
@@ -43,8 +47,6 @@ class LandWalk:
         from ..geo.full_land import final_land
         from ..geo.landmask import default_land_mask
         from ..geo.narrow_water import default_room
-        from .fast_eval import coarse_land
-
         finest = final_land().mask
         self.coarse, self.clear, self.coarse_deg = coarse_land(finest)
         self.coast_dist = np.asarray(finest.coast_distance)
@@ -110,8 +112,6 @@ class LandWalk:
                            lat1: np.ndarray) -> np.ndarray:
         """Land samples of segments on the search's intermediate coastline (coastal cells
         resolved exactly as they are met; `_route_kernel.ga_land_hits`)."""
-        from .fast_eval import coarse_land
-
         land = self.land
         if self._land_arrays is None:
             coarse, clear, coarse_deg = coarse_land(land)
@@ -159,3 +159,22 @@ class LandWalk:
                                      lat0[s:s + 1].tolist() + lat1[s:s + 1].tolist(), STEP_M)
             out[s] = int(np.count_nonzero(land.contains(np.asarray(lon), np.asarray(lat))))
         return out
+
+
+def coarse_land(land: LandMask) -> tuple[np.ndarray, np.ndarray, float]:
+    """The land scan's near-land filter of `land` (built once per mask): the coarse raster
+    (`COARSE_FACTOR` cells, land or coast in or next to a block), per block the arc [deg] to
+    the nearest flagged block, the larger of the polar-shrink bound and each latitude band's
+    (`geo.clear_distance`; about 1.4 times the polar jumps along mid-latitude routes, the
+    same samples decide), and the block size [deg]."""
+    key = id(land)
+    coarse_deg = land.cell_deg * COARSE_FACTOR
+    if key not in _COARSE:
+        coarse = fk.coarse_land_raster(np.asarray(land.raster), COARSE_FACTOR)
+        # both are lower bounds of the arc to land: so is the larger (the banded one is
+        # capped at its reach, the polar one is not)
+        clear = np.maximum(banded_clear_distance_deg(coarse, coarse_deg),
+                           fk.clear_distance_deg(coarse, coarse_deg))
+        _COARSE[key] = (coarse, np.ascontiguousarray(clear))
+    coarse, clear = _COARSE[key]
+    return coarse, clear, coarse_deg
