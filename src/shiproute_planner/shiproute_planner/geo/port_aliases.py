@@ -31,8 +31,24 @@ ALIASES: dict[str, str] = {
     "bermuda": "hamilton",
     "hamilton, bermuda": "hamilton",
     "leghorn": "livorno",
-    "venice": "venezia",
     "copenhagen": "kobenhavn",
+    # the gazetteer's spellings and qualified names that a typed name does not reach
+    "dunkirk": "dunkerque",  # the gazetteer's "Dunkirk" is Dunkirk, New York, on Lake Erie
+    "dunkirk, france": "dunkerque",
+    "zeebrugge": "zeebgrugge",
+    "alesund": "aalesund",
+    "makassar": "macassar",
+    "ujung pandang": "macassar",
+    "rijeka": "rijeka bakar",
+    "kristiansand": "kristiansand s.chris",
+}
+
+
+# (gazetteer name, its UN/LOCODE) -> the right UN/LOCODE: the gazetteer's main "Portland" lies
+# on the Columbia River at Portland, Oregon (USPDX) but carries Portland, Maine's code, which
+# its "Portland (Me)" entry also has
+LOCODE_FIXES: dict[tuple[str, str], str] = {
+    ("portland", "USPWM"): "USPDX",
 }
 
 
@@ -48,4 +64,5 @@ RIVER_PORTS: dict[str, tuple[str, float, float]] = {
     "GBLON": ("Thames (estuary, Sunk pilot area)", 51.85, 1.60),
     "USMSY": ("Mississippi (Southwest Pass entrance)", 28.87, -89.45),
     "USPHL": ("Delaware Bay (entrance, Cape Henlopen pilot area)", 38.78, -75.02),
+    "USPDX": ("Columbia River (bar pilot boarding area off the entrance)", 46.22, -124.18),
 }
