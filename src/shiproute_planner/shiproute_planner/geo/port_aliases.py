@@ -65,4 +65,8 @@ RIVER_PORTS: dict[str, tuple[str, float, float]] = {
     "USMSY": ("Mississippi (Southwest Pass entrance)", 28.87, -89.45),
     "USPHL": ("Delaware Bay (entrance, Cape Henlopen pilot area)", 38.78, -75.02),
     "USPDX": ("Columbia River (bar pilot boarding area off the entrance)", 46.22, -124.18),
+    "FRURO": ("Seine (estuary, pilot boarding area off Le Havre)", 49.47, -0.02),
+    "INCCU": ("Hooghly (Sandheads pilot station)", 20.88, 88.18),
+    "ESSVQ": ("Guadalquivir (mouth, off Chipiona)", 36.78, -6.47),
+    "GBMNC": ("Manchester Ship Canal and the Mersey (Mersey Bar)", 53.53, -3.30),
 }

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 from shiproute_core.geodesy import inverse
 from shiproute_core.units import M_PER_NM
@@ -75,3 +76,27 @@ def test_a_name_shared_by_ports_far_apart_says_which_was_chosen():
     # Portland, Maine; Portland, Victoria; Portland, Dorset are other ports of that name
     assert "USPWM" in note and "AUPTJ" in note and "GBPTL" in note and "UN/LOCODE" in note
     assert lookup_port("Genoa").note == ""  # one port of that name: nothing to say
+
+
+@pytest.mark.parametrize(("name", "up_river_nm"), [
+    # berths up rivers and ship canals, far from water the coastline data resolves: the
+    # published river passages are ~65 NM up the Seine, ~125 NM up the Hooghly, ~50 NM up
+    # the Guadalquivir, ~36 NM through the Manchester Ship Canal and Mersey, ~85 NM up the
+    # Columbia
+    ("Rouen", 65), ("Kolkata", 125), ("Sevilla", 50), ("Manchester", 36), ("Portland", 85),
+])
+def test_ports_up_rivers_resolve_at_sea_at_full_resolution(land_mask, name, up_river_nm):
+    import shapely
+    from shiproute_planner.geo.gshhg import load_land_polygons
+
+    port = resolve_port(name, land_mask)
+    assert port.is_river_port and "seaward end" in port.note
+    polygons = load_land_polygons("f")
+    b = polygons.bounds
+    near = np.flatnonzero((b[:, 0] <= port.lon_deg) & (b[:, 2] >= port.lon_deg)
+                          & (b[:, 1] <= port.lat_deg) & (b[:, 3] >= port.lat_deg))
+    point = shapely.Point(port.lon_deg, port.lat_deg)
+    assert not any(shapely.Polygon(polygons.ring(int(i))).contains(point) for i in near)
+    _, d = inverse(port.lon_deg, port.lat_deg, port.berth_lon_deg, port.berth_lat_deg)
+    # the straight line is shorter than the winding river, and not absurdly so
+    assert 0.3 * up_river_nm < float(d) / M_PER_NM < 1.2 * up_river_nm
