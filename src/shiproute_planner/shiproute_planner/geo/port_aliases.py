@@ -1,7 +1,8 @@
 """Port names people type that the searoute gazetteer spells otherwise, and ports up rivers
 or channels narrower than the coastline data, which voyages leave and reach at sea.
 
-River ports: the position is the seaward end of the river or channel (the pilot boarding
+River ports (and ports behind an archipelago fairway narrower than the finest passage grid):
+the position is the seaward end of the river or channel (the pilot boarding
 area off its mouth, approximate positions read from small-scale charts, about 1 NM), where
 the planned passage begins; the river passage itself is pilotage and is not planned.
 """
@@ -69,4 +70,8 @@ RIVER_PORTS: dict[str, tuple[str, float, float]] = {
     "INCCU": ("Hooghly (Sandheads pilot station)", 20.88, 88.18),
     "ESSVQ": ("Guadalquivir (mouth, off Chipiona)", 36.78, -6.47),
     "GBMNC": ("Manchester Ship Canal and the Mersey (Mersey Bar)", 53.53, -3.30),
+    # an archipelago fairway narrower than the finest passage grid (0.1 NM: Oxdjupet is
+    # ~150 m wide), under compulsory pilotage
+    "SESTO": ("Stockholm archipelago fairway (Sandhamn approach, pilot boarding area)",
+              59.20, 19.05),
 }
