@@ -70,6 +70,7 @@ RIVER_PORTS: dict[str, tuple[str, float, float]] = {
     "INCCU": ("Hooghly (Sandheads pilot station)", 20.88, 88.18),
     "ESSVQ": ("Guadalquivir (mouth, off Chipiona)", 36.78, -6.47),
     "GBMNC": ("Manchester Ship Canal and the Mersey (Mersey Bar)", 53.53, -3.30),
+    "VNSGN": ("Saigon River (Long Tau channel, pilot boarding off Vung Tau)", 10.28, 107.05),
     # an archipelago fairway narrower than the finest passage grid (0.1 NM: Oxdjupet is
     # ~150 m wide), under compulsory pilotage
     "SESTO": ("Stockholm archipelago fairway (Sandhamn approach, pilot boarding area)",

@@ -82,10 +82,11 @@ def test_a_name_shared_by_ports_far_apart_says_which_was_chosen():
     # berths up rivers and ship canals, far from water the coastline data resolves: the
     # published river passages are ~65 NM up the Seine, ~125 NM up the Hooghly, ~50 NM up
     # the Guadalquivir, ~36 NM through the Manchester Ship Canal and Mersey, ~85 NM up the
-    # Columbia; Stockholm's fairway through the archipelago to Sandhamn is ~40 NM, with
-    # passages (Oxdjupet, ~150 m) narrower than the 0.1 NM passage grid
+    # Columbia, ~45 NM up the Saigon River and Long Tau channel; Stockholm's fairway through
+    # the archipelago to Sandhamn is ~40 NM, with passages (Oxdjupet, ~150 m) narrower than
+    # the 0.1 NM passage grid
     ("Rouen", 65), ("Kolkata", 125), ("Sevilla", 50), ("Manchester", 36), ("Portland", 85),
-    ("Stockholm", 40),
+    ("Ho Chi Minh City", 45), ("Stockholm", 40),
 ])
 def test_ports_up_rivers_resolve_at_sea_at_full_resolution(land_mask, name, up_river_nm):
     import shapely
