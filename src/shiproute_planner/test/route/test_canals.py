@@ -4,6 +4,7 @@ authorities' limits and go round (Cape of Good Hope, Cape Horn) when it does not
 from __future__ import annotations
 
 import dataclasses
+import itertools
 
 import numpy as np
 import pytest
@@ -74,7 +75,7 @@ def test_ship_over_panama_limits_keeps_clear_of_the_isthmus_on_every_lane():
                                          _ship(15.5), [])  # > 15.2 m TFW
     assert not legs and "Cape Horn" in notes[0]
     geod = Geod(ellps="WGS84")
-    for a, b in zip(ports[:-1], ports[1:]):
+    for a, b in itertools.pairwise(ports):
         lane = sea_lane_between(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)
         _, _, d = geod.inv(np.full(len(lane), -79.7), np.full(len(lane), 9.1),
                            lane[:, 0], lane[:, 1])
