@@ -15,7 +15,7 @@ import numpy as np
 from ..geo.sea_lanes import sea_lane_between
 from ..route.problem import RouteLimits
 
-LANE_MARGIN_DEG = 0.5  # room beyond the lane's highest latitude for the search
+LANE_MARGIN_DEG = 1.0  # room beyond the lane's highest latitude for the search (~60 NM)
 MAX_BOUND_DEG = 85.0  # never beyond: the search's spherical steps and rasters stop near here
 
 
