@@ -20,6 +20,7 @@ from dataclasses import dataclass
 from importlib import resources
 
 import numpy as np
+from shiproute_core.geodesy import inverse
 
 from ..errors import PortNotFoundError, PositionOnLandError
 from .landmask import LandMask
@@ -79,10 +80,9 @@ def _short_index() -> dict[str, list[dict]]:
 
 
 def _km(a: dict, b: dict) -> float:
-    """Rough great-circle distance between two gazetteer entries [km] (ambiguity test)."""
-    la1, lo1, la2, lo2 = map(np.radians, (a["lat"], a["lon"], b["lat"], b["lon"]))
-    c = (np.sin(la1) * np.sin(la2) + np.cos(la1) * np.cos(la2) * np.cos(lo1 - lo2))
-    return float(6371.0 * np.arccos(np.clip(c, -1.0, 1.0)))
+    """Geodesic distance between two gazetteer entries [km] (ambiguity test)."""
+    _, d = inverse(a["lon"], a["lat"], b["lon"], b["lat"])
+    return float(d) / 1000.0
 
 
 def _choice_note(text: str, chosen: dict, cands: list[dict]) -> str:
