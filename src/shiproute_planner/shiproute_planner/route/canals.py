@@ -182,25 +182,19 @@ def _keep_clear(a, turn, b, canal: Canal, depth: int = 3) -> list:
 def _farthest_way_round(a, b, passage: str) -> tuple[float, float] | None:
     """(lat, lon) of the point of searoute's lane from a to b that avoids `passage` lying
     farthest from the lane that uses it; None without such a lane."""
-    import searoute
-
-    try:
-        ends = ([a.lon_deg, a.lat_deg], [b.lon_deg, b.lat_deg])
-        around = np.asarray(searoute.searoute(*ends, restrictions=["northwest", passage])
-                            ["geometry"]["coordinates"], dtype=float)
-        through = np.asarray(searoute.searoute(*ends)["geometry"]["coordinates"], dtype=float)
-    except Exception:
-        return None
-    if around.ndim != 2 or len(around) < 3 or through.ndim != 2 or len(through) < 2:
-        return None
     from shiproute_core.geodesy import densify_track
 
+    from ..geo.sea_lanes import sea_lane_between
+    from .nearest import spherical_m
+
+    ends = (a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)
+    around, through = sea_lane_between(*ends, avoid=(passage,)), sea_lane_between(*ends)
+    if (around is None or through is None or around.ndim != 2 or len(around) < 3
+            or through.ndim != 2 or len(through) < 2):
+        return None
     t_lon, t_lat = (np.asarray(v, dtype=float) for v in densify_track(
         through[:, 0], through[:, 1], 50_000.0))
-    r_lat, r_lon = np.radians(around[:, 1])[:, None], np.radians(around[:, 0])[:, None]
-    cos_d = (np.sin(r_lat) * np.sin(np.radians(t_lat))[None, :] + np.cos(r_lat)
-             * np.cos(np.radians(t_lat))[None, :] * np.cos(r_lon - np.radians(t_lon)[None, :]))
-    gap = np.arccos(np.clip(cos_d, -1.0, 1.0)).min(axis=1)
+    gap = [float(spherical_m(t_lon, t_lat, lon, lat).min()) for lon, lat in around]
     k = int(np.argmax(gap))
     return float(around[k, 1]), float(around[k, 0])
 
