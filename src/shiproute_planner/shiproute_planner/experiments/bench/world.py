@@ -42,7 +42,8 @@ LANE_SETS = {"world": "world_lanes.csv", "holdout": "holdout_lanes.csv"}
 
 
 def _lanes(lanes: str) -> list[dict[str, str]]:
-    """The lanes of a bundled set (`world`, `holdout`) or of a CSV file in their format."""
+    """The lanes of a bundled set (`world`, `holdout`) or of a CSV file in their format
+    (ValueError naming the file and what is wrong)."""
     if lanes in LANE_SETS:
         text = (resources.files("shiproute_planner.experiments.bench")
                 / LANE_SETS[lanes]).read_text()
@@ -51,12 +52,12 @@ def _lanes(lanes: str) -> list[dict[str, str]]:
             with open(lanes, encoding="utf-8") as f:
                 text = f.read()
         except OSError as exc:
-            raise SystemExit(f"--lanes {lanes!r}: cannot read the lane file "
+            raise ValueError(f"--lanes {lanes!r}: cannot read the lane file "
                              f"({exc.strerror})") from None
     rows = list(csv.DictReader(text.splitlines()))
     missing = {"name", "from", "to", "depart", "rta_days", "ship"} - set(rows[0] if rows else ())
     if missing:
-        raise SystemExit(f"--lanes {lanes!r}: no lanes, or columns missing: "
+        raise ValueError(f"--lanes {lanes!r}: no lanes, or columns missing: "
                          f"{', '.join(sorted(missing))}")
     return rows
 
@@ -89,14 +90,15 @@ def _where(plan, leg: int) -> str:
     return f"{kind} after {last}" if last else kind
 
 
-def run(budget_s: float, only: list[str], lanes: str = "world",
+def run(budget_s: float, only: list[str], lanes: list[dict[str, str]] | None = None,
         out_dir: str | None = None) -> dict:
-    """Plan and check every lane; the JSON-able result (plan files into `out_dir` if given)."""
+    """Plan and check every lane (`lanes`: rows of `_lanes`, the public set by default); the
+    JSON-able result (plan files into `out_dir` if given)."""
     from ...cli.check import land_test
 
     land_full, land_note = land_test(None)
     rows, times = [], []
-    for lane in _lanes(lanes):
+    for lane in _lanes("world") if lanes is None else lanes:
         if only and lane["name"] not in only:
             continue
         row: dict = {"lane": lane["name"], "passes": lane["passes"]}
@@ -183,7 +185,11 @@ def main(argv: list[str]) -> int:
     ap.add_argument("--out", default=None,
                     help="write each lane's plan files (RTZ, GeoJSON, JSON) into this directory")
     args = ap.parse_args(argv)
-    result = run(args.budget, args.lane, args.lanes, args.out)
+    try:
+        lanes = _lanes(args.lanes)
+    except ValueError as exc:  # a bad lane file is the user's mistake: exit 2, no traceback
+        ap.error(str(exc))
+    result = run(args.budget, args.lane, lanes, args.out)
     print_figures(result, args.json, leave_out=("per_lane",))
     if not args.json:
         for r in result["per_lane"]:
