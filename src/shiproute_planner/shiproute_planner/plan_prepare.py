@@ -33,6 +33,7 @@ from .route.risk import RiskSpec, parse_risk
 from .ship.spec import ShipSpec
 from .shoal_passages import route_shoals
 from .straits import route_straits
+from .voyage.lat_bound import voyage_lat_bound
 from .voyage.legs import voyage_schedule
 from .voyage.port_calls import PortCall
 from .voyage.schedule import FuelRate, LegSpec, Schedule
@@ -178,6 +179,8 @@ def prepare_voyage(request: VoyageRequest, options: PlanOptions,
             passage_rules(lim.under_keel).required_depth_m)
         warnings += shoal_notes
         warnings.append(passages_note(passage_rules(lim.under_keel)))
+    lim, lat_notes = voyage_lat_bound(lim, ports, fixed="lat_bound_deg" in (options.limits or {}))
+    warnings += lat_notes
     sched, rate = None, None
     sched_legs: list[LegSpec] = []
     call_at: dict[int, PortCall] = {}

@@ -16,6 +16,16 @@ def data_dir() -> Path:
     return path
 
 
+def load_npz(path: Path, *names: str) -> tuple[np.ndarray, ...] | None:
+    """The arrays `names` of a cache file read whole, or None when it is missing, corrupt or
+    lacks one of them (the caller rebuilds what it caches)."""
+    try:
+        with np.load(path) as z:
+            return tuple(np.asarray(z[n]) for n in names)
+    except (OSError, ValueError, KeyError):
+        return None
+
+
 def save_npz_atomic(path: Path, **arrays: np.ndarray) -> bool:
     """Store `arrays` in `path` by atomic replace, so a reader never sees half a file; False
     (nothing stored) when the data directory is read-only: the caller keeps them in memory."""

@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .datadir import save_npz_atomic
+from .datadir import load_npz, save_npz_atomic
 from .raster import COAST
 
 
@@ -42,11 +42,10 @@ class FineCoast:
 
     def _load(self, path: Path) -> None:
         """Cells resolved earlier (a corrupt or mismatched file is ignored and rebuilt)."""
-        try:
-            with np.load(path) as z:
-                keys, fine = z["keys"].astype(np.int64), z["fine"].astype(np.bool_)
-        except (OSError, ValueError, KeyError):
+        got = load_npz(path, "keys", "fine")
+        if got is None:
             return
+        keys, fine = got[0].astype(np.int64), got[1].astype(np.bool_)
         if fine.shape[1:] == (self.factor, self.factor) and keys.size == fine.shape[0] and (
                 np.all(np.diff(keys) > 0)):
             self.keys, self.fine, self._saved = keys, fine, keys.size

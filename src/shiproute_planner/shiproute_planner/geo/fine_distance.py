@@ -25,7 +25,7 @@ from pathlib import Path
 import numpy as np
 
 from .coast_distance import NM_PER_DEG
-from .datadir import save_npz_atomic
+from .datadir import load_npz, save_npz_atomic
 from .raster import patch_representatives
 
 FINE_DISTANCE_VERSION = 2  # in the cache file name: bump when the tiles change
@@ -97,11 +97,10 @@ class FineDistance:
 
     def _load(self, path: Path) -> None:
         """Tiles built earlier (a corrupt or mismatched file is ignored)."""
-        try:
-            with np.load(path) as z:
-                keys, grids = z["keys"].astype(np.int64), z["grids"].astype(np.uint8)
-        except (OSError, ValueError, KeyError):
+        got = load_npz(path, "keys", "grids")
+        if got is None:
             return
+        keys, grids = got[0].astype(np.int64), got[1].astype(np.uint8)
         if grids.shape[1:] != (FINE_PER_TILE, FINE_PER_TILE) or keys.size != grids.shape[0]:
             return
         if keys.size and (keys.min() < 0 or keys.max() >= TILE_ROWS * TILE_COLS):

@@ -1,7 +1,8 @@
 """Port names people type that the searoute gazetteer spells otherwise, and ports up rivers
 or channels narrower than the coastline data, which voyages leave and reach at sea.
 
-River ports: the position is the seaward end of the river or channel (the pilot boarding
+River ports (and ports behind an archipelago fairway narrower than the finest passage grid):
+the position is the seaward end of the river or channel (the pilot boarding
 area off its mouth, approximate positions read from small-scale charts, about 1 NM), where
 the planned passage begins; the river passage itself is pilotage and is not planned.
 """
@@ -31,8 +32,24 @@ ALIASES: dict[str, str] = {
     "bermuda": "hamilton",
     "hamilton, bermuda": "hamilton",
     "leghorn": "livorno",
-    "venice": "venezia",
     "copenhagen": "kobenhavn",
+    # the gazetteer's spellings and qualified names that a typed name does not reach
+    "dunkirk": "dunkerque",  # the gazetteer's "Dunkirk" is Dunkirk, New York, on Lake Erie
+    "dunkirk, france": "dunkerque",
+    "zeebrugge": "zeebgrugge",
+    "alesund": "aalesund",
+    "makassar": "macassar",
+    "ujung pandang": "macassar",
+    "rijeka": "rijeka bakar",
+    "kristiansand": "kristiansand s.chris",
+}
+
+
+# (gazetteer name, its UN/LOCODE) -> the right UN/LOCODE: the gazetteer's main "Portland" lies
+# on the Columbia River at Portland, Oregon (USPDX) but carries Portland, Maine's code, which
+# its "Portland (Me)" entry also has
+LOCODE_FIXES: dict[tuple[str, str], str] = {
+    ("portland", "USPWM"): "USPDX",
 }
 
 
@@ -48,4 +65,14 @@ RIVER_PORTS: dict[str, tuple[str, float, float]] = {
     "GBLON": ("Thames (estuary, Sunk pilot area)", 51.85, 1.60),
     "USMSY": ("Mississippi (Southwest Pass entrance)", 28.87, -89.45),
     "USPHL": ("Delaware Bay (entrance, Cape Henlopen pilot area)", 38.78, -75.02),
+    "USPDX": ("Columbia River (bar pilot boarding area off the entrance)", 46.22, -124.18),
+    "FRURO": ("Seine (estuary, pilot boarding area off Le Havre)", 49.47, -0.02),
+    "INCCU": ("Hooghly (Sandheads pilot station)", 20.88, 88.18),
+    "ESSVQ": ("Guadalquivir (mouth, off Chipiona)", 36.78, -6.47),
+    "GBMNC": ("Manchester Ship Canal and the Mersey (Mersey Bar)", 53.53, -3.30),
+    "VNSGN": ("Saigon River (Long Tau channel, pilot boarding off Vung Tau)", 10.28, 107.05),
+    # an archipelago fairway narrower than the finest passage grid (0.1 NM: Oxdjupet is
+    # ~150 m wide), under compulsory pilotage
+    "SESTO": ("Stockholm archipelago fairway (Sandhamn approach, pilot boarding area)",
+              59.20, 19.05),
 }

@@ -1,8 +1,11 @@
 """Port gazetteer: names, UN/LOCODEs and "lat,lon" strings -> positions at sea.
 
 Names come from the `searoute` port list (3,955 ports, some under historical names such as
-Pusan for Busan); a small alias table maps common modern names to them. Port coordinates that
-fall on the GSHHG coastline are moved to the nearest water within `max_snap_km`.
+Pusan for Busan); a small alias table maps common modern names to them. A name also matches
+without accents, without the gazetteer's qualifiers ("Seattle (WA)", "Cebu City",
+"Padang (Teluk Bajur), Sumatra") and, when several ports far apart share it, the plan says
+which was chosen. Port coordinates that fall on the GSHHG coastline are moved to the nearest
+water within `max_snap_km`.
 """
 
 from __future__ import annotations
@@ -12,15 +15,18 @@ import difflib
 import functools
 import json
 import re
+import unicodedata
 from dataclasses import dataclass
 from importlib import resources
 
 import numpy as np
+from shiproute_core.geodesy import inverse
 
 from ..errors import PortNotFoundError, PositionOnLandError
 from .landmask import LandMask
-from .port_aliases import ALIASES, RIVER_PORTS
+from .port_aliases import ALIASES, LOCODE_FIXES, RIVER_PORTS
 
+_AMBIGUOUS_KM = 50.0  # ports sharing a name this far apart are different ports
 _LATLON = re.compile(r"^\s*([-+]?\d+(?:\.\d*)?)\s*[, ]\s*([-+]?\d+(?:\.\d*)?)\s*$")
 
 
@@ -44,6 +50,53 @@ class Port:
         return self.berth_lat_deg is not None and self.berth_lon_deg is not None
 
 
+def _fold(name: str) -> str:
+    """Lower case without accents (Ålesund -> alesund, Málaga -> malaga)."""
+    text = unicodedata.normalize("NFKD", name.strip().lower())
+    return "".join(c for c in text if not unicodedata.combining(c))
+
+
+def _short_names(name: str) -> set[str]:
+    """A gazetteer name without its qualifiers: a parenthesis, what follows a comma, a
+    trailing ' city' ('Seattle (Wa)' -> seattle, 'Cebu City' -> cebu)."""
+    base = _fold(re.sub(r"\s*\(.*?\)", "", name)).split(",")[0].strip()
+    shorts = {base, base.removesuffix(" city").strip()}
+    return {s for s in shorts if s and s != _fold(name)}
+
+
+@functools.lru_cache(maxsize=1)
+def _short_index() -> dict[str, list[dict]]:
+    """Folded short name -> gazetteer entries, for names that match no entry exactly."""
+    by_name, _ = _gazetteer()
+    index: dict[str, list[dict]] = {}
+    for entries in by_name.values():
+        for p in entries:
+            for short in _short_names(p["name"]):
+                index.setdefault(short, []).append(p)
+            folded = _fold(p["name"])
+            if folded != p["name"].lower():
+                index.setdefault(folded, []).append(p)
+    return index
+
+
+def _km(a: dict, b: dict) -> float:
+    """Geodesic distance between two gazetteer entries [km] (ambiguity test)."""
+    _, d = inverse(a["lon"], a["lat"], b["lon"], b["lat"])
+    return float(d) / 1000.0
+
+
+def _choice_note(text: str, chosen: dict, cands: list[dict]) -> str:
+    """What the plan says when `text` names several ports far apart ('' when it does not)."""
+    others = sorted({f"{p['name']} {p.get('port') or '?'} ({p['lat']:.2f}, {p['lon']:.2f})"
+                     for p in cands if _km(p, chosen) > _AMBIGUOUS_KM})
+    if not others:
+        return ""
+    return (f"{text.strip()!r} names {len(others) + 1} ports in the gazetteer: chose "
+            f"{chosen['name']} {chosen.get('port') or ''} ({chosen['lat']:.2f}, "
+            f"{chosen['lon']:.2f}); the others: {'; '.join(others)} "
+            "(give a UN/LOCODE or 'lat,lon' to choose another)")
+
+
 @functools.lru_cache(maxsize=1)
 def _gazetteer() -> tuple[dict[str, list[dict]], dict[str, dict]]:
     path = resources.files("searoute") / "data" / "ports.geojson"
@@ -56,6 +109,7 @@ def _gazetteer() -> tuple[dict[str, list[dict]], dict[str, dict]]:
         p["lon"], p["lat"] = f["geometry"]["coordinates"][:2]
         by_name.setdefault(p["name"].lower(), []).append(p)
         code = (p.get("port") or "").upper()
+        code = p["port"] = LOCODE_FIXES.get((p["name"].lower(), code), code)
         if code and (code not in by_code or p.get("t", 0) > by_code[code].get("t", 0)):
             by_code[code] = p
     return by_name, by_code
@@ -81,11 +135,13 @@ def lookup_port(text: str) -> Port:
     by_name, by_code = _gazetteer()
     key = query.lower()
     compact = key.replace(" ", "")
+    choice = ""
     if len(compact) == 5 and compact.isalnum() and compact.upper() in by_code:
         p = by_code[compact.upper()]
     else:
-        key = ALIASES.get(key, key)
-        cands = by_name.get(key)
+        key = ALIASES.get(key, ALIASES.get(_fold(key), key))
+        short = _short_index().get(_fold(key), [])
+        cands = by_name.get(key) or by_name.get(_fold(key)) or short
         if not cands:
             close = difflib.get_close_matches(key, list(by_name) + list(ALIASES), n=5,
                                               cutoff=0.75)
@@ -97,14 +153,20 @@ def lookup_port(text: str) -> Port:
                 f"UN/LOCODE such as KRPUS, or 'lat,lon'){hint}"
             )
         p = max(cands, key=_rank)
+        choice = _choice_note(text, p, cands + [q for q in short if q not in cands])
     code = p.get("port") or ""
     if code in RIVER_PORTS:
         channel, lat, lon = RIVER_PORTS[code]
-        return Port(p["name"], code, lat, lon, note=(
-            f"{p['name']} lies up the {channel}: the plan starts/ends at its seaward end "
-            f"({lat:.2f}, {lon:.2f}); the river passage is pilotage and not planned"),
-            berth_lat_deg=float(p["lat"]), berth_lon_deg=float(p["lon"]))
-    return Port(p["name"], code, float(p["lat"]), float(p["lon"]))
+        river = (f"{p['name']} lies up the {channel}: the plan starts/ends at its seaward end "
+                 f"({lat:.2f}, {lon:.2f}); the river passage is pilotage and not planned")
+        return Port(p["name"], code, lat, lon, note=_join_notes(choice, river),
+                    berth_lat_deg=float(p["lat"]), berth_lon_deg=float(p["lon"]))
+    return Port(p["name"], code, float(p["lat"]), float(p["lon"]), note=choice)
+
+
+def _join_notes(*notes: str) -> str:
+    """Several notes about one port as one warning."""
+    return "; ".join(n for n in notes if n)
 
 
 def snap_to_sea(port: Port, land: LandMask, max_snap_km: float = 25.0) -> Port:
@@ -127,8 +189,9 @@ def snap_to_sea(port: Port, land: LandMask, max_snap_km: float = 25.0) -> Port:
         )
     k = int(np.flatnonzero(wet)[0])
     moved = float(rr.ravel()[k])
-    note = port.note or (f"{port.name}: the gazetteer position is on land; moved {moved:g} km "
-                         "to the nearest navigable water" if moved > 2.0 else "")
+    snapped = (f"{port.name}: the gazetteer position is on land; moved {moved:g} km to the "
+               "nearest navigable water" if moved > 2.0 and not port.is_river_port else "")
+    note = _join_notes(port.note, snapped)
     return dataclasses.replace(port, lat_deg=float(lat[k]), lon_deg=float(lon[k]),
                                snapped_km=moved, note=note)
 

@@ -13,24 +13,33 @@ from shiproute_core.geodesy import wrap_lon
 LANE_END_DECIMALS = 4
 
 
+#: searoute's passage names a lane always avoids (its own default: the Northwest Passage)
+ALWAYS_AVOIDED = ("northwest",)
+
+
 @functools.lru_cache(maxsize=64)
-def searoute_coords(lon0: float, lat0: float, lon1: float, lat1: float) -> np.ndarray | None:
-    """searoute's shortest sea-lane polyline as (k, 2) lon/lat in degrees (cached: its Dijkstra
-    is slow); None when it finds no route."""
+def searoute_coords(lon0: float, lat0: float, lon1: float, lat1: float,
+                    avoid: tuple[str, ...] = ()) -> np.ndarray | None:
+    """searoute's shortest sea-lane polyline as (k, 2) lon/lat in degrees, kept out of the
+    passages `avoid` names besides `ALWAYS_AVOIDED` (cached: its Dijkstra is slow); None when
+    it finds no route. The array is shared: callers copy before changing it."""
     import searoute
 
     try:
-        feat = searoute.searoute([lon0, lat0], [lon1, lat1])
+        feat = searoute.searoute([lon0, lat0], [lon1, lat1],
+                                 restrictions=[*ALWAYS_AVOIDED, *avoid])
     except Exception:
         return None
     return np.asarray(feat["geometry"]["coordinates"], dtype=float)
 
 
 def sea_lane_between(lon0_deg: float, lat0_deg: float, lon1_deg: float, lat1_deg: float,
-                     ) -> np.ndarray | None:
+                     avoid: tuple[str, ...] = ()) -> np.ndarray | None:
     """The sea-lane polyline from (lon0, lat0) to (lon1, lat1) (longitudes wrapped to
-    [-180, 180), ends rounded to `LANE_END_DECIMALS`); its ends are searoute's network nodes
-    nearest to the points, not the points themselves. None when there is no route."""
+    [-180, 180), ends rounded to `LANE_END_DECIMALS`), kept out of the searoute passages
+    `avoid` names; its ends are searoute's network nodes nearest to the points, not the points
+    themselves. None when there is no route."""
     d = LANE_END_DECIMALS
     return searoute_coords(round(float(wrap_lon(lon0_deg)), d), round(float(lat0_deg), d),
-                           round(float(wrap_lon(lon1_deg)), d), round(float(lat1_deg), d))
+                           round(float(wrap_lon(lon1_deg)), d), round(float(lat1_deg), d),
+                           tuple(avoid))

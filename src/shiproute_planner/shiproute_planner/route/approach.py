@@ -45,6 +45,8 @@ class CoastalPassage:
     land: LandMask
     share: float = 1.0 / 6.0
     step_m: float = 5.0 * M_PER_NM
+    # when no two ends see each other: how far along the lane an end must see over open sea
+    ahead_m: float = 100.0 * M_PER_NM
 
 
 def _points_at(lon: np.ndarray, lat: np.ndarray, cum: np.ndarray,
@@ -79,7 +81,7 @@ def _coastal_ends(lon: np.ndarray, lat: np.ndarray, cum: np.ndarray, rule: Coast
     """Departure and arrival approach lengths [m] whose ends see each other over open sea
     (`_search_coastal_ends`, memoised: the answer depends on the lane and the land only)."""
     key = (lon.tobytes(), lat.tobytes(), rule.land.resolution, rule.land.cell_deg, rule.share,
-           rule.step_m,
+           rule.step_m, rule.ahead_m,
            float(min_dep_m), float(min_m))
     ends = _ENDS_MEMO.get(key)
     if ends is None:
@@ -95,7 +97,8 @@ def _search_coastal_ends(lon: np.ndarray, lat: np.ndarray, cum: np.ndarray,
                          ) -> tuple[float, float]:
     """Departure and arrival approach lengths [m] whose ends see each other over open sea:
     alternately the shortest one end can be with the other fixed, starting from the arrival
-    end at its farthest; the minimums when no such pair exists."""
+    end at its farthest; when no such pair exists, each end where it first sees the lane's
+    middle (the minimum where it does not)."""
     r_lon, r_lat, r_cum = lon[::-1], lat[::-1], cum[-1] - cum[::-1]
 
     def end(lo: np.ndarray, la: np.ndarray, cu: np.ndarray, d: float) -> tuple[float, float]:
@@ -120,7 +123,25 @@ def _search_coastal_ends(lon: np.ndarray, lat: np.ndarray, cum: np.ndarray,
             d_dep += rule.step_m
         else:
             d_arr += rule.step_m
-    return min_dep_m, min_m
+    # no pair sees each other (both ports deep in inner waters: Anchorage up Cook Inlet,
+    # Vancouver behind Vancouver Island): each end goes out to where it sees the lane ahead
+    # over open sea, so neither span seam cuts across the islands round its port
+    return (_sees_ahead_m(lon, lat, cum, rule, min_dep_m),
+            _sees_ahead_m(r_lon, r_lat, r_cum, rule, min_m))
+
+
+def _sees_ahead_m(lon: np.ndarray, lat: np.ndarray, cum: np.ndarray, rule: CoastalPassage,
+                  min_m: float) -> float:
+    """First lane distance >= min_m from which the great circle to the lane point
+    `rule.ahead_m` further on (at most the lane's middle) misses land (min_m if none within
+    the first `share` of the lane)."""
+    d = np.arange(min_m, max(rule.share * cum[-1], min_m) + 1.0, rule.step_m)
+    p_lon, p_lat = _points_at(lon, lat, cum, d)
+    f_lon, f_lat = _points_at(lon, lat, cum, np.minimum(d + rule.ahead_m, 0.5 * cum[-1]))
+    ahead = d + rule.step_m < 0.5 * cum[-1]
+    hits = rule.land.segment_land_samples(p_lon, p_lat, f_lon, f_lat)
+    clear = np.flatnonzero((hits == 0) & ahead)
+    return float(d[clear[0]]) if clear.size else min_m
 
 
 def lane_approaches(dep: Port, arr: Port, approach_m: float, with_dep: bool = True,

@@ -34,6 +34,8 @@ class Canal:
     max_beam_m: float
     max_length_m: float
     round_via: tuple[float, float, str]  # (lat, lon, name) of the way round for too-big ships
+    # searoute's name of the passage (for its lanes that avoid it; '' when it has none)
+    searoute_passage: str = ""
     # line points from .. to sailed at the transit speed; outside them (a gulf or approach
     # channel leading to the canal, a fixed route too) the ship keeps its sea speed
     slow: tuple[int, int] = (0, -1)
@@ -51,12 +53,13 @@ CANALS: tuple[Canal, ...] = (
                          (29.87, 32.55), (29.93, 32.57), (30.32, 32.38), (30.58, 32.30),
                          (30.80, 32.32), (31.26, 32.31), (31.35, 32.35)),
           transit_kn=7.5, max_draft_m=20.1, max_beam_m=77.5, max_length_m=400.0,
-          round_via=(-36.5, 20.0, "off Cape Agulhas (Cape of Good Hope route)"), slow=(4, 10)),
+          round_via=(-36.5, 20.0, "off Cape Agulhas (Cape of Good Hope route)"), slow=(4, 10),
+          searoute_passage="suez"),
     Canal("Panama Canal (Neopanamax locks)", ((9.40, -79.92), (9.27, -79.92), (9.15, -79.85),
                                              (9.12, -79.70), (9.05, -79.66), (9.02, -79.60),
                                              (8.95, -79.56), (8.88, -79.52)),
           transit_kn=5.0, max_draft_m=15.2, max_beam_m=51.25, max_length_m=366.0,
-          round_via=(-57.0, -67.0, "south of Cape Horn")),
+          round_via=(-57.0, -67.0, "south of Cape Horn"), searoute_passage="panama"),
     Canal("Kiel Canal", ((53.88, 9.10), (53.90, 9.15), (54.10, 9.40), (54.30, 9.68),
                          (54.37, 10.15), (54.45, 10.20)),
           transit_kn=6.5, max_draft_m=9.5, max_beam_m=32.5, max_length_m=235.0,
@@ -121,10 +124,14 @@ def route_canals(ports: list, spec, via_rta: list) -> tuple[list, dict[int, tupl
             why = canal.too_big(draft, beam, length)
             if why:
                 round_lat, round_lon, where = canal.round_via
-                out.append(Port(f"turning point {where}", "", round_lat, round_lon))
-                out_rta.append(None)
+                turn = Port(f"turning point {where}", "", round_lat, round_lon)
+                extra = _keep_clear(out[-1], turn, b, canal)
+                out += extra
+                out_rta += [None] * len(extra)
                 notes.append(f"{canal.name}: the ship is over its limits ({why}); routed "
-                              f"round via {where}")
+                              f"round via {where}" + "".join(
+                                  f"; {p.name} ({p.lat_deg:.1f}, {p.lon_deg:.1f})"
+                                  for p in extra if p is not turn))
                 continue
             lon, lat = canal_line(canal, rev)
             legs[len(out)] = (canal, rev)  # the whole fixed line: lead-in, canal, lead-out
@@ -139,6 +146,57 @@ def route_canals(ports: list, spec, via_rta: list) -> tuple[list, dict[int, tupl
         if k < len(ports) - 2:
             out_rta.append(rtas[k])
     return out, legs, out_rta, notes
+
+
+def _lane_through(a, b, canal: Canal) -> bool:
+    """True when the sea lane from port a to port b runs through `canal`."""
+    from ..geo.sea_lanes import sea_lane_between
+
+    coords = sea_lane_between(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)
+    return coords is not None and len(coords) > 1 and any(
+        c is canal for _, c, _ in canals_on_lane(coords[:, 0], coords[:, 1]))
+
+
+def _keep_clear(a, turn, b, canal: Canal, depth: int = 3) -> list:
+    """Turning points from a to b round `canal` (the canal's own way round first): where the
+    sea lane between two of them still runs through the canal (the shortest way from the Gulf
+    of Mexico to Cape Horn is through Panama), the point of searoute's lane avoiding the canal
+    that lies farthest from the lane through it is added, up to `depth` times."""
+    from ..geo.ports import Port
+
+    points = [a, turn, b]
+    for _ in range(depth):
+        k = next((k for k in range(len(points) - 1)
+                  if _lane_through(points[k], points[k + 1], canal)), None)
+        if k is None or not canal.searoute_passage:
+            break
+        way = _farthest_way_round(points[k], points[k + 1], canal.searoute_passage)
+        if way is None:
+            break
+        lat, lon = way
+        points.insert(k + 1, Port(f"turning point keeping clear of the {canal.name}", "",
+                                  lat, lon))
+    return points[1:-1]
+
+
+def _farthest_way_round(a, b, passage: str) -> tuple[float, float] | None:
+    """(lat, lon) of the point of searoute's lane from a to b that avoids `passage` lying
+    farthest from the lane that uses it; None without such a lane."""
+    from shiproute_core.geodesy import densify_track
+
+    from ..geo.sea_lanes import sea_lane_between
+    from .nearest import spherical_m
+
+    ends = (a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)
+    around, through = sea_lane_between(*ends, avoid=(passage,)), sea_lane_between(*ends)
+    if (around is None or through is None or around.ndim != 2 or len(around) < 3
+            or through.ndim != 2 or len(through) < 2):
+        return None
+    t_lon, t_lat = (np.asarray(v, dtype=float) for v in densify_track(
+        through[:, 0], through[:, 1], 50_000.0))
+    gap = [float(spherical_m(t_lon, t_lat, lon, lat).min()) for lon, lat in around]
+    k = int(np.argmax(gap))
+    return float(around[k, 1]), float(around[k, 0])
 
 
 def sail_canal(env, canal: Canal, reverse: bool, depart_s: float, limits, stage_s: float,

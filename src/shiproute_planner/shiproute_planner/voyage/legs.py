@@ -10,9 +10,10 @@ from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
-from shiproute_core.geodesy import inverse, wrap_lon
+from shiproute_core.geodesy import inverse
 
 from ..geo.ports import Port
+from ..geo.sea_lanes import sea_lane_between
 from ..route_check import M_PER_NM
 from .port_calls import PortCall
 from .schedule import FuelRate, LegSpec, fuel_rate_of
@@ -46,16 +47,12 @@ def lane_turns(lon0: float, lat0: float, lon1: float, lat1: float,
     """Turns of the shortest sea lane between two points: vertices of the lane simplified to
     `tolerance_deg` (~6 NM) where it turns by more than `min_turn_deg`, i.e. the capes and
     straits a route must round (a great circle drawn in lon/lat bends, it does not turn)."""
-    import searoute
     import shapely
 
-    try:
-        feat = searoute.searoute([float(wrap_lon(lon0)), lat0], [float(wrap_lon(lon1)), lat1])
-        c = np.asarray(feat["geometry"]["coordinates"], dtype=float)
-    except Exception:  # no lane known: nothing to round
+    lane = _sea_lane(lon0, lat0, lon1, lat1)
+    if lane is None or lane.shape[0] < 3:  # no lane known: nothing to round
         return 0
-    if c.ndim != 2 or c.shape[0] < 3:
-        return 0
+    c = lane.copy()
     c[:, 0] = np.unwrap(c[:, 0], period=360.0)
     simple = np.asarray(shapely.simplify(shapely.LineString(c), tolerance_deg,
                                          preserve_topology=False).coords)
@@ -71,14 +68,8 @@ def lane_turns(lon0: float, lat0: float, lon1: float, lat1: float,
 def _sea_lane(lon0: float, lat0: float, lon1: float, lat1: float) -> np.ndarray | None:
     """searoute's lane between two points as (k, 2) lon/lat rows, or None where it has none
     (the callers fall back on the great circle)."""
-    import searoute
-
-    try:
-        feat = searoute.searoute([float(wrap_lon(lon0)), lat0], [float(wrap_lon(lon1)), lat1])
-        c = np.asarray(feat["geometry"]["coordinates"], dtype=float)
-    except Exception:  # searoute has no lane here
-        return None
-    return c if c.ndim == 2 and c.shape[0] >= 2 else None
+    c = sea_lane_between(lon0, lat0, lon1, lat1)
+    return c if c is not None and c.ndim == 2 and c.shape[0] >= 2 else None
 
 
 @functools.lru_cache(maxsize=256)

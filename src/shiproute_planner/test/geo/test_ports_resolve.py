@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 from shiproute_core.geodesy import inverse
 from shiproute_core.units import M_PER_NM
@@ -22,6 +23,7 @@ def test_aliases_and_locodes(typed, locode):
     # city positions are 40-290 NM up their rivers; the plan must start near the mouth
     ("Houston", (29.33, -94.70), 10), ("Hamburg", (53.95, 8.30), 15),
     ("Antwerp", (51.42, 3.50), 15), ("Montreal", (48.30, -69.40), 15),
+    ("Portland", (46.25, -124.08), 10),  # Columbia River entrance between the jetties
 ])
 def test_river_ports_start_at_sea_and_say_so(land_mask, name, sea_end, max_nm):
     port = resolve_port(name, land_mask)
@@ -36,3 +38,68 @@ def test_unknown_name_suggests_close_matches():
         lookup_port("Roterdam")
     with pytest.raises(PortNotFoundError, match=r"genova|genoa"):
         lookup_port("Genua")
+
+
+def test_every_alias_names_a_gazetteer_port():
+    # an alias to a name the gazetteer lacks makes a port that exists unreachable
+    from shiproute_planner.geo.port_aliases import ALIASES
+    from shiproute_planner.geo.ports import _gazetteer
+
+    by_name, _ = _gazetteer()
+    assert sorted(k for k, v in ALIASES.items() if v not in by_name) == []
+
+
+@pytest.mark.parametrize(("typed", "locode"), [
+    # the gazetteer spells these with a qualifier, another spelling or an accent
+    ("Seattle", "USSEA"), ("Cebu", "PHCEB"), ("Venice", "ITVCE"), ("Dunkirk", "FRDKK"),
+    ("Zeebrugge", "BEZEE"), ("Ålesund", "NOAES"), ("Málaga", "ESAGP"), ("Makassar", "IDMAC"),
+    ("Kuantan", "MYKUA"),
+])
+def test_common_names_reach_qualified_or_respelled_entries(typed, locode):
+    assert lookup_port(typed).locode == locode
+
+
+@pytest.mark.parametrize(("typed", "city"), [
+    # published city positions: Portland, Oregon and Portland, Maine
+    ("USPDX", (45.52, -122.68)), ("USPWM", (43.66, -70.25)),
+])
+def test_locode_resolves_to_its_own_city(typed, city):
+    port = lookup_port(typed)
+    lat = port.berth_lat_deg if port.is_river_port else port.lat_deg
+    lon = port.berth_lon_deg if port.is_river_port else port.lon_deg
+    _, d = inverse(lon, lat, city[1], city[0])
+    assert float(d) < 15_000.0
+
+
+def test_a_name_shared_by_ports_far_apart_says_which_was_chosen():
+    note = lookup_port("Portland").note
+    # Portland, Maine; Portland, Victoria; Portland, Dorset are other ports of that name
+    assert "USPWM" in note and "AUPTJ" in note and "GBPTL" in note and "UN/LOCODE" in note
+    assert lookup_port("Genoa").note == ""  # one port of that name: nothing to say
+
+
+@pytest.mark.parametrize(("name", "up_river_nm"), [
+    # berths up rivers and ship canals, far from water the coastline data resolves: the
+    # published river passages are ~65 NM up the Seine, ~125 NM up the Hooghly, ~50 NM up
+    # the Guadalquivir, ~36 NM through the Manchester Ship Canal and Mersey, ~85 NM up the
+    # Columbia, ~45 NM up the Saigon River and Long Tau channel; Stockholm's fairway through
+    # the archipelago to Sandhamn is ~40 NM, with passages (Oxdjupet, ~150 m) narrower than
+    # the 0.1 NM passage grid
+    ("Rouen", 65), ("Kolkata", 125), ("Sevilla", 50), ("Manchester", 36), ("Portland", 85),
+    ("Ho Chi Minh City", 45), ("Stockholm", 40),
+])
+def test_ports_up_rivers_resolve_at_sea_at_full_resolution(land_mask, name, up_river_nm):
+    import shapely
+    from shiproute_planner.geo.gshhg import load_land_polygons
+
+    port = resolve_port(name, land_mask)
+    assert port.is_river_port and "seaward end" in port.note
+    polygons = load_land_polygons("f")
+    b = polygons.bounds
+    near = np.flatnonzero((b[:, 0] <= port.lon_deg) & (b[:, 2] >= port.lon_deg)
+                          & (b[:, 1] <= port.lat_deg) & (b[:, 3] >= port.lat_deg))
+    point = shapely.Point(port.lon_deg, port.lat_deg)
+    assert not any(shapely.Polygon(polygons.ring(int(i))).contains(point) for i in near)
+    _, d = inverse(port.lon_deg, port.lat_deg, port.berth_lon_deg, port.berth_lat_deg)
+    # the straight line is shorter than the winding river, and not absurdly so
+    assert 0.3 * up_river_nm < float(d) / M_PER_NM < 1.2 * up_river_nm

@@ -95,3 +95,35 @@ def test_resolve_voyage_spans_the_antimeridian_eastward(land_mask):
     assert keys.size > 50 and np.all(np.isin(keys, fine.keys))
     # both sides of 180 deg hold coast here (Attu ~173 E.. 187 E = Adak ~176.6 W)
     assert (cols[jj] < raster.shape[1] // 2).any() and (cols[jj] > raster.shape[1] // 2).any()
+
+
+def test_approaches_from_inner_waters_reach_water_that_sees_the_lane_ahead(land_mask):
+    # Anchorage (up Cook Inlet) and Vancouver (behind Vancouver Island): no two approach ends
+    # see each other, and ends left at the minimum put the optimised span's seam across the
+    # islands. Each end must see the lane 100 NM further on over open water, judged here
+    # with shapely on the GSHHG full-resolution polygons
+    import shapely
+    from pyproj import Geod
+    from shiproute_planner.geo.gshhg import load_land_polygons
+    from shiproute_planner.geo.sea_lanes import sea_lane_between
+
+    a, b = resolve_port("Anchorage", land_mask), resolve_port("Vancouver", land_mask)
+    dep, arr = lane_approaches(a, b, 25 * M_PER_NM, coastal=CoastalPassage(land_mask))
+    lane = sea_lane_between(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)
+    geod = Geod(ellps="WGS84")
+    polygons = load_land_polygons("f")
+    for (e_lon, e_lat), lane_ahead in (((dep.lon_deg[-1], dep.lat_deg[-1]), lane),
+                                       ((arr.lon_deg[0], arr.lat_deg[0]), lane[::-1])):
+        _, _, d = geod.inv(np.full(len(lane_ahead), e_lon), np.full(len(lane_ahead), e_lat),
+                           lane_ahead[:, 0], lane_ahead[:, 1])
+        k = int(np.argmin(d))  # the lane node at the end, then 100 NM on along the lane
+        _, _, seg = geod.inv(lane_ahead[k:-1, 0], lane_ahead[k:-1, 1], lane_ahead[k + 1:, 0],
+                             lane_ahead[k + 1:, 1])
+        j = k + int(np.searchsorted(np.cumsum(seg), 100 * M_PER_NM))
+        pts = geod.npts(e_lon, e_lat, lane_ahead[j, 0], lane_ahead[j, 1], 200)
+        line = shapely.LineString([(e_lon, e_lat), *pts, tuple(lane_ahead[j])])
+        bb = polygons.bounds
+        lo, la = line.bounds[0::2], line.bounds[1::2]
+        near = np.flatnonzero((bb[:, 0] <= lo[1]) & (bb[:, 2] >= lo[0]) & (bb[:, 1] <= la[1])
+                              & (bb[:, 3] >= la[0]))
+        assert not any(shapely.Polygon(polygons.ring(int(i))).intersects(line) for i in near)

@@ -4,6 +4,7 @@ authorities' limits and go round (Cape of Good Hope, Cape Horn) when it does not
 from __future__ import annotations
 
 import dataclasses
+import itertools
 
 import numpy as np
 import pytest
@@ -47,7 +48,8 @@ def test_panama_neopanamax_limits():
     _, legs, _, _ = route_canals([ny, la], _ship(), [])
     assert [c.name for c, _ in legs.values()] == ["Panama Canal (Neopanamax locks)"]
     ports, legs, _, notes = route_canals([ny, la], _ship(15.5), [])  # > 15.2 m TFW
-    assert not legs and ports[1].lat_deg < -55.9 and "Cape Horn" in notes[0]
+    # round the Horn (turning points before it keep the lanes off the isthmus)
+    assert not legs and any(p.lat_deg < -55.9 for p in ports[1:-1]) and "Cape Horn" in notes[0]
 
 
 def test_canal_transit_time_and_no_land_check():
@@ -61,3 +63,20 @@ def test_canal_transit_time_and_no_land_check():
     # 7.5 kn over the canal line (Suez Bay to off Port Said, ~105 NM): ~14 h
     assert hours == pytest.approx(np.sum(seg) / M_PER_NM / 7.5, rel=0.03)
     assert int(ev.flags[0]) == 0 and lead_in is not None and lead_out is None
+
+
+def test_ship_over_panama_limits_keeps_clear_of_the_isthmus_on_every_lane():
+    # the shortest lane from the Gulf of Mexico to Cape Horn runs through Panama, so a turning
+    # point at the Horn alone would send a ship too big for the locks across the isthmus
+    from pyproj import Geod
+    from shiproute_planner.geo.sea_lanes import sea_lane_between
+
+    ports, legs, _, notes = route_canals([lookup_port("Houston"), lookup_port("Busan")],
+                                         _ship(15.5), [])  # > 15.2 m TFW
+    assert not legs and "Cape Horn" in notes[0]
+    geod = Geod(ellps="WGS84")
+    for a, b in itertools.pairwise(ports):
+        lane = sea_lane_between(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)
+        _, _, d = geod.inv(np.full(len(lane), -79.7), np.full(len(lane), 9.1),
+                           lane[:, 0], lane[:, 1])
+        assert d.min() > 300_000.0, (a.name, b.name)  # Gatun Lake is at 9.1 N, 79.7 W

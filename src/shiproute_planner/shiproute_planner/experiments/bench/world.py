@@ -4,7 +4,12 @@ check each plan with the route check at GSHHG full resolution.
 `world_lanes.csv` is a copy of the public lane set `benchmarks/world_lanes.csv` of the
 shiproute project's shared data (20 trade lanes through Suez, Panama, Kiel, Dover,
 Gibraltar, Malacca, the Bosphorus, Torres Strait, the Great Barrier Reef, the Elbe, the St
-Lawrence). A lane is land-clean when no sample of its track (every 0.25 NM) lies on GSHHG
+Lawrence). `holdout_lanes.csv` (`--lanes holdout`) is this project's own hold-out set: 33
+voyages outside those lanes (ports up rivers, archipelagos, straits, canals the ship fits
+and does not, ocean crossings, high latitudes, voyages with port calls in the optional `via`
+column, separated by ';'), for checking on voyages the planner was not developed on.
+
+A lane is land-clean when no sample of its track (every 0.25 NM) lies on GSHHG
 full-resolution land outside 3 NM round each port and outside canals (fixed passages under
 their authorities' rules), and depth-checked when the plan was made
 with bathymetry and every planned leg's depth was known or named by the plan as crossing a
@@ -29,13 +34,32 @@ from shiproute_core.units import M_PER_NM
 
 from ... import planning
 from ...errors import PlannerError
+from ...io.files import write_plan_files
 from ...request import PlanOptions, VoyageRequest, voyage_times
 from ...route_check import check_track
 
+LANE_SETS = {"world": "world_lanes.csv", "holdout": "holdout_lanes.csv"}
 
-def _lanes() -> list[dict[str, str]]:
-    text = (resources.files("shiproute_planner.experiments.bench") / "world_lanes.csv").read_text()
-    return list(csv.DictReader(text.splitlines()))
+
+def _lanes(lanes: str) -> list[dict[str, str]]:
+    """The lanes of a bundled set (`world`, `holdout`) or of a CSV file in their format
+    (ValueError naming the file and what is wrong)."""
+    if lanes in LANE_SETS:
+        text = (resources.files("shiproute_planner.experiments.bench")
+                / LANE_SETS[lanes]).read_text()
+    else:
+        try:
+            with open(lanes, encoding="utf-8") as f:
+                text = f.read()
+        except OSError as exc:
+            raise ValueError(f"--lanes {lanes!r}: cannot read the lane file "
+                             f"({exc.strerror})") from None
+    rows = list(csv.DictReader(text.splitlines()))
+    missing = {"name", "from", "to", "depart", "rta_days", "ship"} - set(rows[0] if rows else ())
+    if missing:
+        raise ValueError(f"--lanes {lanes!r}: no lanes, or columns missing: "
+                         f"{', '.join(sorted(missing))}")
+    return rows
 
 
 def _peak_rss_mb() -> float:
@@ -66,13 +90,15 @@ def _where(plan, leg: int) -> str:
     return f"{kind} after {last}" if last else kind
 
 
-def run(budget_s: float, only: list[str]) -> dict:
-    """Plan and check every lane; the JSON-able result."""
+def run(budget_s: float, only: list[str], lanes: list[dict[str, str]] | None = None,
+        out_dir: str | None = None) -> dict:
+    """Plan and check every lane (`lanes`: rows of `_lanes`, the public set by default); the
+    JSON-able result (plan files into `out_dir` if given)."""
     from ...cli.check import land_test
 
     land_full, land_note = land_test(None)
     rows, times = [], []
-    for lane in _lanes():
+    for lane in _lanes("world") if lanes is None else lanes:
         if only and lane["name"] not in only:
             continue
         row: dict = {"lane": lane["name"], "passes": lane["passes"]}
@@ -80,8 +106,9 @@ def run(budget_s: float, only: list[str]) -> dict:
         try:
             depart_s, rta_s = voyage_times(lane["depart"],
                                            timedelta(days=float(lane["rta_days"])))
+            via = tuple(p.strip() for p in (lane.get("via") or "").split(";") if p.strip())
             voyage = VoyageRequest(lane["from"], lane["to"], depart_s, rta_s, lane["ship"],
-                                   default_bathymetry=True)
+                                   via=via, default_bathymetry=True)
             plan = planning.plan(voyage, PlanOptions(budget_s=budget_s), None)
         except PlannerError as exc:
             row.update(error=str(exc), plan_s=round(time.perf_counter() - t, 2))
@@ -89,6 +116,8 @@ def run(budget_s: float, only: list[str]) -> dict:
             continue
         dt = time.perf_counter() - t
         times.append(dt)
+        if out_dir:
+            write_plan_files(plan, out_dir, stem=lane["name"], png=False)
         lon, lat, _ = plan.track()
         fixed = frozenset(k for a, b in plan.extra.get("fixed_passages", ())
                           for k in range(a, b))
@@ -144,13 +173,23 @@ def run(budget_s: float, only: list[str]) -> dict:
 
 
 def main(argv: list[str]) -> int:
-    """`shiproute bench world [--json] [--budget S] [--lane NAME ...]`."""
+    """`shiproute bench world [--json] [--budget S] [--lane NAME ...] [--lanes SET|FILE]
+    [--out DIR]`."""
     ap = argparse.ArgumentParser(prog="shiproute bench world", description=__doc__)
     ap.add_argument("--json", action="store_true", help="print one JSON object")
     ap.add_argument("--budget", type=float, default=5.0, help="planning budget per lane [s]")
     ap.add_argument("--lane", action="append", default=[], help="only these lanes")
+    ap.add_argument("--lanes", default="world",
+                    help="lane set: world (the public 20), holdout (our own hold-out set) or "
+                         "a CSV file in their format (default world)")
+    ap.add_argument("--out", default=None,
+                    help="write each lane's plan files (RTZ, GeoJSON, JSON) into this directory")
     args = ap.parse_args(argv)
-    result = run(args.budget, args.lane)
+    try:
+        lanes = _lanes(args.lanes)
+    except ValueError as exc:  # a bad lane file is the user's mistake: exit 2, no traceback
+        ap.error(str(exc))
+    result = run(args.budget, args.lane, lanes, args.out)
     print_figures(result, args.json, leave_out=("per_lane",))
     if not args.json:
         for r in result["per_lane"]:
