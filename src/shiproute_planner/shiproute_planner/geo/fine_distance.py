@@ -18,7 +18,9 @@ directory (`save`) so a machine builds each once.
 from __future__ import annotations
 
 import math
+import os
 import threading
+import time
 from collections.abc import Callable
 from pathlib import Path
 
@@ -35,6 +37,9 @@ UNIT_NM = 0.05  # distance step of the stored values
 SAMPLE_CELLS = 0.2  # coastline sample spacing [cells]: no coastline point is farther from one
 CAP_NM = 6.0  # the largest distance stored: above the largest clearance a plan may ask (5 NM)
 TILE_ROWS, TILE_COLS = round(180.0 / TILE_DEG), round(360.0 / TILE_DEG)
+PART_MARK = "_part"  # part files: <cache file stem>_part<pid>-<ns>.npz
+MAX_PARTS = 16  # part files read before they are merged into the cache file
+MIN_ROWS = 64  # rows of the first tile store
 LandNear = Callable[[float, float, float, float], list]  # box -> clipped shapely geometries
 Contains = Callable[[np.ndarray, np.ndarray], np.ndarray]  # (lon, lat) -> on land
 
@@ -82,43 +87,96 @@ def build_tile(ti: int, tj: int, land_near: LandNear, contains: Contains) -> np.
 
 
 class FineDistance:
-    """Level-1 tiles of one coastline, resolved as walks meet them (thread-safe `add`)."""
+    """Level-1 tiles of one coastline, resolved as walks meet them (thread-safe `add`).
+
+    `grids` has room for more tiles than `count` (rows past it are unused): a new tile is
+    written to a free row and the slot map replaced after it, so a walk reading the old pair
+    meanwhile stays consistent and adding a few tiles does not copy the thousands built before.
+    `save` writes only the tiles built since the last save, to a part file next to `path`;
+    loading reads `path` and its parts and merges them into `path` once there are
+    `MAX_PARTS` (the whole set is hundreds of MB: rewriting it after each plan cost ~1 s)."""
 
     def __init__(self, land_near: LandNear, contains: Contains, path: Path | None = None
                  ) -> None:
         self._land_near, self._contains = land_near, contains
         self.slots = np.full((TILE_ROWS, TILE_COLS), -1, dtype=np.int32)
         self.grids = np.zeros((0, FINE_PER_TILE, FINE_PER_TILE), dtype=np.uint8)
+        self._keys = np.zeros(0, dtype=np.int64)  # tile key of each used row
+        self.count = 0  # rows of `grids` in use
         self._lock = threading.Lock()
         self.path = path
         self._saved = 0
-        if path is not None and path.is_file():
+        if path is not None:
             self._load(path)
 
+    def _parts(self) -> list[Path]:
+        """The part files of `path` (tiles saved since it was last merged), oldest first."""
+        assert self.path is not None
+        found = self.path.parent.glob(f"{self.path.stem}{PART_MARK}*.npz")
+        return sorted(p for p in found if not p.name.endswith(".tmp.npz"))
+
     def _load(self, path: Path) -> None:
-        """Tiles built earlier (a corrupt or mismatched file is ignored)."""
-        got = load_npz(path, "keys", "grids")
-        if got is None:
+        """Tiles built earlier, from `path` and its parts (a corrupt or mismatched file is
+        ignored; a tile in two files is taken once); many parts are merged into `path`."""
+        parts = self._parts()
+        keys_of, grids_of = [], []
+        for file in ([path] if path.is_file() else []) + parts:
+            got = load_npz(file, "keys", "grids")
+            if got is None:
+                continue
+            keys, grids = got[0].astype(np.int64), got[1].astype(np.uint8)
+            if grids.shape[1:] != (FINE_PER_TILE, FINE_PER_TILE) or keys.size != grids.shape[0]:
+                continue
+            if keys.size and (keys.min() < 0 or keys.max() >= TILE_ROWS * TILE_COLS):
+                continue
+            keys_of.append(keys)
+            grids_of.append(grids)
+        if not keys_of:
             return
-        keys, grids = got[0].astype(np.int64), got[1].astype(np.uint8)
-        if grids.shape[1:] != (FINE_PER_TILE, FINE_PER_TILE) or keys.size != grids.shape[0]:
-            return
-        if keys.size and (keys.min() < 0 or keys.max() >= TILE_ROWS * TILE_COLS):
-            return
-        self.slots.ravel()[keys] = np.arange(keys.size, dtype=np.int32)
-        self.grids, self._saved = np.ascontiguousarray(grids), keys.size
+        keys = np.concatenate(keys_of)
+        grids = grids_of[0] if len(grids_of) == 1 else np.concatenate(grids_of)
+        _, first = np.unique(keys, return_index=True)
+        if first.size < keys.size:
+            first = np.sort(first)
+            keys, grids = keys[first], grids[first]
+        self._store(keys, grids)
+        self._saved = self.count
+        if len(parts) >= MAX_PARTS and save_npz_atomic(path, keys=self._keys[:self.count],
+                                                       grids=self.grids[:self.count]):
+            for p in parts:
+                p.unlink(missing_ok=True)
+
+    def _store(self, keys: np.ndarray, grids: np.ndarray) -> None:
+        """Append tiles (keys not yet built) and publish their slots (under the lock, or
+        before other threads see the object)."""
+        n0, n1 = self.count, self.count + keys.size
+        store = self.grids
+        if n1 > store.shape[0]:  # zeroed rows cost no memory until written
+            store = np.zeros((max(2 * n1, MIN_ROWS), FINE_PER_TILE, FINE_PER_TILE),
+                             dtype=np.uint8)
+            store[:n0] = self.grids[:n0]
+            self._keys = np.concatenate([self._keys[:n0],
+                                         np.zeros(store.shape[0] - n0, dtype=np.int64)])
+        store[n0:n1] = grids
+        self._keys[n0:n1] = keys
+        slots = self.slots.copy()
+        slots.ravel()[keys] = np.arange(n0, n1, dtype=np.int32)
+        self.count = n1
+        self.grids, self.slots = store, slots  # grids first: a reader takes slots first
 
     def save(self) -> None:
-        """Store the built tiles for later processes (atomic replace; no-op if unchanged)."""
+        """Store the tiles built since the last save for later processes (a part file,
+        atomic; no-op if none)."""
         with self._lock:
-            if self.path is None or self.grids.shape[0] == self._saved:
+            if self.path is None or self.count == self._saved:
                 return
-            flat = self.slots.ravel()
-            keys = np.flatnonzero(flat >= 0)
-            keys = keys[np.argsort(flat[keys])]
-            grids = self.grids
-        if save_npz_atomic(self.path, keys=keys, grids=grids):
-            self._saved = keys.size
+            keys = self._keys[self._saved:self.count].copy()
+            grids = self.grids[self._saved:self.count].copy()
+            upto = self.count
+        part = self.path.with_name(f"{self.path.stem}{PART_MARK}{os.getpid()}-"
+                                   f"{time.time_ns()}.npz")
+        if save_npz_atomic(part, keys=keys, grids=grids):
+            self._saved = upto
 
     def add(self, keys: np.ndarray) -> int:
         """Build the tiles `keys` (row * TILE_COLS + column) not yet built; how many were new."""
@@ -129,11 +187,7 @@ class FineDistance:
                 return 0
             new = np.stack([build_tile(int(k) // TILE_COLS, int(k) % TILE_COLS,
                                        self._land_near, self._contains) for k in keys])
-            n0 = self.grids.shape[0]
-            grids = np.concatenate([self.grids, new])
-            slots = self.slots.copy()  # a walk reading the old map meanwhile stays consistent
-            slots.ravel()[keys] = np.arange(n0, n0 + keys.size, dtype=np.int32)
-            self.grids, self.slots = grids, slots
+            self._store(keys, new)
             return int(keys.size)
 
     def add_box(self, lon_min_deg: float, lon_max_deg: float, lat_min_deg: float,

@@ -71,3 +71,31 @@ def test_level1_tiles_meet_across_the_antimeridian(final, tmp_path):
     west = fine.distance_nm(np.full(lat.size, -179.9999), lat)
     # the same place a few metres apart: bounds differ by at most a cell and a bit
     assert np.max(np.abs(east - west)) <= 2 * TILE_DEG / FINE_PER_TILE * 60.0 + 0.05
+
+
+def test_saves_append_parts_that_load_as_one_and_merge(final, tmp_path, monkeypatch):
+    # each save writes only the tiles built since the last one; a later process reads the
+    # cache file and every part, and merges the parts into the file once there are many
+    from shiproute_planner.geo import fine_distance as fd
+
+    path = tmp_path / "tiles.npz"
+    fine = FineDistance(final.tiles.land_near, final.contains, path)
+    lon = np.array([-6.32, 29.05, 122.25])  # Scilly, the Bosphorus, Zhoushan: three tiles
+    lat = np.array([49.93, 41.12, 30.0])
+    for k in range(3):  # one more tile per save
+        values = fine.distance_nm(lon[:k + 1], lat[:k + 1])
+        fine.save()
+    fine.save()  # nothing new: no part
+    parts = sorted(tmp_path.glob("tiles_part*.npz"))
+    assert len(parts) == 3 and not path.exists()
+    assert sum(np.load(p)["keys"].size for p in parts) == 3  # each tile saved once
+    again = FineDistance(final.tiles.land_near, final.contains, path)
+    assert again.count == 3
+    assert np.array_equal(again.distance_nm(lon, lat), values)
+    assert again.add(np.flatnonzero(again.slots.ravel() >= 0)) == 0  # nothing rebuilt
+    monkeypatch.setattr(fd, "MAX_PARTS", 3)
+    merged = FineDistance(final.tiles.land_near, final.contains, path)
+    assert path.exists() and not list(tmp_path.glob("tiles_part*.npz"))
+    last = FineDistance(final.tiles.land_near, final.contains, path)
+    assert merged.count == last.count == 3
+    assert np.array_equal(last.distance_nm(lon, lat), values)
