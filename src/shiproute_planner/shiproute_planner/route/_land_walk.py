@@ -18,6 +18,8 @@ too narrow for a straight stage leg to follow the full-resolution coast) a searc
 only land there, in `tight` instead of `out` (the caller keeps it only where the search's
 intermediate coastline agrees: a stage leg through a strait there is threaded at full
 resolution by the final repair); a check walk measures the narrow-water clearance there.
+Poleward of the rule's level-1 latitude (a search's latitude bound) level 0 alone decides: a
+position it leaves undecided reads as land, so no tile is built there.
 """
 
 from __future__ import annotations
@@ -78,23 +80,41 @@ def clearance_here_nm(q_nm: float, r_nm: float, room_nm: float, rule: np.ndarray
 
 
 @njit(cache=True, nogil=True)
+def level1_value(la: float, lo: float, slots, grids, level1_lat: float) -> int:
+    """The level-1 cell value at a position (0: on or touching land, else 1 + distance
+    steps; 0 poleward of `level1_lat`, where level 1 is not read), or -1 - the tile's key
+    when its tile is not built."""
+    if abs(la) > level1_lat:
+        return 0
+    fine_inv = FINE_PER_TILE / TILE_DEG
+    gi = min(max(int((la + 90.0) * fine_inv), 0), slots.shape[0] * FINE_PER_TILE - 1)
+    gj = min(max(int((lo + 180.0) * fine_inv), 0), slots.shape[1] * FINE_PER_TILE - 1)
+    ti, tj = gi // FINE_PER_TILE, gj // FINE_PER_TILE
+    slot = slots[ti, tj]
+    if slot < 0:
+        return -1 - (ti * slots.shape[1] + tj)
+    return int(grids[slot, gi - ti * FINE_PER_TILE, gj - tj * FINE_PER_TILE])
+
+
+@njit(cache=True, nogil=True)
 def clearance_walk(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, coast_dist, cell_deg,
                    spacing_deg, slots, grids, ends, rule, room, missing, out, tight):
     """Violations per segment (0 = clear; -1 = rescan after the tiles in `missing` are built);
     returns how many tile keys were written to `missing`. `rule`: open-sea clearance,
     approach clearance, approach zone, free radius, eps, narrow room, tight room [NM], search
-    (1: skip tight water, 0: measure it); `ends`: the span ends' unit vectors (6,); `room`:
-    uint8 room per level-0 cell [0.1 NM]; `tight` (out): a search walk's violations in tight
-    water, not in `out`. A jump of length L from a point with bound d needs d - L at
-    least the clearance of every point it passes (`clearance_within_nm` over d)."""
+    (1: skip tight water, 0: measure it), the latitude [deg] poleward of which level 1 is not
+    read (a position level 0 leaves undecided there reads as land); `ends`: the span ends'
+    unit vectors (6,); `room`: uint8 room per level-0 cell [0.1 NM]; `tight` (out): a search
+    walk's violations in tight water, not in `out`. A jump of length L from a point with
+    bound d needs d - L at least the clearance of every point it passes
+    (`clearance_within_nm` over d)."""
     n_lat, n_lon = coast_dist.shape
     c_lat, c_lon = coarse.shape
     inv, c_inv = 1.0 / cell_deg, 1.0 / coarse_deg
-    fine_inv = FINE_PER_TILE / TILE_DEG
-    n_fine_lat, n_fine_lon = slots.shape[0] * FINE_PER_TILE, slots.shape[1] * FINE_PER_TILE
     c_max = max(rule[0], rule[1])
     eps = rule[4]
     search = rule[7] > 0.5
+    level1_lat = rule[8]
     n_miss = 0
     for s in range(lon0.size):
         ax, ay, az, bx, by, bz, arc = segment_ends(lat0[s], lon0[s], lat1[s], lon1[s])
@@ -143,19 +163,15 @@ def clearance_walk(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, coast_
                 count += GRADE_STEP
                 k += GRADE_STEP
                 continue
-            gi = min(max(int((la + 90.0) * fine_inv), 0), n_fine_lat - 1)
-            gj = min(max(int((lo + 180.0) * fine_inv), 0), n_fine_lon - 1)
-            ti, tj = gi // FINE_PER_TILE, gj // FINE_PER_TILE
-            slot = slots[ti, tj]
-            if slot < 0:
-                key = ti * slots.shape[1] + tj
+            v = level1_value(la, lo, slots, grids, level1_lat)
+            if v < 0:  # tile not built yet
+                key = -1 - v
                 unresolved = True
                 if n_miss < missing.size and (n_miss == 0 or missing[n_miss - 1] != key):
                     missing[n_miss] = key
                     n_miss += 1
                 k += 1.0
                 continue
-            v = grids[slot, gi - ti * FINE_PER_TILE, gj - tj * FINE_PER_TILE]
             d1 = -1.0 if v == 0 else (v - 1) * L1_UNIT_NM
             c = clearance_within_nm(q, max(d1, 0.0), rule)
             if d1 >= c + eps:

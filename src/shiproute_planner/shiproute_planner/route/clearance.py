@@ -59,12 +59,13 @@ class ClearanceRule:
         """Radius [NM] round a span end within which only land counts."""
         return self.approach_nm + FREE_MARGIN_NM
 
-    def kernel_array(self, search: bool = True) -> np.ndarray:
+    def kernel_array(self, search: bool = True, level1_lat_deg: float = 90.0) -> np.ndarray:
         """The walk's rule array (`route._land_walk.clearance_walk`); `search`: tight water
-        left to the search's intermediate coastline (False: measured, as the check does)."""
+        left to the search's intermediate coastline (False: measured, as the check does);
+        `level1_lat_deg`: poleward of it level 0 alone decides (undecided there = too close)."""
         return np.array([self.open_sea_nm, self.approach_nm, self.approach_zone_nm,
                          self.free_radius_nm, EPS_NM, self.open_sea_nm + NARROW_MARGIN_NM,
-                         TIGHT_ROOM_NM, 1.0 if search else 0.0])
+                         TIGHT_ROOM_NM, 1.0 if search else 0.0, level1_lat_deg])
 
     @property
     def words(self) -> str:

@@ -15,7 +15,9 @@ hugging a ~0.4-NM channel (Hayatomo Seto) reads as land to both; the exact evalu
 (`exact_tight`) settles tight-water land with the polygons instead, every 0.25 NM (the final
 check's test), so such a detour is feasible in the final choice. The GA's evaluator, the exact
 one, the seeds and the baselines call the same test; `search=False` measures the clearance
-in tight water too (the check).
+in tight water too (the check). Beyond the problem's latitude bound (plus a margin) a search
+walk reads level 0 alone and counts what it leaves undecided as too close: no route may sail
+there, and the tiles there would cost time only.
 """
 
 from __future__ import annotations
@@ -34,6 +36,9 @@ from .problem import RouteProblem
 
 COARSE_FACTOR = 10  # 0.05 deg raster -> 0.5 deg near-land filter
 _COARSE: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+# beyond the latitude bound by more than this a search walk reads level 0 alone (a leg
+# ending within the bound bulges past it by well under a degree)
+LEVEL1_LAT_MARGIN_DEG = 1.0
 MISS_BUFFER = 4096  # unbuilt level-1 tiles (or unresolved coastal cells) one walk may report
 Work = Callable[[int, int], None]
 
@@ -54,7 +59,10 @@ class LandWalk:
         self.fine = default_fine_distance()
         self.room = np.asarray(default_room())
         self.spacing_deg = problem.land_spacing_deg
-        self.rule = problem.limits.clearance.kernel_array(search)
+        # a search reads no level-1 tile beyond its latitude bound: a population's strays
+        # into the Arctic would build (and save) tiles no feasible route needs, ~20 ms each
+        level1_lat = problem.limits.lat_bound_deg + LEVEL1_LAT_MARGIN_DEG if search else 90.0
+        self.rule = problem.limits.clearance.kernel_array(search, level1_lat)
         self.ends = np.array([*lw.unit_vector(problem.dep_lat_deg, problem.dep_lon_deg),
                               *lw.unit_vector(problem.arr_lat_deg, problem.arr_lon_deg)])
         self.land = land if land is not None else default_land_mask()  # tight water's test

@@ -139,3 +139,44 @@ def test_walk_grades_a_leg_by_how_much_of_it_crosses_land(walk_inputs):
     lon1 = np.array([-4.0, -2.0, 2.0, 6.0])
     got = _walk(walk_inputs, lon0, lat, lon1, lat, rule, (0.0, 0.0, 0.0, 0.5))
     assert got[0] > 0 and np.all(np.diff(got) > 0)
+
+
+def test_walk_beyond_its_level1_latitude_reads_no_tile_and_never_calls_a_close_leg_clear(
+        walk_inputs, tmp_path):
+    # legs round Svalbard's west coast (78 N) walked with level 1 limited to 70 N and no tile
+    # built: nothing is asked of level 1, and a leg called clear keeps the clearance by
+    # geodesic distances to the full-resolution coast; a leg level 0 cannot clear is flagged
+    from shiproute_planner.geo.fine_distance import FineDistance
+    from shiproute_planner.route import _land_walk as lw
+
+    final, _, coarse, clear, coarse_deg, room = walk_inputs
+    empty = FineDistance(final.tiles.land_near, final.contains, tmp_path / "none.npz")
+    rng = np.random.default_rng(78)
+    rule = ClearanceRule(2.0, 0.5, 10.0)
+    lon0 = 12.5 + rng.uniform(-1.0, 1.0, 60)
+    lat0 = 78.3 + rng.uniform(-0.3, 0.3, 60)
+    course, length = rng.uniform(0.0, 2 * np.pi, 60), rng.uniform(0.02, 0.3, 60)
+    lon1 = lon0 + length * np.sin(course) / np.cos(np.radians(lat0))
+    lat1 = lat0 + length * np.cos(course)
+    ends_lonlat = (0.0, 0.0, 0.0, 0.5)  # open sea: the span ends are far away
+    ends = np.array([*lw.unit_vector(0.0, 0.0), *lw.unit_vector(0.5, 0.0)])
+    missing = np.empty(64, dtype=np.int64)
+    got = np.empty(lon0.size, dtype=np.int64)
+    n = lw.clearance_walk(lon0, lat0, lon1, lat1, coarse, clear, coarse_deg,
+                          np.asarray(final.mask.coast_distance), final.mask.cell_deg, 0.05,
+                          empty.slots, empty.grids, ends,
+                          rule.kernel_array(search=False, level1_lat_deg=70.0), room, missing,
+                          got, np.zeros(lon0.size, dtype=np.int64))
+    assert n == 0 and np.all(got >= 0)
+    clear_legs, flagged = 0, 0
+    for k in range(lon0.size):
+        dist, need = _dense_truth(final, room, lon0[k], lat0[k], lon1[k], lat1[k], rule,
+                                  ends_lonlat)
+        if got[k] == 0:
+            assert np.all(dist >= need - EPS_NM - 0.03), (k, float(np.min(dist - need)))
+            clear_legs += 1
+        else:
+            flagged += 1
+            if np.all(dist > need + 6.0):  # level 0 (0.05-deg cells) decides this far out
+                raise AssertionError((k, float(np.min(dist - need))))
+    assert clear_legs >= 3 and flagged >= 3
