@@ -195,7 +195,8 @@ class FineDistance:
                 ) -> int:
         """Build every tile of a box (longitudes may run past 180) holding a level-0 cell
         (`coast_dist`, 0.1 NM, cells of `cell_deg`) within `reach_nm` of the coast: the
-        tiles a walk with clearances up to about `reach_nm` can meet. How many were new."""
+        tiles a walk can read where level 0 defers to level 1 below `reach_nm`. How many were
+        new."""
         from .coast_distance import UNIT_NM as L0_UNIT_NM
 
         per_tile = round(TILE_DEG / cell_deg)

@@ -1,8 +1,9 @@
 """Compiled clearance walk of great-circle segments on the signed distance to the coast.
 
 Sphere tracing: at each position of a segment the walk reads a lower bound d of the distance
-to land (level 0, `geo.coast_distance`, 0.05-deg cells; where that cannot decide, level 1,
-`geo.fine_distance`, full-resolution tiles of 0.0025 deg) and the clearance c the position
+to land (level 0, `geo.coast_distance`, 0.05-deg cells; where its jump would be under
+`L0_MIN_JUMP_NM`, level 1, `geo.fine_distance`, full-resolution tiles of 0.0025 deg, a few NM
+tighter near the coast) and the clearance c the position
 needs (`route.clearance`: open sea, approach zone, free circle round the span ends, narrow
 water by the room raster `geo.narrow_water`). With
 d >= c + eps every point within d - c is clear and the walk jumps there; with c <= d < c + eps
@@ -17,7 +18,11 @@ are safe wherever the water type changes. Where the room is below the rule's tig
 too narrow for a straight stage leg to follow the full-resolution coast) a search walk counts
 only land there, in `tight` instead of `out` (the caller keeps it only where the search's
 intermediate coastline agrees: a stage leg through a strait there is threaded at full
-resolution by the final repair); a check walk measures the narrow-water clearance there.
+resolution by the final repair), jumping within the level-0 cell (same room) as far as the
+distance to land allows and across land to the cell's edge; land deeper than `DEEP_LAND_NM`
+counts in `out` (inland cells have no room: a leg across a continent would otherwise be
+walked to its end and confirmed on the intermediate coastline). A check walk measures the
+narrow-water clearance there.
 Poleward of the rule's level-1 latitude (a search's latitude bound) level 0 alone decides: a
 position it leaves undecided reads as land, so no tile is built there.
 """
@@ -38,6 +43,12 @@ from ..geo.narrow_water import UNIT_NM as ROOM_UNIT_NM
 from ._route_kernel import max_arc_per_step
 
 GRADE_STEP = 8 * FINE  # samples one graded position stands for after a violation
+# level 0 jumps only this far at least [NM]: its bound is a cell diagonal (~3.5 NM) below the
+# distance, so its jumps near the coast are tenths of a NM where level 1's are NMs
+L0_MIN_JUMP_NM = 1.0
+# inland farther than this from the sea [NM] (level 0) land counts even in tight water: the
+# intermediate coastline lies within ~0.5 NM (1 km) of the full one
+DEEP_LAND_NM = 1.0
 _D2R = math.pi / 180.0
 
 
@@ -77,6 +88,18 @@ def clearance_here_nm(q_nm: float, r_nm: float, room_nm: float, rule: np.ndarray
     if room_nm < rule[5]:
         c = min(c, rule[1])
     return c
+
+
+@njit(cache=True, nogil=True)
+def cell_inside_nm(la: float, lo: float, i: int, j: int, cell_deg: float) -> float:
+    """Arc [NM] within which every point shares level-0 cell (i, j) with the point (la, lo)
+    [deg] in it: the distance to its parallels (along the meridian) and a lower bound of the
+    distance to its meridians' great circles (asin(cos la sin dlon) >= 0.999 cos la dlon for
+    dlon of a cell)."""
+    lat0, lon0 = -90.0 + i * cell_deg, -180.0 + j * cell_deg
+    d_lat = min(la - lat0, lat0 + cell_deg - la)
+    d_lon = min(lo - lon0, lon0 + cell_deg - lo) * math.cos(la * _D2R) * 0.999
+    return max(min(d_lat, d_lon), 0.0) * NM_PER_DEG
 
 
 @njit(cache=True, nogil=True)
@@ -141,11 +164,13 @@ def clearance_walk(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, coast_
             i = min(max(int((la + 90.0) * inv), 0), n_lat - 1)
             j = min(max(int((lo + 180.0) * inv), 0), n_lon - 1)
             d0 = coast_dist[i, j] * L0_UNIT_NM
-            if d0 >= c_max + eps:  # sea far enough from the coast for any clearance
+            if d0 >= c_max + L0_MIN_JUMP_NM:  # sea far enough from the coast for any clearance
                 k += max((d0 - c_max) / per_nm, GRADE_STEP if count else 0.0)
                 continue
             room_nm = room[i, j] * ROOM_UNIT_NM
-            apart = search and room_nm < rule[6]  # tight water: counted apart
+            # tight water: counted apart (not deep inland: the intermediate coastline is land
+            # there too, and a leg across a continent is graded at level 0)
+            apart = search and room_nm < rule[6] and d0 > -DEEP_LAND_NM
             if d0 < 0.0:  # inland: every sample within -d0 is on land
                 n = min(1 + int(-d0 / per_nm), steps - int(k) + 1) if count or apart else 1
                 if apart:
@@ -156,7 +181,7 @@ def clearance_walk(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, coast_
                 continue
             q = end_distance_nm(x, y, z, ends)
             c = clearance_within_nm(q, d0, rule)
-            if d0 >= c + eps:
+            if d0 >= c + L0_MIN_JUMP_NM:
                 k += max((d0 - c) / per_nm, GRADE_STEP if count else 0.0)
                 continue
             if count:  # a violation already: the count only grades it (level 0 only)
@@ -174,13 +199,16 @@ def clearance_walk(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, coast_
                 continue
             d1 = -1.0 if v == 0 else (v - 1) * L1_UNIT_NM
             c = clearance_within_nm(q, max(d1, 0.0), rule)
-            if d1 >= c + eps:
-                k += (d1 - c) / per_nm
+            # tight water counts land only, and the points within `inside` share its cell
+            inside = cell_inside_nm(la, lo, i, j, cell_deg) if apart else 0.0
+            if d1 >= c + eps or (apart and min(d1, inside) >= eps):
+                k += max(d1 - c, min(d1, inside)) / per_nm
             elif d1 >= (0.0 if apart else clearance_here_nm(q, eps, room_nm, rule)):
                 k += eps / per_nm  # hugging the clearance: points within eps keep c - eps
-            elif apart:
-                tight[s] += 1
-                k += 1.0
+            elif apart:  # on land: so (or tight water) up to the cell's edge
+                n = max(1, int(inside / per_nm))
+                tight[s] += n
+                k += n
             else:
                 count += 1
                 k += 1.0

@@ -32,6 +32,7 @@ from ..geo.landmask import LandMask
 from . import _fast_kernels as fk
 from . import _land_walk as lw
 from . import _route_kernel as rk
+from .clearance import ClearanceRule
 from .problem import RouteProblem
 
 COARSE_FACTOR = 10  # 0.05 deg raster -> 0.5 deg near-land filter
@@ -167,6 +168,12 @@ class LandWalk:
                                      lat0[s:s + 1].tolist() + lat1[s:s + 1].tolist(), STEP_M)
             out[s] = int(np.count_nonzero(land.contains(np.asarray(lon), np.asarray(lat))))
         return out
+
+
+def level1_reach_nm(rule: ClearanceRule) -> float:
+    """The level-0 distance to the coast [NM] below which a walk with `rule` may read level 1
+    (where the tiles to build beforehand lie)."""
+    return max(rule.open_sea_nm, rule.approach_nm) + lw.L0_MIN_JUMP_NM
 
 
 def coarse_land(land: LandMask) -> tuple[np.ndarray, np.ndarray, float]:

@@ -180,3 +180,51 @@ def test_walk_beyond_its_level1_latitude_reads_no_tile_and_never_calls_a_close_l
             if np.all(dist > need + 6.0):  # level 0 (0.05-deg cells) decides this far out
                 raise AssertionError((k, float(np.min(dist - need))))
     assert clear_legs >= 3 and flagged >= 3
+
+
+def test_points_within_the_cell_inside_distance_share_the_cell():
+    # destinations on the sphere (pyproj, spherical earth) from random points in 0.05-deg
+    # cells, in random directions, up to the distance the walk jumps within a cell
+    import pyproj
+    from shiproute_planner.route._land_walk import cell_inside_nm
+
+    cell = 0.05
+    sphere = pyproj.Geod(a=6371008.8, b=6371008.8)
+    nm_m = 2 * np.pi * 6371008.8 / 360.0 / 60.0  # 1 NM = 1 arcminute on this sphere
+    rng = np.random.default_rng(5)
+    lat = rng.uniform(-80.0, 80.0, 400)
+    lon = rng.uniform(-179.9, 179.9, 400)
+    i = np.floor((lat + 90.0) / cell).astype(int)
+    j = np.floor((lon + 180.0) / cell).astype(int)
+    inside = np.array([cell_inside_nm(la, lo, a, b, cell)
+                       for la, lo, a, b in zip(lat, lon, i, j, strict=True)])
+    for _ in range(8):
+        lon1, lat1, _ = sphere.fwd(lon, lat, rng.uniform(0.0, 360.0, lat.size),
+                                   inside * nm_m * rng.uniform(0.9, 1.0, lat.size))
+        assert np.array_equal(np.floor((lat1 + 90.0) / cell).astype(int), i)
+        assert np.array_equal(np.floor((lon1 + 180.0) / cell).astype(int), j)
+    # not vacuous: at a cell's centre on the equator the distance is half a cell
+    assert abs(cell_inside_nm(0.025, 0.025, 1800, 3600, cell) - 0.5 * cell * 60.0) < 0.01
+
+
+def test_search_walk_counts_a_leg_across_a_continent_as_land(walk_inputs):
+    # across central Mexico (inland cells have no room, as tight water has none): the search
+    # walk counts the land itself instead of leaving it to the intermediate coastline
+    from shiproute_planner.route import _land_walk as lw
+
+    final, fine, coarse, clear, coarse_deg, room = walk_inputs
+    lon0, lat0, lon1, lat1 = (np.array([v]) for v in (-103.0, 21.0, -99.5, 20.0))
+    assert final.contains(np.array([-101.25]), np.array([20.5]))[0]  # the middle is on land
+    ends = np.array([*lw.unit_vector(0.0, 0.0), *lw.unit_vector(0.5, 0.0)])
+    got, tight = np.full(1, -1, dtype=np.int64), np.zeros(1, dtype=np.int64)
+    for _ in range(20):
+        missing = np.empty(256, dtype=np.int64)
+        n = lw.clearance_walk(lon0, lat0, lon1, lat1, coarse, clear, coarse_deg,
+                              np.asarray(final.mask.coast_distance), final.mask.cell_deg, 0.05,
+                              fine.slots, fine.grids, ends,
+                              ClearanceRule(0.0, 0.5, 10.0).kernel_array(search=True), room,
+                              missing, got, tight)
+        if got[0] >= 0:
+            break
+        fine.add(missing[:n])
+    assert got[0] > 0

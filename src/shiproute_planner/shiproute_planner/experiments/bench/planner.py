@@ -34,6 +34,7 @@ from ...request import PlanOptions, VoyageRequest, voyage_times
 from ...route.encoding import clip_genes, gene_bounds, join_genes
 from ...route.fast_eval import fast_evaluator
 from ...route.generate import evaluate_genes
+from ...route.land_walk import level1_reach_nm
 from ...route.problem import RouteProblem
 from ...route.seeding import great_circle_track
 from ...threads import planner_threads
@@ -142,7 +143,7 @@ def _build_region_tiles(a: tuple[float, float], b: tuple[float, float],
     fine.add_box(min(a[0], east) - west_m, max(a[0], east) + east_m,
                  max(min(a[1], b[1]) - south_m, -85.0), min(max(a[1], b[1]) + north_m, 85.0),
                  np.asarray(finest.coast_distance), finest.cell_deg,
-                 max(rule.open_sea_nm, rule.approach_nm) + 0.1)
+                 level1_reach_nm(rule) + 0.1)
     fine.save()
 
 
