@@ -155,19 +155,22 @@ class LandWalk:
     @staticmethod
     def _exact_hits(lon0: np.ndarray, lat0: np.ndarray, lon1: np.ndarray, lat1: np.ndarray
                     ) -> np.ndarray:
-        """Points on full-resolution land (polygons) of segments sampled every 0.25 NM."""
-        from shiproute_core.geodesy import densify_track
+        """Points on full-resolution land (polygons) of segments sampled every 0.25 NM along
+        the geodesic, both ends included (`densify_track` of each segment, all at once)."""
+        from shiproute_core.geodesy import direct, inverse
 
         from ..geo.full_land import final_land
         from .land_repair import STEP_M
 
-        land = final_land()
-        out = np.empty(lon0.size, dtype=np.int64)
-        for s in range(lon0.size):
-            lon, lat = densify_track(lon0[s:s + 1].tolist() + lon1[s:s + 1].tolist(),
-                                     lat0[s:s + 1].tolist() + lat1[s:s + 1].tolist(), STEP_M)
-            out[s] = int(np.count_nonzero(land.contains(np.asarray(lon), np.asarray(lat))))
-        return out
+        az, dist = inverse(lon0, lat0, lon1, lat1)
+        n = np.maximum(1, np.ceil(dist / STEP_M).astype(np.int64))
+        seg = np.repeat(np.arange(lon0.size), n)
+        first = np.concatenate([[0], np.cumsum(n)[:-1]])
+        frac = (np.arange(seg.size) - first[seg] + 1) / n[seg]
+        lon, lat = direct(lon0[seg], lat0[seg], az[seg], dist[seg] * frac)
+        on = final_land().contains(np.concatenate([lon0, lon]), np.concatenate([lat0, lat]))
+        along = np.bincount(seg, weights=on[lon0.size:], minlength=lon0.size)
+        return on[:lon0.size].astype(np.int64) + np.rint(along).astype(np.int64)
 
 
 def level1_reach_nm(rule: ClearanceRule) -> float:

@@ -228,3 +228,23 @@ def test_search_walk_counts_a_leg_across_a_continent_as_land(walk_inputs):
             break
         fine.add(missing[:n])
     assert got[0] > 0
+
+
+def test_exact_tight_test_counts_the_polygon_points_every_quarter_nm(walk_inputs):
+    # the exact evaluator's tight-water test against brute force: each segment densified on
+    # its own (geodesic points every 0.25 NM, both ends) and its points tested one by one on
+    # the full-resolution polygons; round Kanmon and across the antimeridian (Fiji)
+    from shiproute_core.geodesy import densify_track
+    from shiproute_planner.route.land_repair import STEP_M
+    from shiproute_planner.route.land_walk import LandWalk
+
+    final = walk_inputs[0]
+    rng = np.random.default_rng(7)
+    for lon_c, lat_c in ((130.9, 33.95), (179.95, -16.7)):
+        lon0, lat0 = lon_c + rng.uniform(-0.3, 0.3, 40), lat_c + rng.uniform(-0.2, 0.2, 40)
+        lon1, lat1 = lon0 + rng.uniform(-0.3, 0.3, 40), lat0 + rng.uniform(-0.2, 0.2, 40)
+        got = LandWalk._exact_hits(lon0, lat0, lon1, lat1)
+        want = [np.count_nonzero(final.contains(*densify_track(
+            [lon0[s], lon1[s]], [lat0[s], lat1[s]], STEP_M))) for s in range(lon0.size)]
+        assert got.tolist() == want
+        assert 0 < np.count_nonzero(got) < got.size  # both kinds of segments
