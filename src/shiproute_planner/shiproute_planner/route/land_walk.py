@@ -15,8 +15,8 @@ hugging a ~0.4-NM channel (Hayatomo Seto) reads as land to both; the exact evalu
 (`exact_tight`) settles tight-water land with the polygons instead, every 0.25 NM (the final
 check's test), so such a detour is feasible in the final choice. The GA's evaluator, the exact
 one, the seeds and the baselines call the same test; `search=False` measures the clearance
-in tight water too (the check). Beyond the problem's latitude bound (plus a margin) a search
-walk reads level 0 alone and counts what it leaves undecided as too close: no route may sail
+in tight water too (the check). Beyond the problem's latitude bound and ends (plus a margin) a
+search walk reads level 0 alone and counts what it leaves undecided as too close: no route may sail
 there, and the tiles there would cost time only.
 """
 
@@ -60,9 +60,12 @@ class LandWalk:
         self.fine = default_fine_distance()
         self.room = np.asarray(default_room())
         self.spacing_deg = problem.land_spacing_deg
-        # a search reads no level-1 tile beyond its latitude bound: a population's strays
-        # into the Arctic would build (and save) tiles no feasible route needs, ~20 ms each
-        level1_lat = problem.limits.lat_bound_deg + LEVEL1_LAT_MARGIN_DEG if search else 90.0
+        # a search reads no level-1 tile beyond its latitude bound (or its ends, if farther):
+        # a population's strays into the Arctic would build (and save) tiles no feasible
+        # route needs, ~20 ms each
+        bound = max(problem.limits.lat_bound_deg, abs(problem.dep_lat_deg),
+                    abs(problem.arr_lat_deg))
+        level1_lat = bound + LEVEL1_LAT_MARGIN_DEG if search else 90.0
         self.rule = problem.limits.clearance.kernel_array(search, level1_lat)
         self.ends = np.array([*lw.unit_vector(problem.dep_lat_deg, problem.dep_lon_deg),
                               *lw.unit_vector(problem.arr_lat_deg, problem.arr_lon_deg)])

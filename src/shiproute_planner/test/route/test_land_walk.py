@@ -248,3 +248,24 @@ def test_exact_tight_test_counts_the_polygon_points_every_quarter_nm(walk_inputs
             [lon0[s], lon1[s]], [lat0[s], lat1[s]], STEP_M))) for s in range(lon0.size)]
         assert got.tolist() == want
         assert 0 < np.count_nonzero(got) < got.size  # both kinds of segments
+
+
+def test_search_walk_reads_level1_round_span_ends_beyond_the_latitude_bound():
+    # a span from Hammerfest (70.7 N) planned with a latitude bound of 60 degrees: legs near
+    # its ends get the same verdicts as with a bound beyond them (level 1 is read there)
+    from shiproute_planner.route.land_walk import LandWalk
+    from shiproute_planner.route.problem import RouteLimits, RouteProblem
+
+    rng = np.random.default_rng(70)
+    lon0, lat0 = 23.7 + rng.uniform(-0.3, 0.3, 80), 70.72 + rng.uniform(-0.1, 0.1, 80)
+    lon1 = lon0 + rng.uniform(-0.1, 0.1, 80)
+    lat1 = lat0 + rng.uniform(-0.05, 0.05, 80)
+
+    def verdicts(bound_deg: float) -> np.ndarray:
+        limits = RouteLimits(rpm_min=40.0, rpm_max=80.0, lat_bound_deg=bound_deg)
+        problem = RouteProblem(23.7, 70.72, 19.0, 69.7, 0.0, 86400.0, limits)
+        return LandWalk(problem).segments(lon0, lat0, lon1, lat1) > 0
+
+    wide = verdicts(80.0)
+    assert 0 < np.count_nonzero(wide) < wide.size
+    assert np.array_equal(verdicts(60.0), wide)
