@@ -64,18 +64,23 @@ def _track_on_members(leg: MemberLeg, env: Environment, land: LandMask | None,
     from shiproute_weather.sampling.sampler import ForecastSampler
 
     sampler = env.sampler
+    assert isinstance(sampler, ForecastSampler), "members come with a ForecastSampler"
     lon, lat, rpm = leg.exact.lon_deg[:1], leg.exact.lat_deg[:1], leg.exact.legs["rpm"][0]
     rows = []
     for k in range(members.count):  # the members share the sampler's times and grid
         one = ForecastSampler.from_packed(members.data[k], sampler.times_s, sampler.grid,
-                                          sampler.variables)
+                                          list(sampler.variables))
         rows.append(sail_tracks(leg.problem, dataclasses.replace(env, sampler=one, risk=None),
                                 land, lon, lat, rpm))
-    return RouteEvaluation(*(np.concatenate([getattr(r, f.name) for r in rows])
-                             if f.name != "legs" else
-                             {key: np.concatenate([r.legs[key] for r in rows])
-                              for key in rows[0].legs}
-                             for f in dataclasses.fields(RouteEvaluation)))
+
+    def stacked(name: str) -> np.ndarray:
+        return np.concatenate([getattr(r, name) for r in rows])
+
+    return RouteEvaluation(
+        stacked("lon_deg"), stacked("lat_deg"), stacked("time_s"),
+        {key: np.concatenate([r.legs[key] for r in rows]) for key in rows[0].legs},
+        stacked("leg_flags"), stacked("fuel_t"), stacked("distance_m"), stacked("eta_s"),
+        stacked("flags"), stacked("violation"), stacked("objective"))
 
 
 def ensemble_members(env: Environment) -> Any:
