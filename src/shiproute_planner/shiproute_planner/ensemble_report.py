@@ -1,8 +1,10 @@
 """What a plan made on an ensemble states: its spread over the members.
 
 The plan's genes of every optimised leg are sailed on each member (the compiled member
-evaluation, `route.member_eval`); per member the voyage's fuel and ETA are the plan's own plus
-the member's difference on those legs (port approaches, straits and canals as planned).
+evaluation, `route.member_eval`; a leg sailed as a track, a constant-RPM baseline chosen over
+the search, by the exact evaluator on each member's forecast); per member the voyage's fuel
+and ETA are the plan's own plus the member's difference on those legs (port approaches,
+straits and canals as planned).
 Stated: P10/P50/P90 of fuel and ETA (the smallest member value whose cumulative weight
 reaches the level), the probability (member weight) of each constraint being violated, per
 leg the members' min/median/max of Hs and wind speed, which risk measure chose the plan and
@@ -30,6 +32,7 @@ from .route.heavy_seas import HEAVY_SEAS_MODEL
 from .route.member_eval import CHANCE_TOLERANCE, SEA_KEEPING, member_outcomes
 from .route.problem import RouteProblem
 from .route.risk import RiskSpec, weighted_quantile
+from .route.sail import sail_tracks
 
 QUANTILES = (0.1, 0.5, 0.9)
 
@@ -51,6 +54,33 @@ def _genes_of(leg: MemberLeg) -> np.ndarray | None:
     if legs["rpm"].shape[1] != n + 1:
         return None
     return join_genes(legs["heading_deg"][:1, :n], legs["rpm"][:1])[0]
+
+
+def _track_on_members(leg: MemberLeg, env: Environment, land: LandMask | None,
+                      members: Any) -> RouteEvaluation:
+    """A leg sailed as a track (a constant-RPM baseline chosen over the search: its nodes
+    are not stage genes) on each member's own forecast by the exact evaluator, at the RPMs it
+    was planned with; rows member-major like `FastEvaluator.evaluate_members`."""
+    from shiproute_weather.sampling.sampler import ForecastSampler
+
+    sampler = env.sampler
+    assert isinstance(sampler, ForecastSampler), "members come with a ForecastSampler"
+    lon, lat, rpm = leg.exact.lon_deg[:1], leg.exact.lat_deg[:1], leg.exact.legs["rpm"][0]
+    rows = []
+    for k in range(members.count):  # the members share the sampler's times and grid
+        one = ForecastSampler.from_packed(members.data[k], sampler.times_s, sampler.grid,
+                                          list(sampler.variables))
+        rows.append(sail_tracks(leg.problem, dataclasses.replace(env, sampler=one, risk=None),
+                                land, lon, lat, rpm))
+
+    def stacked(name: str) -> np.ndarray:
+        return np.concatenate([getattr(r, name) for r in rows])
+
+    return RouteEvaluation(
+        stacked("lon_deg"), stacked("lat_deg"), stacked("time_s"),
+        {key: np.concatenate([r.legs[key] for r in rows]) for key in rows[0].legs},
+        stacked("leg_flags"), stacked("fuel_t"), stacked("distance_m"), stacked("eta_s"),
+        stacked("flags"), stacked("violation"), stacked("objective"))
 
 
 def ensemble_members(env: Environment) -> Any:
@@ -94,13 +124,12 @@ def ensemble_block(plan: RoutePlan, env: Environment, land: LandMask | None,
     spans = plan.optimised_spans or ((0, n_wp - 1),)
     for leg, (a, b) in zip(legs, spans, strict=False):
         fast = fast_evaluator(leg.problem, env, land)
+        if fast is None:
+            return None, ["ensemble spread not evaluated: the ship model has no compiled "
+                          "kernel; the plan was made on the members' mean forecast"]
         genes = leg.genes if leg.genes is not None else _genes_of(leg)
-        if fast is None or genes is None:
-            why = ("the ship model has no compiled kernel" if fast is None else
-                   "a leg's route is not in stage genes (a baseline track)")
-            return None, [f"ensemble spread not evaluated: {why}; the plan was made on the "
-                          "members' mean forecast"]
-        ev = fast.evaluate_members(genes[None, :])
+        ev = (fast.evaluate_members(genes[None, :]) if genes is not None
+              else _track_on_members(leg, env, land, members))
         out = member_outcomes(leg.problem, ev, m_count, w, fast)
         if out.voyage is not None:
             heave_s += out.voyage.heave_to_s

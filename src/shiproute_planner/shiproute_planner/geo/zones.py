@@ -30,7 +30,7 @@ class Zone:
 
 @dataclass(frozen=True, eq=False)
 class Zones:
-    """A set of zones with a spatial index; leg tests on straight lon/lat samples."""
+    """A set of zones; legs are tested as polylines of chords along their great circles."""
 
     zones: tuple[Zone, ...]
     source: str = ""
@@ -41,8 +41,9 @@ class Zones:
 
     def leg_inside(self, lon0: np.ndarray, lat0: np.ndarray, lon1: np.ndarray,
                    lat1: np.ndarray, samples: int = 16) -> np.ndarray:
-        """(n_zones, n_legs) share [0..1] of each leg's samples inside each zone (legs are
-        sampled along their great circle, `samples` + 1 points)."""
+        """(n_zones, n_legs) share [0..1] of each leg's length inside each zone: the length of
+        its polyline of `samples` chords along the great circle that lies in the zone (exact
+        for that polyline, so a leg that clips a corner between two chord ends counts)."""
         shape = np.shape(lon0)
         ends = [np.asarray(a, dtype=float).ravel() for a in (lon0, lat0, lon1, lat1)]
         n = ends[0].size
@@ -64,9 +65,14 @@ class Zones:
                 continue
             pts_lon, pts_lat = gc_samples(ends[0][idx], ends[1][idx], ends[2][idx],
                                           ends[3][idx], samples)
-            pts_lon = (pts_lon - x0 + 180.0) % 360.0 - 180.0 + x0  # zone's frame
-            inside = shapely.contains_xy(z.geometry, pts_lon, pts_lat)
-            out[zi, idx] = inside.mean(axis=1)
+            pts_lon = np.unwrap(pts_lon, period=360.0, axis=1)  # each leg continuous,
+            pts_lon += ((pts_lon[:, :1] - x0 + 180.0) % 360.0 - 180.0 + x0) - pts_lon[:, :1]
+            lines = shapely.linestrings(np.stack([pts_lon, pts_lat], axis=-1))  # zone's frame
+            length = shapely.length(lines)
+            cross = shapely.intersects(lines, z.geometry) & (length > 0.0)
+            if cross.any():
+                inside = shapely.length(shapely.intersection(lines[cross], z.geometry))
+                out[zi, idx[cross]] = np.clip(inside / length[cross], 0.0, 1.0)
         return out.reshape((len(self.zones), *shape))
 
 

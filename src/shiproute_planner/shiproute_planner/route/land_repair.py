@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import dataclasses
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from shiproute_core.geodesy import densify_track, inverse
@@ -33,12 +33,14 @@ STEP_M = M_PER_NM / 4.0
 class RepairRules:
     """How detours are made: the stretch replaced each side of the land (`windows_nm`, tried
     in turn with `corridors_nm`), the clearances kept from land where there is room (first
-    one preferred) and the grid cell."""
+    one preferred, each capping `need_nm` where that is given) and the grid cell."""
 
     windows_nm: tuple[float, ...] = (4.0, 12.0)
     corridors_nm: tuple[float, ...] = (4.0, 12.0)
     clearances_nm: tuple[float, ...] = (0.5, 0.25, 0.1, 0.0)
     cell_nm: float = 0.1
+    need_nm: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = field(
+        default=None, compare=False)  # clearance [NM] each point needs (lon, lat)
 
 
 @dataclass(frozen=True)
@@ -131,7 +133,8 @@ def repair_leg(lon: np.ndarray, lat: np.ndarray, k: int, contains: LandTest, pol
         passage_rules = dataclasses.replace(
             base, clearances_nm=rules.clearances_nm, cell_nm=rules.cell_nm,
             fine_cell_nm=rules.cell_nm / 2.0, corridors_nm=(corridor_nm,), berth_nm=0.0,
-            pilotage_nm=0.0, prefer_off_nm=2.0 * rules.clearances_nm[0])
+            pilotage_nm=0.0, prefer_off_nm=2.0 * rules.clearances_nm[0],
+            need_nm=rules.need_nm)
         p = compute_passage(guide_lon, guide_lat, passage_rules, polygons)
         if p is None:
             continue
@@ -232,3 +235,84 @@ def repaired_track(lon: np.ndarray, lat: np.ndarray, contains: LandTest, polygon
         owner += [k] * (seg_lon.size - 1)
     return (np.concatenate(out_lon), np.concatenate(out_lat), np.array(owner, dtype=np.int64),
             repairs, left)
+
+
+def _detour(plon: np.ndarray, plat: np.ndarray, ia: int, ib: int, polygons,
+            passage_rules: PassageRules) -> tuple[np.ndarray, np.ndarray] | None:
+    """Nodes of a detour between dense samples `ia` and `ib` (kept as its ends) on the fine
+    grid, guided by the samples between them; None when no corridor has a way through."""
+    step = max(1, round(0.5 * M_PER_NM / STEP_M))  # guide points every ~0.5 NM
+    guide_lon = np.concatenate([plon[ia:ib:step], plon[ib:ib + 1]])
+    guide_lat = np.concatenate([plat[ia:ib:step], plat[ib:ib + 1]])
+    p = compute_passage(guide_lon, guide_lat, passage_rules, polygons)
+    if p is None:
+        return None
+    new_lon, new_lat = _without_repeats(np.concatenate([plon[ia:ia + 1], p.lon_deg,
+                                                        plon[ib:ib + 1]]),
+                                        np.concatenate([plat[ia:ia + 1], p.lat_deg,
+                                                        plat[ib:ib + 1]]))
+    return fewer_nodes(new_lon, new_lat, polygons, p.clearance_nm)
+
+
+def repaired_stretches(lon: np.ndarray, lat: np.ndarray, contains: LandTest, polygons,
+                       base: PassageRules, rules: RepairRules = RepairRules(),
+                       skip_start_m: float = 0.0, skip_end_m: float = 0.0
+                       ) -> tuple[np.ndarray, np.ndarray, int]:
+    """(nodes lon, lat, stretches left) of a track whose stretches with tested samples that
+    `contains` flags are replaced by detours; a stretch runs from `windows_nm` before its
+    first flagged sample to as far after its last (across nodes: a node that itself breaks
+    the test moves), flagged samples closer than two windows sharing one. Stretches are
+    repaired from the track's end backwards, so the part before each is unchanged."""
+    lon = np.unwrap(np.asarray(lon, dtype=float), period=360.0)
+    lat = np.asarray(lat, dtype=float)
+    limit_m, left = np.inf, 0
+    while lon.size >= 2:
+        _, dist = inverse(lon[:-1], lat[:-1], lon[1:], lat[1:])
+        dist = np.atleast_1d(np.asarray(dist, dtype=float))
+        plon, plat, first, _, along = track_samples(lon, lat, dist, STEP_M)
+        total = float(dist.sum())
+        tested = (along >= skip_start_m) & (along <= total - skip_end_m) & (along < limit_m)
+        hit = np.zeros(plon.size, dtype=bool)
+        if tested.any():
+            hit[tested] = np.asarray(contains(plon[tested], plat[tested]), dtype=bool)
+        if not hit.any():
+            break
+        node_at = np.concatenate([first, [plon.size - 1]])  # sample index of each node
+        hits = np.flatnonzero(hit)
+        last = int(hits[-1])
+        gap = np.diff(along[hits]) > 2.0 * rules.windows_nm[0] * M_PER_NM
+        run_start = int(hits[np.flatnonzero(np.concatenate([[True], gap]))[-1]])
+        fixed = False
+        for window_nm, corridor_nm in zip(rules.windows_nm, rules.corridors_nm, strict=True):
+            w_m = window_nm * M_PER_NM
+            a_m = float(along[run_start]) - w_m
+            while True:  # the stretch starts on a clean sample: earlier runs join it
+                ia = int(np.searchsorted(along, max(a_m, 0.0)))
+                earlier = hits[(hits <= ia) & (along[hits] > a_m - w_m)]
+                if ia == 0 or earlier.size == 0:
+                    break
+                a_m = float(along[earlier[0]]) - w_m
+            b_m = min(float(along[last]) + w_m, limit_m)  # not into a stretch behind it
+            ib = min(int(np.searchsorted(along, b_m)), plon.size - 1)
+            passage_rules = dataclasses.replace(
+                base, clearances_nm=rules.clearances_nm, cell_nm=rules.cell_nm,
+                fine_cell_nm=rules.cell_nm / 2.0, corridors_nm=(corridor_nm,), berth_nm=0.0,
+                pilotage_nm=0.0, prefer_off_nm=2.0 * rules.clearances_nm[0],
+                need_nm=rules.need_nm)
+            detour = _detour(plon, plat, ia, ib, polygons, passage_rules)
+            if detour is None:
+                continue
+            before, after = node_at < ia, node_at > ib
+            new_lon = np.concatenate([lon[before], detour[0], lon[after]])
+            new_lat = np.concatenate([lat[before], detour[1], lat[after]])
+            k0 = int(before.sum())  # the detour's own legs: the rest sails the old lines
+            legs = frozenset(range(k0, k0 + detour[0].size - 1))
+            others = frozenset(range(new_lon.size - 1)) - legs
+            if land_legs(new_lon, new_lat, contains, skip_start_m, skip_end_m, others):
+                continue
+            lon, lat, limit_m, fixed = new_lon, new_lat, float(along[ia]), True
+            break
+        if not fixed:  # left as it is; the samples a window before it are clean
+            left += 1
+            limit_m = float(along[run_start]) - rules.windows_nm[0] * M_PER_NM
+    return lon, lat, left

@@ -18,7 +18,9 @@ more clearance.
 
 Clearance: the passage keeps `clearances_nm[0]` (0.5 NM) from land where it can; a strait or
 channel too narrow for it (Bosphorus, Dardanelles, an estuary) gets the largest clearance of
-`clearances_nm` that leaves a way through, and the plan says so. Within `berth_nm` of the
+`clearances_nm` that leaves a way through, and the plan says so. With a clearance per point
+(`need_nm`: a seed's search rule) each clearance tried caps that need cell by cell, so one
+narrow part does not lower what the rest of the passage keeps. Within `berth_nm` of the
 port only land blocks (harbour basins are narrower than any clearance); within
 `pilotage_nm` depth is the pilot's (dredged channels are finer than the grids), beyond it
 a cell shallower than the ship's required depth blocks, where a grid may decide (see
@@ -32,6 +34,7 @@ kept (stated).
 from __future__ import annotations
 
 import functools
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -66,6 +69,11 @@ class PassageRules:
     prefer_off_nm: float = 2.0
     required_depth_m: float | None = None
     bathymetry: object = field(default=None, compare=False)
+    # clearance [NM] each point needs (lon, lat -> NM; a seed's search rule): with it each
+    # of `clearances_nm` caps that need instead of being kept everywhere, so a detour keeps
+    # the open-sea clearance in open water and less only where its water is narrower
+    need_nm: Callable[[np.ndarray, np.ndarray], np.ndarray] | None = field(
+        default=None, compare=False, repr=False)
 
 
 @dataclass(frozen=True, eq=False)
@@ -201,6 +209,18 @@ def _nearest_free(free: np.ndarray, i: int, j: int) -> tuple[int, int] | None:
     return int(fi[k]), int(fj[k])
 
 
+def _cell_need_m(grid: NavGrid, need_nm: Callable[[np.ndarray, np.ndarray], np.ndarray]
+                 ) -> np.ndarray:
+    """Clearance [m] each cell needs under a per-point rule: the largest need of its own and
+    its eight neighbours' centres (a path through a cell runs up to a cell from its centre)."""
+    from scipy import ndimage
+
+    i, j = np.indices(grid.shape)
+    lon, lat = grid.centre(i.ravel(), j.ravel())
+    need = np.asarray(need_nm(lon, lat), dtype=float).reshape(grid.shape)
+    return ndimage.maximum_filter(need, size=3, mode="nearest") * M_PER_NM
+
+
 def solve_on_grid(grid: NavGrid, lane_lon: np.ndarray, lane_lat: np.ndarray,
                   rules: PassageRules, corridor_nm: float) -> Passage | None:
     """Passage from the lane's first point (the port) to its last (the sea end) inside a
@@ -225,9 +245,12 @@ def solve_on_grid(grid: NavGrid, lane_lon: np.ndarray, lane_lat: np.ndarray,
         cost = cost + UNKNOWN_DEPTH_COST * unknown
     modes = ((False,) if rules.required_depth_m is None else
              (True, False) if shallow.any() else (True,))
+    need_m = None if rules.need_nm is None else _cell_need_m(grid, rules.need_nm)
     for use_depth in modes:
         for c_nm in rules.clearances_nm:
-            free = water & (berth | (grid.clearance_m >= c_nm * M_PER_NM))
+            keep_m = (c_nm * M_PER_NM if need_m is None
+                      else np.minimum(need_m, c_nm * M_PER_NM))
+            free = water & (berth | (grid.clearance_m >= keep_m))
             if use_depth:
                 free &= ~shallow
             pool = free & berth if (free & berth).any() else free

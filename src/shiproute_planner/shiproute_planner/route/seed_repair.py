@@ -3,12 +3,13 @@
 The sea lane (`searoute`'s network, resampled to two points per stage) cuts headlands, narrow
 passages such as the Kanmon Strait and the clearance round islands: on the search's
 full-resolution test a seed and a baseline on it break the rule, and a route round a whole
-island ranks before them. Each leg of such a track with a point on full-resolution land or
-closer than the clearance rule asks (`route.clearance`, the search's: off land only in tight
-water) gets the final check's local detour (`route.land_repair`: fine navigable grid, the
-rule's distances preferred where there is room), so the baseline and the seeds made from it
-start clean; where no detour keeps the clearance, one off land at least (the search
-penalises what is left).
+island ranks before them. Each stretch of such a track with points on full-resolution land
+or closer than the clearance rule asks (`route.clearance`, the search's: off land only in
+tight water), across the lane's nodes (a node within the clearance moves), gets a local
+detour (`route.land_repair.repaired_stretches`: fine navigable grid on which each cell keeps
+the clearance the rule asks of its own water, so a detour through a strait keeps the
+open-sea clearance once past it), so the baseline and the seeds made from it start clean;
+where no detour keeps the clearance, one off land at least (the search penalises the rest).
 """
 
 from __future__ import annotations
@@ -22,11 +23,37 @@ from shiproute_core.geodesy import inverse
 from shiproute_core.units import M_PER_NM
 
 from .clearance import needed_clearance_nm
-from .land_repair import RepairRules, repaired_track
+from .land_repair import RepairRules, repaired_stretches
 from .problem import RouteProblem
 
-SEED_REPAIR_VERSION = 1  # in the cache key: bump when the repair changes
+SEED_REPAIR_VERSION = 3  # in the cache key: bump when the repair changes
 LEVEL1_SLACK_NM = 0.7  # level 1's looseness (a fine diagonal, the coastline band, one step)
+
+
+def rule_need(problem: RouteProblem) -> Callable[[np.ndarray, np.ndarray], np.ndarray]:
+    """Clearance [NM] the search's rule asks of points (`route.clearance.needed_clearance_nm`:
+    by their distance to the nearer span end and the room of their water; 0 off land only)."""
+    from ..geo.narrow_water import UNIT_NM as ROOM_UNIT_NM
+    from ..geo.narrow_water import default_room
+
+    room = default_room()
+    rule = problem.limits.clearance
+    cell = 180.0 / room.shape[0]
+    ends = [(problem.dep_lon_deg, problem.dep_lat_deg),
+            (problem.arr_lon_deg, problem.arr_lat_deg)]
+
+    def need(lon: np.ndarray, lat: np.ndarray) -> np.ndarray:
+        lon, lat = np.asarray(lon, dtype=float), np.asarray(lat, dtype=float)
+        if rule.open_sea_nm == 0.0 and rule.approach_nm == 0.0:
+            return np.zeros(lon.shape)
+        end_nm = np.min([np.asarray(inverse(lon, lat, np.full(lon.shape, e[0]),
+                                            np.full(lon.shape, e[1]))[1]) / M_PER_NM
+                         for e in ends], axis=0)
+        i = np.clip(((lat + 90.0) // cell).astype(np.int64), 0, room.shape[0] - 1)
+        j = np.clip((((lon + 180.0) % 360.0) // cell).astype(np.int64), 0, room.shape[1] - 1)
+        return needed_clearance_nm(rule, end_nm, room[i, j] * ROOM_UNIT_NM)
+
+    return need
 
 
 def rule_test(problem: RouteProblem) -> Callable[[np.ndarray, np.ndarray], np.ndarray]:
@@ -34,26 +61,13 @@ def rule_test(problem: RouteProblem) -> Callable[[np.ndarray, np.ndarray], np.nd
     closer to it than the problem's clearance rule asks (level-1 lower bound distances)."""
     from ..geo.fine_distance import default_fine_distance
     from ..geo.full_land import final_land
-    from ..geo.narrow_water import UNIT_NM as ROOM_UNIT_NM
-    from ..geo.narrow_water import default_room
 
-    land, fine, room = final_land(), default_fine_distance(), default_room()
-    rule = problem.limits.clearance
-    cell = land.mask.cell_deg
+    land, fine, need_nm = final_land(), default_fine_distance(), rule_need(problem)
 
     def breaks(lon: np.ndarray, lat: np.ndarray) -> np.ndarray:
         lon, lat = np.asarray(lon, dtype=float), np.asarray(lat, dtype=float)
         out = np.asarray(land.contains(lon, lat), dtype=bool)
-        if rule.open_sea_nm == 0.0 and rule.approach_nm == 0.0:
-            return out
-        ends = [(problem.dep_lon_deg, problem.dep_lat_deg),
-                (problem.arr_lon_deg, problem.arr_lat_deg)]
-        end_nm = np.min([np.asarray(inverse(lon, lat, np.full(lon.shape, e[0]),
-                                            np.full(lon.shape, e[1]))[1]) / M_PER_NM
-                         for e in ends], axis=0)
-        i = np.clip(((lat + 90.0) // cell).astype(np.int64), 0, room.shape[0] - 1)
-        j = np.clip((((lon + 180.0) % 360.0) // cell).astype(np.int64), 0, room.shape[1] - 1)
-        need = needed_clearance_nm(rule, end_nm, room[i, j] * ROOM_UNIT_NM)
+        need = need_nm(lon, lat)
         near = need > 0.0
         if near.any():
             out[near] |= fine.distance_nm(lon[near], lat[near]) < need[near]
@@ -64,10 +78,10 @@ def rule_test(problem: RouteProblem) -> Callable[[np.ndarray, np.ndarray], np.nd
 
 def repaired_seed_track(problem: RouteProblem, lon: np.ndarray, lat: np.ndarray
                         ) -> tuple[np.ndarray, np.ndarray, int]:
-    """(lon, lat, legs left unrepaired) of a seed track with the legs that break the search's
-    rule detoured (outside the problem's port clearance round both ends); kept in the data
-    directory (`seedrepairs/`), so a machine repairs each lane once per rule, as it computes
-    each coastal passage once."""
+    """(lon, lat, stretches left unrepaired) of a seed track with the stretches that break
+    the search's rule detoured (outside the problem's port clearance round both ends); kept
+    in the data directory (`seedrepairs/`), so a machine repairs each lane once per rule, as
+    it computes each coastal passage once."""
     from ..geo.datadir import data_dir, save_npz_atomic
     from .passages import best_land_resolution
 
@@ -105,15 +119,23 @@ def _repaired(problem: RouteProblem, lon: np.ndarray, lat: np.ndarray
     # the walk reads level 1, a lower bound up to ~0.7 NM below the true distance: the
     # detours aim that much wider first
     keep = {c + LEVEL1_SLACK_NM for c in (rule.open_sea_nm, rule.approach_nm) if c > 0.0}
+    need_nm = rule_need(problem)
+
+    def wider_need_nm(lon: np.ndarray, lat: np.ndarray) -> np.ndarray:
+        need = need_nm(lon, lat)
+        return np.where(need > 0.0, need + LEVEL1_SLACK_NM, 0.0)
+
+    # each part of a detour keeps the clearance its own water asks (open sea, approach,
+    # narrow or tight water), the largest capped first where it cannot
     rules = dataclasses.replace(rules, clearances_nm=tuple(sorted(
-        {*keep, *rules.clearances_nm}, reverse=True)))
+        {*keep, *rules.clearances_nm}, reverse=True)), need_nm=wider_need_nm)
     from ..geo.full_land import final_land
 
     polygons, base, skip = (best_land_polygons(), passage_rules(problem.limits.under_keel),
                             problem.port_clearance_m)
-    lon, lat, _, _, left = repaired_track(lon, lat, rule_test(problem), polygons, base, rules,
-                                          skip, skip)
+    lon, lat, left = repaired_stretches(lon, lat, rule_test(problem), polygons, base, rules,
+                                        skip, skip)
     if left:  # no detour keeps the clearance: off land at least (the search penalises the rest)
-        lon, lat, _, _, left = repaired_track(lon, lat, final_land().contains, polygons, base,
-                                              rules, skip, skip)
-    return lon, lat, len(left)
+        lon, lat, left = repaired_stretches(lon, lat, final_land().contains, polygons, base,
+                                            rules, skip, skip)
+    return lon, lat, left

@@ -111,3 +111,8 @@ def test_one_member_ensemble_gives_exactly_the_deterministic_plan(two_members, l
     assert np.array_equal(wa, wb, equal_nan=True)
     assert a.total_fuel_t == b.total_fuel_t and a.eta_s == b.eta_s
     assert a.extra["ensemble"]["members"] == 1  # and the plan says what it was made on
+    # whatever the winning route (GA genes or a baseline track), its one member sails it on
+    # the deterministic forecast (kept in half precision): the plan's own fuel and ETA
+    block = a.extra["ensemble"]
+    assert block["fuel_t"]["p50"] == pytest.approx(a.total_fuel_t, rel=2e-3)
+    assert block["eta_s"]["p50"] == pytest.approx(a.eta_s, abs=600.0)
