@@ -71,8 +71,9 @@ def shoal_stretches(dist_m: np.ndarray, depth_m: np.ndarray, need_m: float
 def _lane_of(a, b) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
     """The sea lane between two ports, densified to `STEP_M` (continuous longitudes), and
     the distance along it [m] at each point."""
-    return _lane_between(round(float(wrap_lon(a.lon_deg)), 4), round(a.lat_deg, 4),
-                         round(float(wrap_lon(b.lon_deg)), 4), round(b.lat_deg, 4))
+    from .geo.sea_lanes import lane_key
+
+    return _lane_between(*lane_key(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg))
 
 
 @functools.lru_cache(maxsize=32)

@@ -17,7 +17,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from shiproute_core.geodesy import M_PER_NM, densify_track, inverse, unwrap_near, wrap_lon
+from shiproute_core.geodesy import M_PER_NM, densify_track, inverse, unwrap_near
 
 from .route.nearest import nearest_node
 
@@ -130,7 +130,7 @@ def route_straits(ports: list, canal_legs: dict, via_rta: list, draft_m: float =
     one of the leg's ports inside it is left to that port's approach passage; a strait whose
     draft limit the ship (`draft_m`) exceeds is replaced by its way round."""
     from .geo.ports import Port
-    from .geo.sea_lanes import searoute_coords
+    from .geo.sea_lanes import sea_lane_between
 
     rtas = list(via_rta) + [None] * (len(ports) - 2 - len(via_rta))
     out, out_rta, canals, straits, notes = [ports[0]], [], {}, {}, []
@@ -140,8 +140,7 @@ def route_straits(ports: list, canal_legs: dict, via_rta: list, draft_m: float =
         if k in canal_legs:
             canals[len(out) - 1] = canal_legs[k]
         else:
-            coords = searoute_coords(round(float(wrap_lon(a.lon_deg)), 4), round(a.lat_deg, 4),
-                                      round(float(wrap_lon(b.lon_deg)), 4), round(b.lat_deg, 4))
+            coords = sea_lane_between(a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)
             if coords is not None and len(coords) > 1:
                 found = straits_on_lane(coords[:, 0], coords[:, 1])
                 lane = densify_track(np.unwrap(coords[:, 0], period=360.0), coords[:, 1],

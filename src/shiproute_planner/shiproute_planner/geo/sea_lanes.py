@@ -33,13 +33,18 @@ def searoute_coords(lon0: float, lat0: float, lon1: float, lat1: float,
     return np.asarray(feat["geometry"]["coordinates"], dtype=float)
 
 
+def lane_key(lon0_deg: float, lat0_deg: float, lon1_deg: float, lat1_deg: float
+             ) -> tuple[float, float, float, float]:
+    """A lane's end points as the caches key them: longitudes wrapped to [-180, 180), all
+    rounded to `LANE_END_DECIMALS`, so nearby requests share one lookup."""
+    d = LANE_END_DECIMALS
+    return (round(float(wrap_lon(lon0_deg)), d), round(float(lat0_deg), d),
+            round(float(wrap_lon(lon1_deg)), d), round(float(lat1_deg), d))
+
+
 def sea_lane_between(lon0_deg: float, lat0_deg: float, lon1_deg: float, lat1_deg: float,
                      avoid: tuple[str, ...] = ()) -> np.ndarray | None:
-    """The sea-lane polyline from (lon0, lat0) to (lon1, lat1) (longitudes wrapped to
-    [-180, 180), ends rounded to `LANE_END_DECIMALS`), kept out of the searoute passages
-    `avoid` names; its ends are searoute's network nodes nearest to the points, not the points
-    themselves. None when there is no route."""
-    d = LANE_END_DECIMALS
-    return searoute_coords(round(float(wrap_lon(lon0_deg)), d), round(float(lat0_deg), d),
-                           round(float(wrap_lon(lon1_deg)), d), round(float(lat1_deg), d),
-                           tuple(avoid))
+    """The sea-lane polyline from (lon0, lat0) to (lon1, lat1) (ends keyed by `lane_key`),
+    kept out of the searoute passages `avoid` names; its ends are searoute's network nodes
+    nearest to the points, not the points themselves. None when there is no route."""
+    return searoute_coords(*lane_key(lon0_deg, lat0_deg, lon1_deg, lat1_deg), tuple(avoid))
