@@ -48,6 +48,7 @@ from .request import (
     voyage_times,
 )
 from .river_passages import with_river_passages
+from .route.clearance import DEFAULT_CLEARANCE
 from .route.risk import RiskSpec
 from .voyage.plan_calls import with_port_calls
 from .voyage.port_calls import PortCall
@@ -184,9 +185,9 @@ def plan_voyage(
     risk: str | RiskSpec | None = None,
     p_hs_max: float | None = None,
     p_late_max: float | None = None,
-    open_sea_clearance_nm: float = 0.0,
-    approach_clearance_nm: float = 0.5,
-    approach_zone_nm: float = 10.0,
+    open_sea_clearance_nm: float = DEFAULT_CLEARANCE.open_sea_nm,
+    approach_clearance_nm: float = DEFAULT_CLEARANCE.approach_nm,
+    approach_zone_nm: float = DEFAULT_CLEARANCE.approach_zone_nm,
 ) -> RoutePlan:
     """Plan a voyage and return a frozen RoutePlan (`plan` with keyword arguments).
 

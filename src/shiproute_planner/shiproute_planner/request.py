@@ -22,6 +22,7 @@ from .method_context import Progress
 from .objectives import Economics
 from .plan_setup import TimeLike, to_posix_s
 from .plan_types import RoutePlan
+from .route.clearance import DEFAULT_CLEARANCE
 from .route.risk import RiskSpec
 from .ship.performance import PerformanceModel
 from .ship.spec import ShipSpec
@@ -119,9 +120,9 @@ class PlanOptions:
     p_hs_max: float | None = None  # chance constraint P(Hs > limit) of a risk-aware plan
     p_late_max: float | None = None  # chance constraint P(late) of a risk-aware plan
     # distance from the coast the search keeps (route.clearance.ClearanceRule; 0: off land)
-    open_sea_clearance_nm: float = 0.0
-    approach_clearance_nm: float = 0.5
-    approach_zone_nm: float = 10.0
+    open_sea_clearance_nm: float = DEFAULT_CLEARANCE.open_sea_nm
+    approach_clearance_nm: float = DEFAULT_CLEARANCE.approach_nm
+    approach_zone_nm: float = DEFAULT_CLEARANCE.approach_zone_nm
 
 
 def voyage_times(depart: TimeLike, rta: TimeLike | timedelta) -> tuple[float, float]:

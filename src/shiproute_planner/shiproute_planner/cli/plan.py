@@ -121,9 +121,9 @@ def build_parser() -> argparse.ArgumentParser:
                          "penalty_per_nm); repeatable")
     ap.add_argument("--clearance-nm", type=float, default=0.0,
                     help="distance from land [NM] the route check of the plan requires")
-    ap.add_argument("--open-sea-clearance-nm", type=float, default=0.0, metavar="NM",
+    ap.add_argument("--open-sea-clearance-nm", type=float, default=1.0, metavar="NM",
                     help="distance from land [NM] the search keeps in open sea (0-5, "
-                         "default 0: off land only; e.g. 2)")
+                         "default 1; 0: off land only)")
     ap.add_argument("--approach-clearance-nm", type=float, default=0.5, metavar="NM",
                     help="distance from land [NM] the search keeps within the approach zone "
                          "of the span ends and in narrow water (0-3, default 0.5)")

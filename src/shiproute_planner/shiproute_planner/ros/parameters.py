@@ -48,7 +48,7 @@ PARAMETERS: dict[str, tuple[object, str]] = {
     "ukc_margin_m": (1.0, "under-keel clearance margin on draft + squat + waves [m]"),
     "zones_files": ("", "no-go / avoid zone GeoJSON files, comma-separated"),
     "clearance_nm": (0.0, "distance from land the route check of each plan requires [NM]"),
-    "open_sea_clearance_nm": (0.0, "distance from land the search keeps in open sea [NM]"),
+    "open_sea_clearance_nm": (1.0, "distance from land the search keeps in open sea [NM]"),
     "approach_clearance_nm": (0.5, "distance from land the search keeps near the span ends "
                               "and in narrow water [NM]"),
     "approach_zone_nm": (10.0, "radius round the span ends (ports, strait exits, the ship) "

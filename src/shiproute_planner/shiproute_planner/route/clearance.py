@@ -37,10 +37,10 @@ APPROACH_ZONE_RANGE_NM = (0.0, 200.0)
 class ClearanceRule:
     """Distances from land [NM] a route keeps, by where it is."""
 
-    # open sea off land only by default: at the issue's 2 NM `bench world` plans 19 of 20
-    # lanes feasible; darwin-singapore's search finds no exit from Darwin that keeps 2 NM
-    # and misses ETOPO5's shelf fill west of it (5-8 m cells, UKC); 2 NM is an option
-    open_sea_nm: float = 0.0
+    # 1 NM in open sea by default: at the issue's 2 NM `bench world` plans 19 of 20 lanes
+    # feasible (darwin-singapore finds no exit from Darwin that keeps 2 NM and misses
+    # ETOPO5's 5-8 m shelf cells west of it); 2 NM is an option
+    open_sea_nm: float = 1.0
     approach_nm: float = 0.5  # straits, narrow water and approaches
     approach_zone_nm: float = 10.0
 
@@ -77,6 +77,9 @@ class ClearanceRule:
         return (f"clearance {self.open_sea_nm:g} NM open sea / {self.approach_nm:g} NM within "
                 f"{self.approach_zone_nm:g} NM of the span ends and in narrow water (room within "
                 f"10 NM < {self.open_sea_nm + NARROW_MARGIN_NM:g} NM)" + tight)
+
+
+DEFAULT_CLEARANCE = ClearanceRule()  # the defaults of the CLI, the node and PlanOptions
 
 
 def needed_clearance_nm(rule: ClearanceRule, end_nm: np.ndarray, room_nm: np.ndarray,
