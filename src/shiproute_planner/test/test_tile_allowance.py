@@ -48,3 +48,19 @@ def test_snapshot_holds_the_same_tiles_and_builds_its_own(empty_tiles):
     assert copy.built == 0  # read, not rebuilt
     copy.distance_nm(lon + 0.5, lat)
     assert copy.count == 2 and empty_tiles.count == 1
+
+
+
+def test_plan_clock_gives_the_spans_still_to_run_the_time_tiles_took(monkeypatch):
+    from shiproute_planner import plan_timing
+
+    now, built_s = [100.0], [7.0]  # 7 s of builds before the plan: not its own
+    monkeypatch.setattr(plan_timing.time, "perf_counter", lambda: now[0])
+    monkeypatch.setattr(plan_timing, "tile_builds", lambda: (0, built_s[0]))
+    clock = plan_timing.PlanClock()
+    reserve = plan_timing.checks_reserve_s(3.0)
+    now[0] += 2.0  # 2 s into a 3-s plan, 1.5 s of it building tiles
+    built_s[0] += 1.5
+    assert clock.left_s(3.0) == pytest.approx(3.0 - 2.0 + 1.5 - reserve)
+    built_s[0] += 10.0  # never more than the budget excused
+    assert clock.left_s(3.0) == pytest.approx(3.0 - 2.0 + 3.0 - reserve)
