@@ -94,11 +94,12 @@ def _warm_up(log) -> None:
     a, b = (resolve_port(p, land) for p in (ORIGIN, DESTINATION))
     land.fine_coast.resolve_voyage((a.lon_deg, a.lat_deg), (b.lon_deg, b.lat_deg),
                                    (10.0, 10.0, 10.0, 25.0))
-    # the search's full-resolution tiles of the coasts near the voyage (~1,100 tiles, ~20 s
-    # once per machine): the first plan then searches instead of building them
+    # the search's full-resolution tiles of the coasts its seeds reach (the great circles
+    # via points 12 deg off it reach the Aleutians, Alaska and Hawaii; ~2,100 tiles, 30-40 s
+    # once per machine): the node's first plan then searches instead of building them
     t0 = time.perf_counter()
     built = build_region_tiles((a.lon_deg, a.lat_deg), (b.lon_deg, b.lat_deg),
-                               (10.0, 10.0, 10.0, 15.0), DEFAULT_CLEARANCE)
+                               (10.0, 10.0, 15.0, 25.0), DEFAULT_CLEARANCE)
     if built:
         log(f"built {built} full-resolution coastline tiles of the voyage's region in "
             f"{time.perf_counter() - t0:.0f} s (once per machine)")
