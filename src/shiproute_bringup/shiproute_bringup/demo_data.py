@@ -85,7 +85,7 @@ def _warm_up(log) -> None:
     from shiproute_planner.planning import plan
     from shiproute_planner.request import PlanOptions
     from shiproute_planner.route.clearance import DEFAULT_CLEARANCE
-    from shiproute_planner.route.land_walk import build_region_tiles
+    from shiproute_planner.route.land_walk import REGION_MARGINS_DEG, build_region_tiles
     from shiproute_weather.sampling.sampler import ForecastSampler
     from shiproute_weather.scenarios.catalogue import scenario_dataset
 
@@ -99,7 +99,7 @@ def _warm_up(log) -> None:
     # once per machine): the node's first plan then searches instead of building them
     t0 = time.perf_counter()
     built = build_region_tiles((a.lon_deg, a.lat_deg), (b.lon_deg, b.lat_deg),
-                               (10.0, 10.0, 15.0, 25.0), DEFAULT_CLEARANCE)
+                               REGION_MARGINS_DEG, DEFAULT_CLEARANCE)
     if built:
         log(f"built {built} full-resolution coastline tiles of the voyage's region in "
             f"{time.perf_counter() - t0:.0f} s (once per machine)")

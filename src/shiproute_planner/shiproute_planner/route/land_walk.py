@@ -182,17 +182,24 @@ def level1_reach_nm(rule: ClearanceRule) -> float:
     return max(rule.open_sea_nm, rule.approach_nm) + lw.L0_MIN_JUMP_NM
 
 
+# round a voyage's ports: where its seeds go (great circles via points 12 deg off it, the
+# sea lane; the intermediate coastline's cells are resolved over the same box)
+REGION_MARGINS_DEG = (10.0, 10.0, 15.0, 25.0)  # west, east, south, north
+
+
 def build_region_tiles(a: tuple[float, float], b: tuple[float, float],
                        margins_deg: tuple[float, float, float, float],
                        rule: ClearanceRule) -> int:
-    """Build and save the level-1 tiles a walk with `rule` can read in the box from `a`
-    eastward to `b` ((lon, lat) [deg]) widened by (west, east, south, north) margins [deg]:
-    a first plan on a fresh machine then searches instead of building tiles. How many were
-    new."""
+    """Build and save the level-1 tiles a walk with `rule` can read in the box between `a`
+    and `b` ((lon, lat) [deg]; the shorter way round in longitude) widened by (west, east,
+    south, north) margins [deg]: a first plan on a fresh machine then searches instead of
+    building tiles. How many were new."""
     from ..geo.fine_distance import default_fine_distance
     from ..geo.full_land import final_land
 
     finest = final_land().mask
+    if (b[0] - a[0]) % 360.0 > 180.0:  # westward is shorter: the box runs from b east to a
+        a, b = b, a
     east = a[0] + (b[0] - a[0]) % 360.0
     west_m, east_m, south_m, north_m = margins_deg
     fine = default_fine_distance()
