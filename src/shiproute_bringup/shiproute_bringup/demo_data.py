@@ -107,6 +107,10 @@ def _warm_up(log) -> None:
     voyage = dataclasses.replace(_voyage(), default_bathymetry=True)
     # the global depth grid's cache, as the node uses it, and the tiles a storm search meets
     plan(voyage, PlanOptions(budget_s=3.0, land=land), forecast)
+    # the calm-water kernels of the node's own warm-up (`ros.startup.warm_planner`): compiled
+    # there they held the node ~60 s after a source change while the demo's clock ran
+    plan(voyage, PlanOptions(budget_s=0.0, max_generations=0, with_baseline=False, land=land),
+         None)
 
 
 def prepare(log=print) -> DemoData:
