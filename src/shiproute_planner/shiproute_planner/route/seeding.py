@@ -18,7 +18,7 @@ import numpy as np
 from shiproute_core.geodesy import direct, great_circle_points, inverse, unwrap_near
 
 from ..geo.landmask import LandMask
-from ..geo.sea_lanes import sea_lane_between
+from ..geo.sea_lanes import lane_between_points, sea_lane_between
 from .encoding import clip_genes, join_genes
 from .environment import Environment
 from .land_walk import LandWalk
@@ -179,8 +179,9 @@ def sea_lane_track(problem: RouteProblem, max_points: int = 0,
                    ) -> tuple[np.ndarray, np.ndarray] | None:
     """Shortest sea-lane polyline from `searoute` (None if it finds no route).
 
-    Its end points are replaced by the problem's ports (searoute snaps to its network); long
-    polylines are resampled to `max_points` (default two per stage)."""
+    searoute snaps the end points to its network: each lane is cut at its points nearest
+    the stops (`lane_between_points`) and the stops put at the ends; long polylines are
+    resampled to `max_points` (default two per stage)."""
     stops = [(problem.dep_lon_deg, problem.dep_lat_deg), (problem.arr_lon_deg, problem.arr_lat_deg)]
     if via is not None:
         stops.insert(1, (float(via[0]), float(via[1])))
@@ -189,7 +190,7 @@ def sea_lane_track(problem: RouteProblem, max_points: int = 0,
         part = sea_lane_between(a[0], a[1], b[0], b[1])
         if part is None:
             return None
-        parts.append(part)
+        parts.append(lane_between_points(part, a[0], a[1], b[0], b[1]))
     coords = np.concatenate(parts, axis=0)
     if coords.shape[0] < 2:
         return None
