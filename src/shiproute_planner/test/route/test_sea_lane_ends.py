@@ -44,3 +44,15 @@ def test_span_ending_at_a_gate_does_not_cross_the_shoal_beyond_it():
     _, to_shoal = inverse(lon, lat, np.full(lon.size, shoal_lon), np.full(lon.size, shoal_lat))
     gate_to_shoal = float(inverse(gate_lon, gate_lat, shoal_lon, shoal_lat)[1])
     assert to_shoal.min() >= gate_to_shoal - 2.0 * M_PER_NM
+
+
+def test_schedule_distance_to_a_gate_in_an_estuary_is_not_counted_there_and_back():
+    pytest.importorskip("searoute")
+    from shiproute_planner.voyage.legs import sea_distance_m
+
+    # Buenos Aires -> the gate of the deep-water passage through the Rio de la Plata: open
+    # water all the way, so the sea way is close to the great circle (59 NM); searoute's
+    # lane ends at its node 56.50 W 35.10 S, 35 NM past the gate
+    ba_lon, ba_lat, gate_lon, gate_lat = -58.363, -34.591, -57.198, -34.831
+    direct = float(inverse(ba_lon, ba_lat, gate_lon, gate_lat)[1])
+    assert sea_distance_m(ba_lon, ba_lat, gate_lon, gate_lat) <= 1.25 * direct
