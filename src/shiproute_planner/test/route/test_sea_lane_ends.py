@@ -38,7 +38,9 @@ def test_span_ending_at_a_gate_does_not_cross_the_shoal_beyond_it():
     # second one
     gate_lon, gate_lat, shoal_lon, shoal_lat = -62.154, -40.759, -61.807, -40.207
     problem = RouteProblem(-69.466, -52.452, gate_lon, gate_lat, 0.0, 5 * 86400.0,
-                           RouteLimits(40.0, 120.0), stage_s=12 * 3600.0, n_stages=8)
+                           RouteLimits(40.0, 120.0), stage_s=12 * 3600.0, n_stages=8,
+                           arr_name="deep-water passage past the shoal at -40.20, -61.80 "
+                                    "(13 m on the sea lane) gate")
     lon, lat = sea_lane_track(problem, max_points=400)
     assert lat.max() <= gate_lat + 0.05  # the lane runs north here: nothing beyond the gate
     _, to_shoal = inverse(lon, lat, np.full(lon.size, shoal_lon), np.full(lon.size, shoal_lat))
