@@ -7,10 +7,12 @@ from datetime import timedelta
 from pathlib import Path
 
 import numpy as np
+import pyproj
 import pytest
 import xarray as xr
 from shiproute_core.geodesy import densify_track
 from shiproute_core.units import M_S_PER_KNOT
+from shiproute_planner.depth_setup import PORT_CLEARANCE_M
 from shiproute_planner.errors import BathymetryError
 from shiproute_planner.geo.bathymetry import load_depth_grid
 from shiproute_planner.geo.depth import Bathymetry, load_bathymetry
@@ -85,8 +87,16 @@ def test_plan_goes_round_skerki_bank_and_keeps_ukc(land_mask):
     cb = c.displacement_t / 1.025 / (h.lwl_m * h.breadth_m * spec.mean_draft_m)
     draft = max(c.draft_fore_m, c.draft_aft_m)
     p_lon, p_lat, _ = plan.track()
+    geod = pyproj.Geod(ellps="WGS84")
     for k, w in enumerate(plan.waypoints[:-1]):
-        seg_lon, seg_lat = densify_track(p_lon[k:k + 2], p_lat[k:k + 2], 90.0)
+        seg_lon, seg_lat = (np.asarray(v) for v in densify_track(p_lon[k:k + 2],
+                                                                   p_lat[k:k + 2], 90.0))
+        # the plan leaves the first and last 3 km to the harbour (depth next to a berth)
+        for end in (0, -1):
+            _, _, off_m = geod.inv(np.full(seg_lon.size, p_lon[end]),
+                                   np.full(seg_lon.size, p_lat[end]), seg_lon, seg_lat)
+            keep = off_m >= PORT_CLEARANCE_M
+            seg_lon, seg_lat = seg_lon[keep], seg_lat[keep]
         depth = _file_depth_along(seg_lon, seg_lat).min()
         # independent UKC: draft + Barrass Cb V^2/100 + margin 1 m (calm: no wave allowance)
         need = draft + cb * w.stw_kn**2 / 100.0 + 1.0
