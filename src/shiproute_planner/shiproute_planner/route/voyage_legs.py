@@ -18,6 +18,7 @@ from ..geo.ports import Port
 from ..objective_window import search_window_s
 from ..objectives import ObjectiveTerms
 from ..plan_types import RoutePlan
+from ..shoal_passages import lane_shoal_limit
 from ..straits import is_gate
 from ..voyage.legs import sea_distance_m, turns_to_round
 from ..voyage.stage_length import TARGET_STAGES, leg_stage_hours
@@ -53,7 +54,8 @@ def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMa
     the ship finishes the coastal passage it is in, if any, from where it is. `given`
     approaches (the user's coastal routes, e.g. from the ECDIS) that start at `a` or end at
     `b` replace the computed ones and are sailed as given."""
-    coastal = CoastalPassage(land) if coastal_passage else None
+    coastal = (CoastalPassage(land, shoals=lane_shoal_limit(lim.under_keel))
+               if coastal_passage else None)
     rest = rest_of_approach(previous_plan, position) if under_way else None
     kept = previous_arrival(previous_plan, b, position) if under_way else None
     ap_dep: Approach | None
@@ -72,7 +74,7 @@ def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMa
             with_dep=(not under_way or own_dep) and not is_gate(a),
             with_arr=not is_gate(b),  # gates lie in open water
             coastal=coastal, dep_min_m=0.0 if under_way else None)
-    notes: list[str] = []
+    notes = [*(ap_dep.notes if ap_dep else ()), *(ap_arr.notes if ap_arr else ())]
     if coastal is not None:  # computed on the fine grid, not the lane's cut
         rules = passage_rules(lim.under_keel)
         if rest is None and (kept is None or own_dep):
