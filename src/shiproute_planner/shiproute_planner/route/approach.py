@@ -15,14 +15,14 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from shiproute_core.geodesy import direct, inverse, unwrap_near, wrap_lon
+from shiproute_core.geodesy import direct, inverse, unwrap_near
 from shiproute_core.units import M_PER_NM
 
 from ..geo.landmask import LandMask
 from ..geo.ports import Port
 from ..geo.sea_lanes import sea_lane_between
 from ..geo.verify import densify_track
-from .approach_shoals import ShoalLimit, past_shoals
+from .approach_shoals import ShoalLimit, end_past_shoals
 from .environment import Environment
 from .evaluation import RouteEvaluation
 from .problem import RouteLimits, RouteProblem
@@ -37,6 +37,9 @@ class Approach:
     lon_deg: np.ndarray
     lat_deg: np.ndarray
     notes: tuple[str, ...] = ()
+    # run on past a shoal next to the port: the approach to sail instead when its computed
+    # passage finds no way round the shoal in water deep enough (`coastal_passages`)
+    fallback: Approach | None = None
 
 
 @dataclass(frozen=True)
@@ -171,57 +174,52 @@ def lane_approaches(dep: Port, arr: Port, approach_m: float, with_dep: bool = Tr
         return None, None
     d_arr = approach_m
     d_dep = approach_m if dep_min_m is None else dep_min_m
-    said_dep: tuple[str, ...] = ()
-    said_arr: tuple[str, ...] = ()
-    if coastal is not None and coastal.shoals is not None:
-        limit = coastal.share * cum[-1]
-        if with_dep:
-            d_dep, said_dep = _end_past_shoals(lon, lat, cum, d_dep, limit, coastal.shoals,
-                                               f"departure from {dep.name}")
-        if with_arr:
-            r_lon, r_lat, r_cum = lon[::-1], lat[::-1], cum[-1] - cum[::-1]
-            d_arr, said_arr = _end_past_shoals(r_lon, r_lat, r_cum, d_arr, limit,
-                                               coastal.shoals, f"arrival at {arr.name}")
     if coastal is not None:
         d_dep, d_arr = _coastal_ends(lon, lat, cum, coastal, d_dep, d_arr)
-    out_dep = out_arr = None
-    if with_dep and d_dep > 0:
-        e_lon, e_lat = _points_at(lon, lat, cum, np.array([d_dep]))
-        k = cum < d_dep
-        out_dep = Approach(np.append(lon[k], e_lon), np.append(lat[k], e_lat), said_dep)
+    out_dep = _departure(lon, lat, cum, d_dep) if with_dep else None
+    out_arr = _arrival(lon, lat, cum, d_arr) if with_arr else None
+    if coastal is None or coastal.shoals is None:
+        return out_dep, out_arr
+    # past the shoals next to each port: walked from the minimums, the ends searched again
+    limit = coastal.share * cum[-1]
+    m_dep = approach_m if dep_min_m is None else dep_min_m
+    w_dep, said_dep = end_past_shoals(lambda d: _points_at(lon, lat, cum, d), float(cum[-1]),
+                                      m_dep, limit, coastal.shoals,
+                                      f"departure from {dep.name}") if with_dep else (m_dep, ())
+    r_lon, r_lat, r_cum = lon[::-1], lat[::-1], cum[-1] - cum[::-1]
+    w_arr, said_arr = end_past_shoals(lambda d: _points_at(r_lon, r_lat, r_cum, d),
+                                      float(cum[-1]), approach_m, limit, coastal.shoals,
+                                      f"arrival at {arr.name}") if with_arr else (approach_m, ())
+    if not (said_dep or said_arr):
+        return out_dep, out_arr
+    e_dep, e_arr = _coastal_ends(lon, lat, cum, coastal, w_dep, w_arr)
+    if with_dep:
+        out_dep = _departure(lon, lat, cum, e_dep, said_dep,
+                             out_dep if w_dep > m_dep and e_dep != d_dep else None)
     if with_arr:
-        s_lon, s_lat = _points_at(lon, lat, cum, np.array([cum[-1] - d_arr]))
-        k = cum > cum[-1] - d_arr
-        out_arr = Approach(np.concatenate([s_lon, lon[k]]), np.concatenate([s_lat, lat[k]]),
-                           said_arr)
+        out_arr = _arrival(lon, lat, cum, e_arr, said_arr,
+                           out_arr if w_arr > approach_m and e_arr != d_arr else None)
     return out_dep, out_arr
 
 
-def _end_past_shoals(lon: np.ndarray, lat: np.ndarray, cum: np.ndarray, start_m: float,
-                     limit_m: float, shoals: ShoalLimit, where: str
-                     ) -> tuple[float, tuple[str, ...]]:
-    """An approach's minimum length [m] along the lane (port first) moved on past the
-    shoals next to its end (`approach_shoals.past_shoals`), and what the plan says."""
-    walk = past_shoals(lambda d: _points_at(lon, lat, cum, d), float(cum[-1]), start_m,
-                       limit_m, shoals)
-    if walk.end_m is None:
-        return start_m, (
-            f"coastal passage ({where}): the sea lane runs over water shallower than the "
-            f"ship's {shoals.need_m:.1f} m (per the depth grid) within "
-            f"{shoals.ahead_m / M_PER_NM:g} NM of the approach's end and on for more than "
-            f"{shoals.max_walk_m / M_PER_NM:g} NM; the approach ends "
-            f"{start_m / M_PER_NM:.0f} NM from the port regardless and the optimiser's "
-            "depth constraint decides beyond the first leg's pilotage waters",)
-    if walk.shallowest is None:
-        return start_m, ()
-    depth, s_lon, s_lat = walk.shallowest
-    return walk.end_m, (
-        f"coastal passage ({where}): runs on to {walk.end_m / M_PER_NM:.0f} NM from the "
-        f"port along the sea lane (not {start_m / M_PER_NM:.0f} NM), past lane water "
-        f"shallower than the ship's {shoals.need_m:.1f} m ({depth:.0f} m at {s_lat:.2f}, "
-        f"{float(wrap_lon(s_lon)):.2f} per the depth grid) that begins within "
-        f"{shoals.ahead_m / M_PER_NM:g} NM of where it would end, so the optimised passage "
-        "starts clear of it",)
+def _departure(lon: np.ndarray, lat: np.ndarray, cum: np.ndarray, d_m: float,
+               notes: tuple[str, ...] = (), fallback: Approach | None = None
+               ) -> Approach | None:
+    """The lane's first `d_m` [m] as a departure approach (None for none)."""
+    if d_m <= 0:
+        return None
+    e_lon, e_lat = _points_at(lon, lat, cum, np.array([d_m]))
+    k = cum < d_m
+    return Approach(np.append(lon[k], e_lon), np.append(lat[k], e_lat), notes, fallback)
+
+
+def _arrival(lon: np.ndarray, lat: np.ndarray, cum: np.ndarray, d_m: float,
+             notes: tuple[str, ...] = (), fallback: Approach | None = None) -> Approach:
+    """The lane's last `d_m` [m] as an arrival approach."""
+    s_lon, s_lat = _points_at(lon, lat, cum, np.array([cum[-1] - d_m]))
+    k = cum > cum[-1] - d_m
+    return Approach(np.concatenate([s_lon, lon[k]]), np.concatenate([s_lat, lat[k]]), notes,
+                    fallback)
 
 
 def approach_length_m(ap: Approach | None) -> float:

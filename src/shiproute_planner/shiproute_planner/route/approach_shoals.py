@@ -18,6 +18,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
+from shiproute_core.geodesy import wrap_lon
 from shiproute_core.units import M_PER_NM
 
 from .evaluation import PILOTAGE_DEPTH_M
@@ -78,3 +79,30 @@ def past_shoals(points_at: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]]
         return ShoalWalk(start_m)
     j = int(np.nanargmin(np.where(shallow[:k], depth[:k], np.nan)))
     return ShoalWalk(float(d[k]), (float(depth[j]), float(lon[j]), float(lat[j])))
+
+
+def end_past_shoals(points_at: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]],
+                    lane_m: float, start_m: float, limit_m: float, shoals: ShoalLimit,
+                    where: str) -> tuple[float, tuple[str, ...]]:
+    """An approach's minimum length [m] along its lane (port first) moved on past the shoals
+    next to its end (`past_shoals`), and what the plan says about it (nothing when no shoal
+    is there)."""
+    walk = past_shoals(points_at, lane_m, start_m, limit_m, shoals)
+    if walk.end_m is None:
+        return start_m, (
+            f"coastal passage ({where}): the sea lane runs over water shallower than the "
+            f"ship's {shoals.need_m:.1f} m (per the depth grid) within "
+            f"{shoals.ahead_m / M_PER_NM:g} NM of the approach's end and on for more than "
+            f"{shoals.max_walk_m / M_PER_NM:g} NM; the approach ends "
+            f"{start_m / M_PER_NM:.0f} NM from the port regardless and the optimiser's "
+            "depth constraint decides beyond the first leg's pilotage waters",)
+    if walk.shallowest is None:
+        return start_m, ()
+    depth, s_lon, s_lat = walk.shallowest
+    return walk.end_m, (
+        f"coastal passage ({where}): runs on to at least {walk.end_m / M_PER_NM:.0f} NM from "
+        f"the port along the sea lane (not {start_m / M_PER_NM:.0f} NM), past lane water "
+        f"shallower than the ship's {shoals.need_m:.1f} m ({depth:.0f} m at {s_lat:.2f}, "
+        f"{float(wrap_lon(s_lon)):.2f} per the depth grid) that begins within "
+        f"{shoals.ahead_m / M_PER_NM:g} NM of where it would end, so the optimised passage "
+        "starts clear of it",)

@@ -74,7 +74,7 @@ def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMa
             with_dep=(not under_way or own_dep) and not is_gate(a),
             with_arr=not is_gate(b),  # gates lie in open water
             coastal=coastal, dep_min_m=0.0 if under_way else None)
-    notes = [*(ap_dep.notes if ap_dep else ()), *(ap_arr.notes if ap_arr else ())]
+    notes: list[str] = []
     if coastal is not None:  # computed on the fine grid, not the lane's cut
         rules = passage_rules(lim.under_keel)
         if rest is None and (kept is None or own_dep):
