@@ -5,13 +5,18 @@ the passages (coastal approaches, strait passages, canals), the constant-RPM bas
 search, then the checks of the finished plan (route check at full resolution, forecast
 statement). The search of each span gets what the others left of `budget_s`
 (`voyage.spans.budget_share`); a plan that still overran says by how much and which phase
-took the time, so a budget that cannot be kept is never kept silently.
+took the time, so a budget that cannot be kept is never kept silently. Seconds spent building
+full-resolution coastline tiles (once per machine and region) are not counted against the
+spans still to run, up to the budget (`tile_allowance`), so a span that built tiles does not
+take the time of the next.
 """
 
 from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
+
+from .geo.fine_distance import tile_builds
 
 PHASES = ("set-up", "passages", "baselines", "search", "checks")
 # a plan may end this much after its budget before it says so: the search stops at its
@@ -57,9 +62,14 @@ class PlanClock:
     checks_measured_s: float = 0.0  # the checks of the voyage's previous plan took this
     spent_s: dict[str, float] = field(default_factory=lambda: dict.fromkeys(PHASES, 0.0))
     mark: float = field(default=0.0)
+    tiles_s0: float = field(default_factory=lambda: tile_builds()[1])  # tile builds at start
 
     def __post_init__(self) -> None:
         self.mark = self.t0
+
+    def tile_build_s(self) -> float:
+        """Seconds spent building coastline tiles since the plan started."""
+        return max(tile_builds()[1] - self.tiles_s0, 0.0)
 
     def elapsed_s(self) -> float:
         """Seconds since the plan started."""
@@ -73,8 +83,11 @@ class PlanClock:
         return spent
 
     def left_s(self, budget_s: float) -> float:
-        """Budget left for the searches still to run, keeping the checks' reserve."""
-        return budget_s - self.elapsed_s() - checks_reserve_s(budget_s, self.checks_measured_s)
+        """Budget left for the searches still to run, keeping the checks' reserve (tile
+        builds so far excused, up to the budget)."""
+        excused = min(self.tile_build_s(), budget_s)
+        return (budget_s - self.elapsed_s() + excused
+                - checks_reserve_s(budget_s, self.checks_measured_s))
 
     def block(self, budget_s: float) -> dict[str, float]:
         """The plan's `extra["timing_s"]`: budget, total and each phase [s]."""

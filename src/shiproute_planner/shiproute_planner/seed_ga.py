@@ -31,6 +31,7 @@ from .route.land_repair import land_legs
 from .route.member_eval import risk_evaluate_outcomes
 from .route.problem import RouteProblem
 from .seeding_budget import seeding_budget
+from .tile_allowance import TileAllowance, tile_allowance
 
 EXACT_CHOICE_RESERVE_S = 0.25  # wall time kept for the exact final choice and dense land check
 EXACT_CHOICE_SHARE = 0.28  # ... at most this share of a small budget (re-plans of 0.5 s)
@@ -47,6 +48,7 @@ MEAN_PHASE_SEEDS = 8
 def seed_ga_method(ctx: MethodContext) -> MethodResult:
     """Seed GA: seeds (pool, previous plan, sea lane, great circle) + GA within the budget."""
     p, env = ctx.problem, ctx.env
+    allowance = tile_allowance(ctx.budget_s)
     seeds = all_seeds(ctx)
     fast = fast_evaluator(p, env, ctx.land)
     risk = env.risk if fast is not None and fast.member_count > 1 else None
@@ -66,7 +68,8 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
     x_seed, sources, left_out = bounded_seed_genes(ctx, seeds, fast, budget)
     mean_gens = mean_evals = 0
     if risk is not None and fast is not None:
-        x_seed, sources, mean_gens, mean_evals = with_mean_optimum(ctx, fast, x_seed, sources)
+        x_seed, sources, mean_gens, mean_evals = with_mean_optimum(ctx, fast, x_seed, sources,
+                                                                   allowance)
         ctx = dataclasses.replace(ctx, max_evaluations=max(
             ctx.max_evaluations - mean_evals, 1) if ctx.max_evaluations else 0)
     x_seed, sources, offsets = best_seeds_first(p, x_seed, sources, evaluate)
@@ -76,7 +79,9 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
     ga = initial_ga(ctx, x_seed, offsets)
     # bests of one forecast only are kept for the exact final choice (a risk-aware best is
     # a measure over members the exact evaluator does not see)
-    best_src, recorded = run_ga(ctx, ga, evaluate, fast is not None and risk is None, sources)
+    best_src, recorded = run_ga(ctx, ga, evaluate, fast is not None and risk is None, sources,
+                                allowance)
+    notes = (*notes, *allowance.statement())
     if risk is not None and fast is not None and front is not None:
         # the risk measure chooses, not the members' mean: the front's best within the
         # bounds first (the GA's elitism keeps it too), then the final population
@@ -91,7 +96,8 @@ def seed_ga_method(ctx: MethodContext) -> MethodResult:
 
 
 def with_mean_optimum(ctx: MethodContext, fast: FastEvaluator, x_seed: np.ndarray,
-                      sources: list[str]) -> tuple[np.ndarray, list[str], int, int]:
+                      sources: list[str], allowance: TileAllowance
+                      ) -> tuple[np.ndarray, list[str], int, int]:
     """The seeds plus the best of a GA run on the members' mean forecast (a
     `MEAN_PHASE_SHARE` of the budget, its generations 1/M the cost of the members' ones):
     the risk-aware GA starts from the plan a mean-forecast planner would make, so (elitist)
@@ -102,7 +108,7 @@ def with_mean_optimum(ctx: MethodContext, fast: FastEvaluator, x_seed: np.ndarra
         max_evaluations=round(MEAN_PHASE_SHARE * ctx.max_evaluations))
     xs, src, offsets = best_seeds_first(ctx.problem, x_seed, sources, fast.evaluate)
     ga = initial_ga(sub, xs, offsets)
-    run_ga(sub, ga, fast.evaluate, False, src)
+    run_ga(sub, ga, fast.evaluate, False, src, allowance)
     pop = ga.pop  # best first (Deb order over all islands)
     assert pop is not None  # the loop ran at least one generation
     top = pop[:MEAN_PHASE_SEEDS]
@@ -126,11 +132,11 @@ def search_deadline_s(ctx: MethodContext) -> float:
     return ctx.budget_s - min(EXACT_CHOICE_SHARE * ctx.budget_s, EXACT_CHOICE_RESERVE_S)
 
 
-def merge_due(ctx: MethodContext, ga: IslandGA, merge_s: float) -> bool:
+def merge_due(ctx: MethodContext, ga: IslandGA, merge_s: float, elapsed_s: float) -> bool:
     """True when the islands are to become one population (their share of the search spent)."""
     if ga.merged:
         return False
-    return (time.perf_counter() - ctx.t_start >= merge_s
+    return (elapsed_s >= merge_s
             or ga.generation >= ctx.island_share * ctx.max_generations
             or 0 < ctx.max_evaluations * ctx.island_share <= ga.evaluations)
 
@@ -168,10 +174,15 @@ def search_over(ctx: MethodContext, ga: AskTellGA, elapsed_s: float, deadline_s:
 
 def run_ga(ctx: MethodContext, ga: AskTellGA,
            evaluate: Callable[[np.ndarray], RouteEvaluation], record: bool,
-           sources: list[str]) -> tuple[str, list[np.ndarray]]:
-    """The ask/tell loop within the budget: (best seed's source, the GA's feasible bests
-    along the way when `record`, the exact final choice's fallback when the final
-    population sits where a boolean criterion flips between the two evaluators)."""
+           sources: list[str], allowance: TileAllowance) -> tuple[str, list[np.ndarray]]:
+    """The ask/tell loop within the budget, its clock less the `allowance` for coastline
+    tiles built meanwhile: (best seed's source, the GA's feasible bests along the way when
+    `record`, the exact final choice's fallback when the final population sits where a
+    boolean criterion flips between the two evaluators)."""
+
+    def elapsed_s() -> float:
+        return time.perf_counter() - ctx.t_start - allowance.excused_s()
+
     recorded: list[np.ndarray] = []
     search_s = search_deadline_s(ctx)
     # the loop's share of the search; the rest refines its best (ga_refine)
@@ -180,7 +191,7 @@ def run_ga(ctx: MethodContext, ga: AskTellGA,
     merge_s = ctx.island_share * deadline_s
     best_src = "none"
     while True:
-        if isinstance(ga, IslandGA) and merge_due(ctx, ga, merge_s):
+        if isinstance(ga, IslandGA) and merge_due(ctx, ga, merge_s, elapsed_s()):
             ga.merge()
         x = offspring(ctx, ga)
         ev = evaluate(x)
@@ -190,19 +201,19 @@ def run_ga(ctx: MethodContext, ga: AskTellGA,
         if ga.generation == 0:
             best_src = first_best_source(ev, sources)
         elif ga.generation % REFINE_EVERY == 0:  # memetic step: descend from the best
-            refine_best(ctx, ga, evaluate, deadline_s, REFINE_ROUNDS)
+            refine_best(ctx, ga, evaluate, deadline_s + allowance.excused_s(), REFINE_ROUNDS)
         _, v, f = ga.best
-        elapsed = time.perf_counter() - ctx.t_start
+        elapsed = elapsed_s()
         if ctx.progress is not None:
             ctx.progress(Progress(ctx.leg_index, ga.generation, ga.evaluations,
                                   f if v <= 0 else float("nan"), v, elapsed))
         if search_over(ctx, ga, elapsed, deadline_s):
             if ctx is whole or whole.cancelled():
                 return best_src, recorded
-            refine_best(whole, ga, evaluate, search_s)
+            refine_best(whole, ga, evaluate, search_s + allowance.excused_s())
             # what the refinement left (it stops when it gains nothing) goes back to the GA
             ctx, deadline_s = whole, search_s
-            if search_over(ctx, ga, time.perf_counter() - ctx.t_start, deadline_s):
+            if search_over(ctx, ga, elapsed_s(), deadline_s):
                 return best_src, recorded
 
 

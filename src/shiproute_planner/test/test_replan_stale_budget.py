@@ -3,7 +3,8 @@ from a ship 30 NM abeam of the previous plan and 6 h behind it: it ends feasible
 cold plan from the same position with the same evaluation budget does, and when building
 its seeds stalls (a first use: coastal cells resolved, a kernel compiled, on a loaded
 machine) the seeding phase stops at its share of the budget and the GA still runs its
-generations within the budget."""
+generations within the budget, the full-resolution coastline tiles its candidates meet
+built meanwhile excused from its clock and stated."""
 
 from __future__ import annotations
 
@@ -14,6 +15,7 @@ import numpy as np
 import pytest
 from shiproute_core.geodesy import direct, inverse
 from shiproute_core.units import M_PER_NM
+from shiproute_planner.geo import fine_distance
 from shiproute_planner.plan_position import position_after
 from shiproute_planner.plan_timing import tolerated_overrun_s
 from shiproute_planner.planning import plan
@@ -46,12 +48,30 @@ def _sampler(name: str):
 
 
 @pytest.fixture(scope="module")
-def previous(land_mask):
+def first_tiles():
+    """The process's full-resolution coastline tiles start empty for this module, as on a
+    fresh machine: plan 1 builds those it meets (reproducibly), a re-plan those it meets
+    beyond (CI's case: 0 generations when building them was charged to the search)."""
+    built = fine_distance.default_fine_distance()
+    empty = fine_distance.FineDistance(built._land_near, built._contains, path=None)
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(fine_distance, "_DEFAULT", {k: empty for k in fine_distance._DEFAULT})
+        yield empty
+
+
+@pytest.fixture(scope="module")
+def previous(land_mask, first_tiles):
     """Plan 1 on the first cycle, reproducible (route evaluations)."""
     out = plan(_voyage(), PlanOptions(land=land_mask, budget_s=600.0, max_evaluations=4_000,
                                       seed=0), _sampler("storm_march"))
     assert out.feasible
     return out
+
+
+@pytest.fixture(scope="module")
+def plan1_tiles(previous, first_tiles):
+    """The tiles plan 1 built (a copy, before the module's other plans add theirs)."""
+    return first_tiles.snapshot()
 
 
 @pytest.fixture(scope="module")
@@ -92,7 +112,7 @@ def test_stale_re_plan_is_feasible_where_a_cold_plan_from_the_ship_is(previous, 
 
 
 def test_a_stalled_seeding_phase_leaves_the_ga_its_generations_within_budget(
-        previous, position, land_mask, monkeypatch):
+        previous, position, land_mask, plan1_tiles, monkeypatch):
     calls = []
 
     def stalling(convert):
@@ -108,11 +128,18 @@ def test_a_stalled_seeding_phase_leaves_the_ga_its_generations_within_budget(
     monkeypatch.setattr(track_repairs, "track_to_genes", stalling(track_repairs.track_to_genes))
     monkeypatch.setattr(ga_seeds, "track_to_genes", stalling(ga_seeds.track_to_genes))
     assert STALL_S > SEEDING_SHARE * BUDGET_S and 2 * STALL_S > BUDGET_S
+    # the tiles plan 1 built, no more (the other tests of the module built more)
+    tiles = plan1_tiles.snapshot()
+    monkeypatch.setattr(fine_distance, "_DEFAULT", {k: tiles for k in fine_distance._DEFAULT})
     t0 = time.perf_counter()
     out = _plan2(previous, position, land_mask, budget_s=BUDGET_S, with_baseline=False)
     wall_s = time.perf_counter() - t0
     assert out.generations >= 1
     assert any("seeding stopped after" in w for w in out.warnings), out.warnings
+    new_tiles = tiles.built
+    assert new_tiles > 0  # the case under test: the re-plan met tiles plan 1 did not build
+    said = [int(w.split()[2]) for w in out.warnings if w.startswith("search: built ")]
+    assert said and 0 < said[0] <= new_tiles, out.warnings  # stated, at most those built
     assert out.extra["timing_s"]["search"] <= LOAD_FACTOR * BUDGET_S
     assert wall_s <= LOAD_FACTOR * (BUDGET_S + tolerated_overrun_s(BUDGET_S))
 

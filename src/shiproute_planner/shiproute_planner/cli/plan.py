@@ -18,6 +18,7 @@ from ..objectives import (
     PLAN_OBJECTIVES,
 )
 from ..plan_request import build_request, duration_s, run_request
+from ..route.clearance import DEFAULT_CLEARANCE
 from ..ship.fuel import CO2_FACTOR_T_PER_T
 from .option_ranges import PLAN_OPTIONS, check_options, risk_option
 from .warm_up import warm_up, warm_up_note
@@ -121,15 +122,18 @@ def build_parser() -> argparse.ArgumentParser:
                          "penalty_per_nm); repeatable")
     ap.add_argument("--clearance-nm", type=float, default=0.0,
                     help="distance from land [NM] the route check of the plan requires")
-    ap.add_argument("--open-sea-clearance-nm", type=float, default=1.0, metavar="NM",
-                    help="distance from land [NM] the search keeps in open sea (0-5, "
-                         "default 1; 0: off land only)")
-    ap.add_argument("--approach-clearance-nm", type=float, default=0.5, metavar="NM",
-                    help="distance from land [NM] the search keeps within the approach zone "
-                         "of the span ends and in narrow water (0-3, default 0.5)")
-    ap.add_argument("--approach-zone-nm", type=float, default=10.0, metavar="NM",
-                    help="radius [NM] round the span ends (ports, strait exits, the ship) "
-                         "where the approach clearance applies (0-200, default 10)")
+    rule = DEFAULT_CLEARANCE
+    ap.add_argument("--open-sea-clearance-nm", type=float, default=rule.open_sea_nm,
+                    metavar="NM", help="distance from land [NM] the search keeps in open sea "
+                    f"(0-5, default {rule.open_sea_nm:g}; 0: off land only)")
+    ap.add_argument("--approach-clearance-nm", type=float, default=rule.approach_nm,
+                    metavar="NM", help="distance from land [NM] the search keeps within the "
+                    "approach zone of the span ends and in narrow water (0-3, default "
+                    f"{rule.approach_nm:g})")
+    ap.add_argument("--approach-zone-nm", type=float, default=rule.approach_zone_nm,
+                    metavar="NM", help="radius [NM] round the span ends (ports, strait "
+                    "exits, the ship) where the approach clearance applies (0-200, default "
+                    f"{rule.approach_zone_nm:g})")
     ap.add_argument("--approach", action="append", default=[], metavar="FILE.rtz",
                     help="coastal passage from/to a port (RTZ or GeoJSON, e.g. from the "
                          "ECDIS), sailed as given and checked; repeatable")

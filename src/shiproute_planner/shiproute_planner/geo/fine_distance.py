@@ -106,6 +106,8 @@ class FineDistance:
         self._lock = threading.Lock()
         self.path = path
         self._saved = 0
+        self.build_s = 0.0  # wall time spent building tiles in this process (`add`)
+        self.built = 0  # tiles built in this process
         if path is not None:
             self._load(path)
 
@@ -164,6 +166,14 @@ class FineDistance:
         self.count = n1
         self.grids, self.slots = store, slots  # grids first: a reader takes slots first
 
+    def snapshot(self) -> FineDistance:
+        """A copy of the tiles built so far, kept in memory only (not saved): what a process
+        that built exactly these would hold."""
+        copy = FineDistance(self._land_near, self._contains, path=None)
+        with self._lock:
+            copy._store(self._keys[:self.count].copy(), self.grids[:self.count].copy())
+        return copy
+
     def save(self) -> None:
         """Store the tiles built since the last save for later processes (a part file,
         atomic; no-op if none)."""
@@ -185,9 +195,12 @@ class FineDistance:
             keys = keys[self.slots.ravel()[keys] < 0]
             if keys.size == 0:
                 return 0
+            t0 = time.perf_counter()
             new = np.stack([build_tile(int(k) // TILE_COLS, int(k) % TILE_COLS,
                                        self._land_near, self._contains) for k in keys])
             self._store(keys, new)
+            self.build_s += time.perf_counter() - t0
+            self.built += int(keys.size)
             return int(keys.size)
 
     def add_box(self, lon_min_deg: float, lon_max_deg: float, lat_min_deg: float,
@@ -226,6 +239,13 @@ class FineDistance:
 
 
 _DEFAULT: dict[str, FineDistance] = {}
+
+
+def tile_builds() -> tuple[int, float]:
+    """(tiles, seconds) the process-wide tile sets have built so far: a search tells from
+    them how much of its clock went to one-off builds rather than to searching."""
+    return (sum(f.built for f in _DEFAULT.values()),
+            sum(f.build_s for f in _DEFAULT.values()))
 
 
 def default_fine_distance() -> FineDistance:

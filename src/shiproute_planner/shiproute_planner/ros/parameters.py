@@ -3,6 +3,8 @@ when it refuses them; the checks of each value live in `voyage_params.check_para
 
 from __future__ import annotations
 
+from ..route.clearance import DEFAULT_CLEARANCE
+
 PARAMETERS: dict[str, tuple[object, str]] = {
     "origin": ("Busan", "departure port (name, UN/LOCODE or 'lat,lon'); seed-pool key"),
     "destination": ("Long Beach", "arrival port (name, UN/LOCODE or 'lat,lon')"),
@@ -48,11 +50,13 @@ PARAMETERS: dict[str, tuple[object, str]] = {
     "ukc_margin_m": (1.0, "under-keel clearance margin on draft + squat + waves [m]"),
     "zones_files": ("", "no-go / avoid zone GeoJSON files, comma-separated"),
     "clearance_nm": (0.0, "distance from land the route check of each plan requires [NM]"),
-    "open_sea_clearance_nm": (1.0, "distance from land the search keeps in open sea [NM]"),
-    "approach_clearance_nm": (0.5, "distance from land the search keeps near the span ends "
-                              "and in narrow water [NM]"),
-    "approach_zone_nm": (10.0, "radius round the span ends (ports, strait exits, the ship) "
-                         "where the approach clearance applies [NM]"),
+    "open_sea_clearance_nm": (DEFAULT_CLEARANCE.open_sea_nm,
+                              "distance from land the search keeps in open sea [NM]"),
+    "approach_clearance_nm": (DEFAULT_CLEARANCE.approach_nm, "distance from land the search "
+                              "keeps near the span ends and in narrow water [NM]"),
+    "approach_zone_nm": (DEFAULT_CLEARANCE.approach_zone_nm, "radius round the span ends "
+                         "(ports, strait exits, the ship) where the approach clearance "
+                         "applies [NM]"),
     "approach_files": ("", "coastal passages from/to ports (RTZ/GeoJSON), comma-separated"),
     "accept_older_forecasts": (False, "let a cycle of an older model run replace the one in "
                                "force (e.g. to go back after a bad run)"),

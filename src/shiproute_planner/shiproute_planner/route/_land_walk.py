@@ -25,6 +25,10 @@ walked to its end and confirmed on the intermediate coastline). A check walk mea
 narrow-water clearance there.
 Poleward of the rule's level-1 latitude (a search's latitude bound) level 0 alone decides: a
 position it leaves undecided reads as land, so no tile is built there.
+A search walk that reads level 1 on a segment also probes the segment on level 0 alone
+(`level0_land`): a segment level 0 already puts on land (a candidate across a continent)
+takes that count and builds no tile. The verdict never depends on which tiles a process has
+built: the first level-1 read lies where level 0 alone led the walk.
 """
 
 from __future__ import annotations
@@ -49,6 +53,7 @@ L0_MIN_JUMP_NM = 1.0
 # inland farther than this from the sea [NM] (level 0) land counts even in tight water: the
 # intermediate coastline lies within ~0.5 NM (1 km) of the full one
 DEEP_LAND_NM = 1.0
+L0_PROBE_NM = 1.0  # the level-0 probe's shortest step [NM] (a third of a cell)
 _D2R = math.pi / 180.0
 
 
@@ -120,6 +125,49 @@ def level1_value(la: float, lo: float, slots, grids, level1_lat: float) -> int:
 
 
 @njit(cache=True, nogil=True)
+def ask_tile(missing: np.ndarray, n_miss: int, key: int) -> int:
+    """Append a tile key to `missing` (not twice in a row; dropped when full: the rescan asks
+    again); returns the new count."""
+    if n_miss < missing.size and (n_miss == 0 or missing[n_miss - 1] != key):
+        missing[n_miss] = key
+        n_miss += 1
+    return n_miss
+
+
+@njit(cache=True, nogil=True)
+def level0_land(probe: bool, ax: float, ay: float, az: float, bx: float, by: float, bz: float,
+                steps: int, per_nm: float, coast_dist, room, cell_deg: float,
+                tight_room_nm: float) -> int:
+    """Samples of a segment (unit-vector ends, `steps` sample units of at most `per_nm`) that
+    level 0 alone puts on land, stepping at least `L0_PROBE_NM` (0 when it finds none, or
+    unless `probe`; a strip of land narrower than a step may be missed). Land within
+    `DEEP_LAND_NM` of tight water's coast is not counted (the search counts it apart)."""
+    if not probe:
+        return 0
+    n_lat, n_lon = coast_dist.shape
+    inv = 1.0 / cell_deg
+    count = 0
+    k = 0.0
+    while k <= steps:
+        f = k / steps
+        x, y, z = ax + f * (bx - ax), ay + f * (by - ay), az + f * (bz - az)
+        r = math.sqrt(x * x + y * y + z * z)
+        la = math.asin(max(min(z / r, 1.0), -1.0)) / _D2R
+        lo = math.atan2(y, x) / _D2R
+        i = min(max(int((la + 90.0) * inv), 0), n_lat - 1)
+        j = min(max(int((lo + 180.0) * inv), 0), n_lon - 1)
+        d0 = coast_dist[i, j] * L0_UNIT_NM
+        tight = room[i, j] * ROOM_UNIT_NM < tight_room_nm and d0 > -DEEP_LAND_NM
+        if d0 < 0.0 and not tight:  # inland: every sample within -d0 is on land
+            n = min(1 + int(-d0 / per_nm), steps - int(k) + 1)
+            count += n
+            k += n
+        else:
+            k += max(abs(d0), L0_PROBE_NM) / per_nm
+    return count
+
+
+@njit(cache=True, nogil=True)
 def clearance_walk(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, coast_dist, cell_deg,
                    spacing_deg, slots, grids, ends, rule, room, missing, out, tight):
     """Violations per segment (0 = clear; -1 = rescan after the tiles in `missing` are built);
@@ -145,6 +193,8 @@ def clearance_walk(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, coast_
         per_nm = max_arc_per_step(arc, steps) * NM_PER_DEG  # NM per sample unit, at most
         count = 0
         unresolved = False
+        consulted = False  # a search read (or asked for) level 1 on this segment
+        n_miss0 = n_miss
         tight[s] = 0
         k = 0.0
         while k <= steps:
@@ -188,13 +238,11 @@ def clearance_walk(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, coast_
                 count += GRADE_STEP
                 k += GRADE_STEP
                 continue
+            consulted = search
             v = level1_value(la, lo, slots, grids, level1_lat)
             if v < 0:  # tile not built yet
-                key = -1 - v
                 unresolved = True
-                if n_miss < missing.size and (n_miss == 0 or missing[n_miss - 1] != key):
-                    missing[n_miss] = key
-                    n_miss += 1
+                n_miss = ask_tile(missing, n_miss, -1 - v)
                 k += 1.0
                 continue
             d1 = -1.0 if v == 0 else (v - 1) * L1_UNIT_NM
@@ -213,4 +261,8 @@ def clearance_walk(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, coast_
                 count += 1
                 k += 1.0
         out[s] = -1 if unresolved else count
+        on_land = level0_land(consulted, ax, ay, az, bx, by, bz, steps, per_nm, coast_dist,
+                              room, cell_deg, rule[6])
+        if on_land:  # level 0 decides: no tile asked for, nothing counted apart
+            out[s], tight[s], n_miss = on_land, 0, n_miss0
     return n_miss

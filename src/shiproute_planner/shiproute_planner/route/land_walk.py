@@ -182,6 +182,29 @@ def level1_reach_nm(rule: ClearanceRule) -> float:
     return max(rule.open_sea_nm, rule.approach_nm) + lw.L0_MIN_JUMP_NM
 
 
+def build_region_tiles(a: tuple[float, float], b: tuple[float, float],
+                       margins_deg: tuple[float, float, float, float],
+                       rule: ClearanceRule) -> int:
+    """Build and save the level-1 tiles a walk with `rule` can read in the box from `a`
+    eastward to `b` ((lon, lat) [deg]) widened by (west, east, south, north) margins [deg]:
+    a first plan on a fresh machine then searches instead of building tiles. How many were
+    new."""
+    from ..geo.fine_distance import default_fine_distance
+    from ..geo.full_land import final_land
+
+    finest = final_land().mask
+    east = a[0] + (b[0] - a[0]) % 360.0
+    west_m, east_m, south_m, north_m = margins_deg
+    fine = default_fine_distance()
+    built = fine.add_box(min(a[0], east) - west_m, max(a[0], east) + east_m,
+                         max(min(a[1], b[1]) - south_m, -85.0),
+                         min(max(a[1], b[1]) + north_m, 85.0),
+                         np.asarray(finest.coast_distance), finest.cell_deg,
+                         level1_reach_nm(rule) + 0.1)
+    fine.save()
+    return built
+
+
 def coarse_land(land: LandMask) -> tuple[np.ndarray, np.ndarray, float]:
     """The land scan's near-land filter of `land` (built once per mask): the coarse raster
     (`COARSE_FACTOR` cells, land or coast in or next to a block), per block the arc [deg] to

@@ -269,3 +269,38 @@ def test_search_walk_reads_level1_round_span_ends_beyond_the_latitude_bound():
     wide = verdicts(80.0)
     assert 0 < np.count_nonzero(wide) < wide.size
     assert np.array_equal(verdicts(60.0), wide)
+
+
+def test_search_walk_across_land_asks_no_tile_and_gives_the_same_count_with_or_without_them(
+        walk_inputs, tmp_path):
+    # legs from the sea across a coast onto land level 0 calls inland (the first level-1
+    # read is where level 0 cannot decide, at the coast): a search's stray candidate builds
+    # no tile for them, and its count is the same in a process holding every tile
+    from shiproute_planner.geo.fine_distance import FineDistance
+    from shiproute_planner.route import _land_walk as lw
+
+    final, _, coarse, clear, coarse_deg, room = walk_inputs
+    # Pacific -> Nunavut, Gulf of Alaska -> Yukon, Bay of Biscay -> central France
+    lon0, lat0 = np.array([-128.0, -146.0, -3.0]), np.array([50.0, 59.0, 46.0])
+    lon1, lat1 = np.array([-100.0, -137.0, 2.0]), np.array([62.0, 62.5, 46.5])
+    assert final.contains(lon1, lat1).all()  # the legs end on land
+    ends = np.array([*lw.unit_vector(0.0, 0.0), *lw.unit_vector(0.5, 0.0)])
+    rule = ClearanceRule(1.0, 0.5, 10.0).kernel_array(search=True)
+
+    def walk(tiles: FineDistance) -> tuple[np.ndarray, int]:
+        got, missing = np.empty(3, dtype=np.int64), np.empty(256, dtype=np.int64)
+        n = lw.clearance_walk(lon0, lat0, lon1, lat1, coarse, clear, coarse_deg,
+                              np.asarray(final.mask.coast_distance), final.mask.cell_deg,
+                              0.05, tiles.slots, tiles.grids, ends, rule, room, missing, got,
+                              np.zeros(3, dtype=np.int64))
+        return got, n
+
+    empty = FineDistance(final.tiles.land_near, final.contains, tmp_path / "none.npz")
+    got_empty, asked = walk(empty)
+    assert asked == 0 and np.all(got_empty > 0)
+    # every tile the legs' coast crossings lie in, built: the same counts
+    for k in range(3):
+        f = np.linspace(0.0, 1.0, 400)
+        empty.distance_nm(lon0[k] + f * (lon1[k] - lon0[k]), lat0[k] + f * (lat1[k] - lat0[k]))
+    got_full, asked = walk(empty)
+    assert asked == 0 and np.array_equal(got_full, got_empty)

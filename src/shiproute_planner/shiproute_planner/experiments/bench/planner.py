@@ -23,7 +23,6 @@ from shiproute_core.geodesy import inverse
 
 from ...ga.loop import GAConfig
 from ...geo.fine_distance import default_fine_distance
-from ...geo.full_land import final_land
 from ...geo.landmask import default_land_mask
 from ...geo.verify import land_crossings
 from ...plan_position import position_after
@@ -34,7 +33,7 @@ from ...request import PlanOptions, VoyageRequest, voyage_times
 from ...route.encoding import clip_genes, gene_bounds, join_genes
 from ...route.fast_eval import fast_evaluator
 from ...route.generate import evaluate_genes
-from ...route.land_walk import level1_reach_nm
+from ...route.land_walk import build_region_tiles
 from ...route.problem import RouteProblem
 from ...route.seeding import great_circle_track
 from ...threads import planner_threads
@@ -120,31 +119,14 @@ def run(budget_s: float, warm_budget_s: float, ref_factor: float, seed: int) -> 
     # level-1 tiles of the voyage's region built as a running planner has them (once per
     # machine: they are saved in the data directory); the region is wide because the
     # random RPMs of `ga_like_population` overshoot the arrival by up to ~60 deg
-    _build_region_tiles((w0.lon_deg, w0.lat_deg), (w1.lon_deg, w1.lat_deg),
-                        (40.0, 60.0, 25.0, 30.0), problem)
+    build_region_tiles((w0.lon_deg, w0.lat_deg), (w1.lon_deg, w1.lat_deg),
+                       (40.0, 60.0, 25.0, 30.0), problem.limits.clearance)
     result = _figures(cold, warm, ref, env, land, problem, reference, setup_s, cold_s, warm_s,
                       budget_s)
     # tiles the timed populations met outside that region, saved too: the figures of the
     # next run on this machine are not charged with building them again
     default_fine_distance().save()
     return result
-
-
-def _build_region_tiles(a: tuple[float, float], b: tuple[float, float],
-                        margins_deg: tuple[float, float, float, float],
-                        problem: RouteProblem) -> None:
-    """Build and save the level-1 tiles near the coast in the box from `a` eastward to `b`
-    ((lon, lat) [deg]) widened by (west, east, south, north) margins [deg]."""
-    finest = final_land().mask
-    east = a[0] + (b[0] - a[0]) % 360.0
-    west_m, east_m, south_m, north_m = margins_deg
-    rule = problem.limits.clearance
-    fine = default_fine_distance()
-    fine.add_box(min(a[0], east) - west_m, max(a[0], east) + east_m,
-                 max(min(a[1], b[1]) - south_m, -85.0), min(max(a[1], b[1]) + north_m, 85.0),
-                 np.asarray(finest.coast_distance), finest.cell_deg,
-                 level1_reach_nm(rule) + 0.1)
-    fine.save()
 
 
 def _figures(cold, warm, ref, env, land, problem, reference, setup_s, cold_s, warm_s,
