@@ -174,9 +174,6 @@ def great_circle_track(problem: RouteProblem, n_points: int = 0) -> tuple[np.nda
                                problem.arr_lat_deg, n_points)
 
 
-SHIP_POSITION = "ship position"  # the departure's name in a re-plan under way
-
-
 def sea_lane_track(problem: RouteProblem, max_points: int = 0,
                    via: tuple[float, float] | None = None
                    ) -> tuple[np.ndarray, np.ndarray] | None:
@@ -186,21 +183,18 @@ def sea_lane_track(problem: RouteProblem, max_points: int = 0,
     the span's ends (`lane_between_points`) and the ends put there: a node past a gate (open
     water between nodes that may lie far off) would take the track over the shoal or strait
     the gate leads to and back, and a node behind an approach's sea end back over the
-    approach (Darwin: 31 NM back across Beagle Gulf's shoal). A ship under way, off the
-    lane, keeps searoute's node (the schedule joins the lane its own way,
-    `voyage.legs.sea_distance_under_way_m`). Long polylines are resampled to `max_points`
-    (default two per stage)."""
+    approach (Darwin: 31 NM back across Beagle Gulf's shoal). Long polylines are resampled
+    to `max_points` (default two per stage)."""
     stops = [(problem.dep_lon_deg, problem.dep_lat_deg), (problem.arr_lon_deg, problem.arr_lat_deg)]
     if via is not None:
         stops.insert(1, (float(via[0]), float(via[1])))
     parts = []
     last = len(stops) - 2
-    under_way = problem.dep_name == SHIP_POSITION
     for i, (a, b) in enumerate(itertools.pairwise(stops)):
         part = sea_lane_between(a[0], a[1], b[0], b[1])
         if part is None:
             return None
-        start = a if i == 0 and not under_way else (float(part[0, 0]), float(part[0, 1]))
+        start = a if i == 0 else (float(part[0, 0]), float(part[0, 1]))
         end = b if i == last else (float(part[-1, 0]), float(part[-1, 1]))
         parts.append(lane_between_points(part, start[0], start[1], end[0], end[1]))
     coords = np.concatenate(parts, axis=0)
