@@ -1,7 +1,6 @@
 """Sea-lane seeds end where the span ends: a lane is cut at its points nearest the stops, so
 a span ending at a shoal passage's gate between two far-apart lane nodes does not run on to
-the node past the gate (over the shoal) and turn back, nor one starting at an approach's sea
-end go back to the node behind it."""
+the node past the gate (over the shoal) and turn back."""
 
 import numpy as np
 import pytest
@@ -59,18 +58,3 @@ def test_schedule_distance_to_a_gate_in_an_estuary_is_not_counted_there_and_back
     ba_lon, ba_lat, gate_lon, gate_lat = -58.363, -34.591, -57.198, -34.831
     direct = float(inverse(ba_lon, ba_lat, gate_lon, gate_lat)[1])
     assert sea_distance_m(ba_lon, ba_lat, gate_lon, gate_lat) <= 1.25 * direct
-
-
-def test_span_starting_at_an_approach_end_does_not_turn_back_to_the_node_behind_it():
-    pytest.importorskip("searoute")
-    # Darwin's approach ends on the lane 31 NM past searoute's node 130.80 E 12.20 S (between
-    # it and the next node, 128.711 E 11.720 S, a quarter of the way); the span runs west to
-    # the Sape Strait gate. A track back to the node would sail 31 NM east and return
-    node, after = (130.8, -12.2), (128.711, -11.7202)
-    start = (node[0] + 0.25 * (after[0] - node[0]), node[1] + 0.25 * (after[1] - node[1]))
-    problem = RouteProblem(start[0], start[1], 119.6, -9.05, 0.0, 3 * 86400.0,
-                           RouteLimits(40.0, 120.0), stage_s=12 * 3600.0, n_stages=5,
-                           dep_name="Darwin")
-    lon, lat = sea_lane_track(problem, max_points=400)
-    assert (lon[0], lat[0]) == start
-    assert lon.max() <= start[0] + 1e-6  # westward from the start, never back east
