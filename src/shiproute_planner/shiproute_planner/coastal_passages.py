@@ -90,26 +90,37 @@ def computed_approach(ap: Approach | None, port_name: str, arrival: bool,
                       rules: PassageRules) -> tuple[Approach | None, list[str]]:
     """The approach between the same ends computed on the navigable-water grid (arrival
     approaches run sea -> port) and notes for the plan when it deviates from the rules or
-    the lane had to be kept."""
+    the lane had to be kept. An approach run on past a shoal (`route.approach_shoals`)
+    whose passage finds no way round it in water deep enough gives way to its fallback:
+    a passage over the shoal would hide it from the optimiser's depth constraint."""
     if ap is None or ap.lon_deg.size < 2:
-        return ap, []
+        return ap, list(ap.notes) if ap is not None else []
     lon, lat = (ap.lon_deg[::-1], ap.lat_deg[::-1]) if arrival else (ap.lon_deg, ap.lat_deg)
     where = f"{'arrival at' if arrival else 'departure from'} {port_name}"
     try:
         p = cached_passage(lon, lat, rules)
     except (OSError, ValueError, MemoryError, PlannerError) as exc:  # the lane, said aloud
-        return ap, [f"coastal passage ({where}) not computed ({exc}); the sea lane's own "
-                    "geometry is sailed, not land-checked before the route check"]
+        p, failed = None, [f"coastal passage ({where}) not computed ({exc}); the sea lane's "
+                           "own geometry is sailed, not land-checked before the route check"]
+    else:
+        failed = [f"coastal passage ({where}): no way through navigable water at "
+                  f"{rules.fine_cell_nm:g} NM resolution within "
+                  f"{max(rules.corridors_nm):g} NM of the sea lane; the lane's own geometry "
+                  "is sailed (see the route check)"]
+    if ap.fallback is not None and (p is None or not _keeps_depth(p, rules)):
+        back, said = computed_approach(ap.fallback, port_name, arrival, rules)
+        return back, [f"coastal passage ({where}): no way round the shallow water next to "
+                      f"the port in water of {rules.required_depth_m:.1f} m per the depth "
+                      f"grid: it ends {approach_nm(back):.0f} NM from the port, and the "
+                      "optimiser's depth constraint decides beyond the first leg's pilotage "
+                      "waters", *said]
     if p is None:
-        return ap, [f"coastal passage ({where}): no way through navigable water at "
-                    f"{rules.fine_cell_nm:g} NM resolution within "
-                    f"{max(rules.corridors_nm):g} NM of the sea lane; the lane's own geometry "
-                    "is sailed (see the route check)"]
-    notes = []
+        return ap, [*ap.notes, *failed]
+    notes = list(ap.notes)
     if p.clearance_nm < rules.clearances_nm[0]:
         notes.append(f"coastal passage ({where}): too narrow for {rules.clearances_nm[0]:g} NM "
                      f"clearance; keeps >= {p.clearance_nm:g} NM from land")
-    if rules.required_depth_m is not None and not p.depth_limited:
+    if not _keeps_depth(p, rules):
         notes.append(f"coastal passage ({where}): no way through water of "
                      f"{rules.required_depth_m:.1f} m (draft, squat at {SQUAT_SPEED_KN:g} kn, "
                      "margin) per the depth grid; passage computed on land and clearance only")
@@ -121,6 +132,11 @@ def computed_approach(ap: Approach | None, port_name: str, arrival: bool,
                      "lane")
     lon_p, lat_p = (p.lon_deg[::-1], p.lat_deg[::-1]) if arrival else (p.lon_deg, p.lat_deg)
     return Approach(np.asarray(lon_p, dtype=float), np.asarray(lat_p, dtype=float)), notes
+
+
+def _keeps_depth(p: Passage, rules: PassageRules) -> bool:
+    """True when passage `p` keeps the ship's depth limit, or there is none to keep."""
+    return p.depth_limited or rules.required_depth_m is None
 
 
 def passages_note(rules: PassageRules) -> str:

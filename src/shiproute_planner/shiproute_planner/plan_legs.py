@@ -35,6 +35,8 @@ from .route.evaluation import RouteEvaluation
 from .route.given_approach import approaches_at
 from .route.problem import RouteProblem
 from .route.voyage_legs import leg_setup
+from .ship import SeaState
+from .ship.errors import ShipModelError
 from .straits import sail_strait
 from .voyage.port_calls import PortCall
 from .voyage.schedule import plan_schedule
@@ -138,11 +140,11 @@ def sail_canal_leg(prep: PreparedVoyage, run: LegRun, k: int, options: PlanOptio
 
 def sail_strait_leg(prep: PreparedVoyage, run: LegRun, k: int, options: PlanOptions,
                     repair: RepairContext) -> None:
-    """A strait: the computed passage between its gates, at the sea RPM (checked at the
-    final coastline and repaired like every leg)."""
+    """A strait: the computed passage between its gates, at the schedule's RPM (checked at
+    the final coastline and repaired like every leg)."""
     ev, rpm_s, problem, said = sail_strait(
         prep.env, prep.strait_legs[k], run.depart_s, prep.limits,
-        (options.stage_hours or OCEAN_STAGE_H) * 3600.0, run.sea_rpm())
+        (options.stage_hours or OCEAN_STAGE_H) * 3600.0, scheduled_rpm(prep, run, k))
     _, ev, _, fixed = repaired_leg(repair, (prep.ports[k], prep.ports[k + 1]),
                                    berths_of(prep, k), None, ev, problem, None)
     run.warnings += said
@@ -160,6 +162,24 @@ def leg_target_s(prep: PreparedVoyage, run: LegRun, k: int) -> float:
         run.search_rtas[k] = plan_schedule(prep.schedule_legs[k:], run.depart_s, prep.rta_s,
                                            prep.fuel_rate).arrival_s[0]
     return max(run.search_rtas[k], run.depart_s + 60.0)
+
+
+def scheduled_rpm(prep: PreparedVoyage, run: LegRun, k: int) -> float | None:
+    """Calm-water RPM that sails fixed leg `k` (a strait or shoal passage) in the time the
+    schedule, re-planned from now, gives it; without a schedule or a model that inverts
+    speed, the RPM the last leg ended at. That RPM would pass a short leg's pace on (a
+    span of 60 NM sailed at the slowest RPM sent the Rio de la Plata passage on at it)."""
+    model = prep.env.model
+    if (prep.schedule is None or prep.fuel_rate is None or prep.rta_warning
+            or not hasattr(model, "rpm_for_speed")):
+        return run.sea_rpm()
+    sail_s = leg_target_s(prep, run, k) - run.depart_s
+    speed = prep.schedule_legs[k].distance_m / max(sail_s, 3600.0)
+    try:
+        return float(model.rpm_for_speed(np.array([speed]), np.array([0.0]),
+                                         SeaState.calm(1))[0])
+    except (ValueError, ArithmeticError, ShipModelError):
+        return run.sea_rpm()
 
 
 def leg_budget(prep: PreparedVoyage, options: PlanOptions, search: Search, run: LegRun,

@@ -21,6 +21,7 @@ from shapely.errors import ShapelyError
 from shiproute_core.geodesy import densify_track, inverse, wrap_lon
 from shiproute_core.units import M_PER_NM
 
+from .route.approach_shoals import ShoalLimit
 from .straits import Strait
 
 SHALLOW_MIN_NM = 1.0  # a shoal shorter than this along the lane is left to the optimiser
@@ -137,6 +138,20 @@ def _near_coast(lon: np.ndarray, lat: np.ndarray, within_deg: float, polygons) -
     land = shapely.transform(np.asarray(parts, dtype=object), lambda xy: xy * [scale, 1.0])
     pts = shapely.points(c_lon * scale, lat)
     return np.min(shapely.distance(pts[:, None], land[None, :]), axis=1) < within_deg
+
+
+def lane_shoal_limit(under_keel) -> ShoalLimit | None:
+    """The shoals a ship's port approaches end past (`route.approach_shoals`): lane water
+    trusted (`trusted_depth_m`) to be shallower than the passages' depth limit, the shoals
+    `shoal_stretches` leaves to the approaches; None for a ship without a depth limit."""
+    from .coastal_passages import passage_rules
+
+    rules = passage_rules(under_keel)
+    need_m = rules.required_depth_m
+    if need_m is None:
+        return None
+    bathymetry = rules.bathymetry
+    return ShoalLimit(lambda lon, lat: trusted_depth_m(bathymetry, lon, lat, need_m), need_m)
 
 
 def route_shoals(ports: list, canal_legs: dict, strait_legs: dict, via_rta: list,

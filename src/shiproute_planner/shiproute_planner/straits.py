@@ -74,8 +74,12 @@ GATE_NAMES = frozenset(f"{s.name} gate" for s in STRAITS)
 def is_gate(port) -> bool:
     """True for a gate inserted by `route_straits` or `shoal_passages.route_shoals` (open
     water: no approach)."""
-    return port.locode == "" and (port.name in GATE_NAMES
-                                  or port.name.startswith("deep-water passage past"))
+    return port.locode == "" and is_gate_name(port.name)
+
+
+def is_gate_name(name: str) -> bool:
+    """True for the name `route_straits` or `shoal_passages.route_shoals` gives a gate."""
+    return name in GATE_NAMES or name.startswith("deep-water passage past")
 
 
 def straits_on_lane(lon_deg: np.ndarray, lat_deg: np.ndarray

@@ -68,6 +68,20 @@ def test_free_legs_sail_at_one_speed():
     assert sched.arrival_s[-1] == pytest.approx(T0 + 16 * 86400, abs=60)
 
 
+def test_rate_fit_below_zero_at_the_slowest_speed_still_saves_fuel():
+    """A cubic fitted to a ship's fuel rate may read below zero at its slowest speed (the
+    supramax's does); its fuel per mile still rises with speed, so the legs use all the time
+    to the RTA at one speed, as with the propeller law."""
+    rate = FuelRate(1.7, 7.3, (0.02, 0.0, 0.0, -0.1))  # t/h, -0.002 at 1.7 m/s
+    assert float(rate.rate(np.array([1.7]))[0]) < 0.0
+    legs = [LegSpec("gate", 111 * NM), LegSpec("Santos", 812 * NM)]
+    sched = plan_schedule(legs, T0, T0 + 108 * 3600, rate)
+    v = [leg.distance_m / t for leg, t in zip(legs, sched.sail_s, strict=True)]
+    assert sched.feasible
+    assert sched.arrival_s[-1] == pytest.approx(T0 + 108 * 3600, abs=60)
+    assert np.ptp(v) / np.mean(v) < 0.01
+
+
 def test_schedule_matches_brute_force_with_a_window_and_berth():
     """A window that makes leg 1 fast: the schedule's fuel equals the best of a grid."""
     legs = [LegSpec("A", 600 * NM, latest_s=T0 + 40 * H, berth_s=10 * H),

@@ -22,6 +22,7 @@ from ..geo.landmask import LandMask
 from ..geo.ports import Port
 from ..geo.sea_lanes import sea_lane_between
 from ..geo.verify import densify_track
+from .approach_shoals import ShoalLimit, end_past_shoals
 from .environment import Environment
 from .evaluation import RouteEvaluation
 from .problem import RouteLimits, RouteProblem
@@ -30,23 +31,30 @@ from .sail_fixed_point import sail_track
 
 @dataclass(frozen=True)
 class Approach:
-    """A polyline in sailing order (continuous longitudes)."""
+    """A polyline in sailing order (continuous longitudes) and what the plan must say
+    about where it ends."""
 
     lon_deg: np.ndarray
     lat_deg: np.ndarray
+    notes: tuple[str, ...] = ()
+    # run on past a shoal next to the port: the approach to sail instead when its computed
+    # passage finds no way round the shoal in water deep enough (`coastal_passages`)
+    fallback: Approach | None = None
 
 
 @dataclass(frozen=True)
 class CoastalPassage:
     """Where approaches end: at the first lane point (from the port outwards, within the
     first `share` of the lane) from which the great circle to the other approach's end is
-    clear of land; candidates every `step_m`."""
+    clear of land; candidates every `step_m`. With `shoals` (a ship with a depth limit)
+    no nearer the port than past the lane's shoals next to it (`approach_shoals`)."""
 
     land: LandMask
     share: float = 1.0 / 6.0
     step_m: float = 5.0 * M_PER_NM
     # when no two ends see each other: how far along the lane an end must see over open sea
     ahead_m: float = 100.0 * M_PER_NM
+    shoals: ShoalLimit | None = None
 
 
 def _points_at(lon: np.ndarray, lat: np.ndarray, cum: np.ndarray,
@@ -167,17 +175,51 @@ def lane_approaches(dep: Port, arr: Port, approach_m: float, with_dep: bool = Tr
     d_arr = approach_m
     d_dep = approach_m if dep_min_m is None else dep_min_m
     if coastal is not None:
-        d_dep, d_arr = _coastal_ends(lon, lat, cum, coastal, d_dep, approach_m)
-    out_dep = out_arr = None
-    if with_dep and d_dep > 0:
-        e_lon, e_lat = _points_at(lon, lat, cum, np.array([d_dep]))
-        k = cum < d_dep
-        out_dep = Approach(np.append(lon[k], e_lon), np.append(lat[k], e_lat))
+        d_dep, d_arr = _coastal_ends(lon, lat, cum, coastal, d_dep, d_arr)
+    out_dep = _departure(lon, lat, cum, d_dep) if with_dep else None
+    out_arr = _arrival(lon, lat, cum, d_arr) if with_arr else None
+    if coastal is None or coastal.shoals is None:
+        return out_dep, out_arr
+    # past the shoals next to each port: walked from the minimums, the ends searched again
+    limit = coastal.share * cum[-1]
+    m_dep = approach_m if dep_min_m is None else dep_min_m
+    w_dep, said_dep = end_past_shoals(lambda d: _points_at(lon, lat, cum, d), float(cum[-1]),
+                                      m_dep, limit, coastal.shoals,
+                                      f"departure from {dep.name}") if with_dep else (m_dep, ())
+    r_lon, r_lat, r_cum = lon[::-1], lat[::-1], cum[-1] - cum[::-1]
+    w_arr, said_arr = end_past_shoals(lambda d: _points_at(r_lon, r_lat, r_cum, d),
+                                      float(cum[-1]), approach_m, limit, coastal.shoals,
+                                      f"arrival at {arr.name}") if with_arr else (approach_m, ())
+    if not (said_dep or said_arr):
+        return out_dep, out_arr
+    e_dep, e_arr = _coastal_ends(lon, lat, cum, coastal, w_dep, w_arr)
+    if with_dep:
+        out_dep = _departure(lon, lat, cum, e_dep, said_dep,
+                             out_dep if w_dep > m_dep and e_dep != d_dep else None)
     if with_arr:
-        s_lon, s_lat = _points_at(lon, lat, cum, np.array([cum[-1] - d_arr]))
-        k = cum > cum[-1] - d_arr
-        out_arr = Approach(np.concatenate([s_lon, lon[k]]), np.concatenate([s_lat, lat[k]]))
+        out_arr = _arrival(lon, lat, cum, e_arr, said_arr,
+                           out_arr if w_arr > approach_m and e_arr != d_arr else None)
     return out_dep, out_arr
+
+
+def _departure(lon: np.ndarray, lat: np.ndarray, cum: np.ndarray, d_m: float,
+               notes: tuple[str, ...] = (), fallback: Approach | None = None
+               ) -> Approach | None:
+    """The lane's first `d_m` [m] as a departure approach (None for none)."""
+    if d_m <= 0:
+        return None
+    e_lon, e_lat = _points_at(lon, lat, cum, np.array([d_m]))
+    k = cum < d_m
+    return Approach(np.append(lon[k], e_lon), np.append(lat[k], e_lat), notes, fallback)
+
+
+def _arrival(lon: np.ndarray, lat: np.ndarray, cum: np.ndarray, d_m: float,
+             notes: tuple[str, ...] = (), fallback: Approach | None = None) -> Approach:
+    """The lane's last `d_m` [m] as an arrival approach."""
+    s_lon, s_lat = _points_at(lon, lat, cum, np.array([cum[-1] - d_m]))
+    k = cum > cum[-1] - d_m
+    return Approach(np.concatenate([s_lon, lon[k]]), np.concatenate([s_lat, lat[k]]), notes,
+                    fallback)
 
 
 def approach_length_m(ap: Approach | None) -> float:

@@ -37,9 +37,9 @@ APPROACH_ZONE_RANGE_NM = (0.0, 200.0)
 class ClearanceRule:
     """Distances from land [NM] a route keeps, by where it is."""
 
-    # 1 NM in open sea by default: at the issue's 2 NM `bench world` plans 19 of 20 lanes
-    # feasible (darwin-singapore finds no exit from Darwin that keeps 2 NM and misses
-    # ETOPO5's 5-8 m shelf cells west of it); 2 NM is an option
+    # 1 NM in open sea by default; the issue's 2 NM is an option (`bench world` at 2 NM:
+    # 20 of 20 lanes feasible and land-clean once approaches end past the shoals next to
+    # their ports, `route.approach_shoals`)
     open_sea_nm: float = 1.0
     approach_nm: float = 0.5  # straits, narrow water and approaches
     approach_zone_nm: float = 10.0

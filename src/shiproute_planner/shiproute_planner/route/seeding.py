@@ -18,7 +18,8 @@ import numpy as np
 from shiproute_core.geodesy import direct, great_circle_points, inverse, unwrap_near
 
 from ..geo.landmask import LandMask
-from ..geo.sea_lanes import sea_lane_between
+from ..geo.sea_lanes import lane_between_points, sea_lane_between
+from ..straits import is_gate_name
 from .encoding import clip_genes, join_genes
 from .environment import Environment
 from .land_walk import LandWalk
@@ -179,16 +180,26 @@ def sea_lane_track(problem: RouteProblem, max_points: int = 0,
                    ) -> tuple[np.ndarray, np.ndarray] | None:
     """Shortest sea-lane polyline from `searoute` (None if it finds no route).
 
-    Its end points are replaced by the problem's ports (searoute snaps to its network); long
-    polylines are resampled to `max_points` (default two per stage)."""
+    searoute snaps the end points to its network; the stops are put at the ends, and at a
+    gate (open water on the lane, between nodes that may lie far off) the lane is first cut
+    at its point nearest the gate (`lane_between_points`): a node past the gate would take
+    the track over the shoal or strait the gate leads to and back. Long polylines are
+    resampled to `max_points` (default two per stage)."""
     stops = [(problem.dep_lon_deg, problem.dep_lat_deg), (problem.arr_lon_deg, problem.arr_lat_deg)]
     if via is not None:
         stops.insert(1, (float(via[0]), float(via[1])))
     parts = []
-    for a, b in itertools.pairwise(stops):
+    last = len(stops) - 2
+    for i, (a, b) in enumerate(itertools.pairwise(stops)):
         part = sea_lane_between(a[0], a[1], b[0], b[1])
         if part is None:
             return None
+        cut_a = i == 0 and is_gate_name(problem.dep_name)
+        cut_b = i == last and is_gate_name(problem.arr_name)
+        if cut_a or cut_b:
+            start = a if cut_a else (float(part[0, 0]), float(part[0, 1]))
+            end = b if cut_b else (float(part[-1, 0]), float(part[-1, 1]))
+            part = lane_between_points(part, start[0], start[1], end[0], end[1])
         parts.append(part)
     coords = np.concatenate(parts, axis=0)
     if coords.shape[0] < 2:

@@ -18,6 +18,7 @@ from ..geo.ports import Port
 from ..objective_window import search_window_s
 from ..objectives import ObjectiveTerms
 from ..plan_types import RoutePlan
+from ..shoal_passages import lane_shoal_limit
 from ..straits import is_gate
 from ..voyage.legs import sea_distance_m, turns_to_round
 from ..voyage.stage_length import TARGET_STAGES, leg_stage_hours
@@ -53,7 +54,8 @@ def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMa
     the ship finishes the coastal passage it is in, if any, from where it is. `given`
     approaches (the user's coastal routes, e.g. from the ECDIS) that start at `a` or end at
     `b` replace the computed ones and are sailed as given."""
-    coastal = CoastalPassage(land) if coastal_passage else None
+    coastal = (CoastalPassage(land, shoals=lane_shoal_limit(lim.under_keel))
+               if coastal_passage else None)
     rest = rest_of_approach(previous_plan, position) if under_way else None
     kept = previous_arrival(previous_plan, b, position) if under_way else None
     ap_dep: Approach | None

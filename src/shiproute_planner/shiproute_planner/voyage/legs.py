@@ -13,7 +13,7 @@ import numpy as np
 from shiproute_core.geodesy import inverse
 
 from ..geo.ports import Port
-from ..geo.sea_lanes import sea_lane_between
+from ..geo.sea_lanes import lane_between_points, sea_lane_between
 from ..route_check import M_PER_NM
 from .port_calls import PortCall
 from .schedule import FuelRate, LegSpec, fuel_rate_of
@@ -74,11 +74,15 @@ def _sea_lane(lon0: float, lat0: float, lon1: float, lat1: float) -> np.ndarray 
 
 @functools.lru_cache(maxsize=256)
 def sea_distance_m(lon0: float, lat0: float, lon1: float, lat1: float) -> float:
-    """Length of the shortest sea lane between two points [m] (great circle if none)."""
+    """Length of the shortest sea lane between two points [m] (great circle if none), the
+    lane cut at its points nearest the two (`lane_between_points`: searoute ends it at the
+    network nodes nearest them, which may lie beyond a point in open water, e.g. a shoal
+    passage's gate, and the way there and back would count)."""
     direct = float(inverse(lon0, lat0, lon1, lat1)[1])
     c = _sea_lane(lon0, lat0, lon1, lat1)
     if c is None:
         return direct
+    c = lane_between_points(c, lon0, lat0, lon1, lat1)
     lon = np.concatenate([[lon0], c[:, 0], [lon1]])
     lat = np.concatenate([[lat0], c[:, 1], [lat1]])
     return max(float(np.sum(inverse(lon[:-1], lat[:-1], lon[1:], lat[1:])[1])), direct)

@@ -111,7 +111,9 @@ def plan_schedule(legs: Sequence[LegSpec], depart_s: float, rta_s: float,
     lo, hi = lo_s / 3600.0, hi_s / 3600.0
     dist = np.array([leg.distance_m for leg in legs])
     sea = np.array([leg.fixed_s is None for leg in legs])
-    f_scale = float(np.sum(_leg_fuel(hi, dist, fr, sea))) or 1.0
+    # objective scale: the fuel at full speed (a cubic fitted over the RPM range may read
+    # below zero at the slowest speed, and a negative scale would maximise the fuel)
+    f_scale = abs(float(np.sum(_leg_fuel(lo, dist, fr, sea)))) or 1.0
     earliest = [None if leg.earliest_s is None else (leg.earliest_s - depart_s) / 3600.0
                 for leg in legs]
     latest = [None if leg.latest_s is None else (leg.latest_s - depart_s) / 3600.0

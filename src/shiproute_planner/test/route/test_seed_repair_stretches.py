@@ -31,8 +31,9 @@ def _points_and_distance_nm(lon: np.ndarray, lat: np.ndarray
     pts = []
     for k in range(lon.size - 1):
         _, _, length_m = geod.inv(lon[k], lat[k], lon[k + 1], lat[k + 1])
-        n = max(0, int(length_m / M_PER_NM / 0.05))
-        pts.append([[lon[k], lat[k]], *geod.npts(lon[k], lat[k], lon[k + 1], lat[k + 1], n)])
+        n = int(length_m / M_PER_NM / 0.05)  # a leg shorter than 0.05 NM: its ends only
+        inner = geod.npts(lon[k], lat[k], lon[k + 1], lat[k + 1], n) if n > 0 else []
+        pts.append([[lon[k], lat[k]], *inner])
     pts = np.vstack([*pts, [[lon[-1], lat[-1]]]])
     c_lon, c_lat = float(np.mean(lon)), float(np.mean(lat))
     aeqd = pyproj.Transformer.from_crs(
