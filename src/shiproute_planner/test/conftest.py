@@ -32,3 +32,16 @@ def calm_env():
     from shiproute_planner.plan_setup import make_environment
 
     return make_environment("container_4600teu", None)
+
+
+@pytest.fixture
+def empty_tiles(monkeypatch):
+    """The process's full-resolution coastline tiles, empty and in memory for one test (as on
+    a fresh machine; nothing saved)."""
+    from shiproute_planner.geo import fine_distance
+    from shiproute_planner.geo.full_land import final_land
+
+    final = final_land()
+    tiles = fine_distance.FineDistance(final.tiles.land_near, final.contains, path=None)
+    monkeypatch.setattr(fine_distance, "_DEFAULT", {final.resolution: tiles})
+    return tiles

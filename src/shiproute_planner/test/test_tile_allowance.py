@@ -5,20 +5,9 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from shiproute_planner.geo import fine_distance
 from shiproute_planner.tile_allowance import TileAllowance
 
 SCILLY = (-6.32, 49.93)  # a coast: a tile here holds land and sea
-
-
-@pytest.fixture
-def empty_tiles(monkeypatch):
-    from shiproute_planner.geo.full_land import final_land
-
-    final = final_land()
-    tiles = fine_distance.FineDistance(final.tiles.land_near, final.contains, path=None)
-    monkeypatch.setattr(fine_distance, "_DEFAULT", {final.resolution: tiles})
-    return tiles
 
 
 def test_allowance_counts_the_tiles_built_since_it_started_and_caps_the_seconds(empty_tiles):

@@ -4,22 +4,11 @@ way round, whichever port comes first."""
 from __future__ import annotations
 
 import numpy as np
-import pytest
 from shiproute_planner.geo import fine_distance
 from shiproute_planner.route.clearance import DEFAULT_CLEARANCE
 from shiproute_planner.route.land_walk import build_region_tiles
 
 SUVA, LAMBASA = (178.42, -18.14), (-179.6, -16.4)  # Fiji, across the antimeridian
-
-
-@pytest.fixture
-def empty_tiles(monkeypatch):
-    from shiproute_planner.geo.full_land import final_land
-
-    final = final_land()
-    tiles = fine_distance.FineDistance(final.tiles.land_near, final.contains, path=None)
-    monkeypatch.setattr(fine_distance, "_DEFAULT", {final.resolution: tiles})
-    return tiles
 
 
 def test_region_is_the_same_box_either_way_and_the_short_way_round(empty_tiles):
