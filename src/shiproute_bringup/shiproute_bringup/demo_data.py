@@ -73,6 +73,9 @@ def _voyage_bag(path: Path, log) -> Path:
     return path
 
 
+REPLAN_AFTER_H = 20.0  # the warm-up's re-plan: the ship this far along the first plan
+
+
 def _warm_up(log) -> None:
     """Compile (numba caches on disk, so only the first time or after a code change is slow)
     every kernel the nodes use, for the half-precision forecast storage the planner node
@@ -82,6 +85,7 @@ def _warm_up(log) -> None:
     import numpy as np
     from shiproute_planner.geo.landmask import default_land_mask
     from shiproute_planner.geo.ports import resolve_port
+    from shiproute_planner.plan_position import position_after
     from shiproute_planner.planning import plan
     from shiproute_planner.request import PlanOptions
     from shiproute_planner.route.clearance import DEFAULT_CLEARANCE
@@ -106,7 +110,11 @@ def _warm_up(log) -> None:
     forecast = ForecastSampler(scenario_dataset(FIRST_CYCLE), dtype=np.float16)
     voyage = dataclasses.replace(_voyage(), default_bathymetry=True)
     # the global depth grid's cache, as the node uses it, and the tiles a storm search meets
-    plan(voyage, PlanOptions(budget_s=3.0, land=land), forecast)
+    first = plan(voyage, PlanOptions(budget_s=3.0, land=land), forecast)
+    # a re-plan under way, as on the demo's second cycle: its kernel variants (previous plan,
+    # ship's position) compiled in the node cost a first re-plan ~7 s after a source change
+    plan(voyage, PlanOptions(budget_s=1.0, land=land, previous_plan=first,
+                             position=position_after(first, REPLAN_AFTER_H)), forecast)
     # the calm-water kernels of the node's own warm-up (`ros.startup.warm_planner`): compiled
     # there they held the node ~60 s after a source change while the demo's clock ran
     plan(voyage, PlanOptions(budget_s=0.0, max_generations=0, with_baseline=False, land=land),
