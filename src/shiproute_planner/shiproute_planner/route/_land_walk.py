@@ -25,10 +25,12 @@ walked to its end and confirmed on the intermediate coastline). A check walk mea
 narrow-water clearance there.
 Poleward of the rule's level-1 latitude (a search's latitude bound) level 0 alone decides: a
 position it leaves undecided reads as land, so no tile is built there.
-A search walk that reads level 1 on a segment also probes the segment on level 0 alone
-(`level0_land`): a segment level 0 already puts on land (a candidate across a continent)
-takes that count and builds no tile. The verdict never depends on which tiles a process has
-built: the first level-1 read lies where level 0 alone led the walk.
+A search walk that meets a violation or an unbuilt tile after reading level 1 probes the
+segment on level 0 alone from that first read on (`level0_land`; before it the walk's
+jumps passed no land): a segment level 0 already puts on land (a candidate across a
+continent) takes that count, is not graded further and builds no tile. The verdict never
+depends on which tiles a process has built: the first level-1 read lies where level 0 alone
+led the walk. A clear walk needs no probe: its jumps never pass land.
 """
 
 from __future__ import annotations
@@ -53,7 +55,7 @@ L0_MIN_JUMP_NM = 1.0
 # inland farther than this from the sea [NM] (level 0) land counts even in tight water: the
 # intermediate coastline lies within ~0.5 NM (1 km) of the full one
 DEEP_LAND_NM = 1.0
-L0_PROBE_NM = 1.0  # the level-0 probe's shortest step [NM] (a third of a cell)
+L0_PROBE_IN_NM = 0.01  # the level-0 probe's step past a cell's edge [NM]
 _D2R = math.pi / 180.0
 
 
@@ -135,36 +137,99 @@ def ask_tile(missing: np.ndarray, n_miss: int, key: int) -> int:
 
 
 @njit(cache=True, nogil=True)
-def level0_land(probe: bool, ax: float, ay: float, az: float, bx: float, by: float, bz: float,
-                steps: int, per_nm: float, coast_dist, room, cell_deg: float,
+def cell_exit_units(x: float, y: float, z: float, dx: float, dy: float, dz: float,
+                    la: float, lo: float, i: int, j: int, cell_deg: float,
+                    units_per_f: float) -> float:
+    """Sample units from a point (unit vector; la, lo [deg] in level-0 cell (i, j)) of a
+    chord-interpolated segment (chord `dx, dy, dz` per unit of chord fraction, `units_per_f`
+    units per fraction) to where it leaves the cell, from the rates of latitude and longitude
+    there (a segment bends by far less than a cell over one)."""
+    w = dx * x + dy * y + dz * z  # tangent of the normalised point: (d - (d.u) u) / |p|
+    tx, ty, tz = dx - w * x, dy - w * y, dz - w * z
+    h2 = max(x * x + y * y, 1e-18)
+    lat_rate = tz / math.sqrt(h2) / _D2R / units_per_f  # deg per unit
+    lon_rate = (x * ty - y * tx) / h2 / _D2R / units_per_f
+    lat0, lon0 = -90.0 + i * cell_deg, -180.0 + j * cell_deg
+    out = 1e30
+    if lat_rate > 0.0:
+        out = min(out, (lat0 + cell_deg - la) / lat_rate)
+    elif lat_rate < 0.0:
+        out = min(out, (la - lat0) / -lat_rate)
+    if lon_rate > 0.0:
+        out = min(out, (lon0 + cell_deg - lo) / lon_rate)
+    elif lon_rate < 0.0:
+        out = min(out, (lo - lon0) / -lon_rate)
+    return max(out, 0.0)
+
+
+@njit(cache=True, nogil=True)
+def level0_land(k_start: float, ax: float, ay: float, az: float, bx: float, by: float,
+                bz: float, steps: int, per_nm: float, coast_dist, room, cell_deg: float,
                 tight_room_nm: float) -> int:
-    """Samples of a segment (unit-vector ends, `steps` sample units of at most `per_nm`) that
-    level 0 alone puts on land, stepping at least `L0_PROBE_NM` (0 when it finds none, or
-    unless `probe`; a strip of land narrower than a step may be missed). Land within
-    `DEEP_LAND_NM` of tight water's coast is not counted (the search counts it apart)."""
-    if not probe:
-        return 0
+    """Samples of a segment (unit-vector ends, `steps` sample units of at most `per_nm`) from
+    unit `k_start` on that level 0 alone puts on land (0 when it finds none). It visits every
+    level-0 cell the segment crosses (a cell's value holds for all of it), jumping farther
+    where the distance to land allows. Land within `DEEP_LAND_NM` of tight water's coast is
+    not counted (the search counts it apart)."""
     n_lat, n_lon = coast_dist.shape
     inv = 1.0 / cell_deg
+    into_next = L0_PROBE_IN_NM / per_nm  # units past a cell's edge: inside the next cell
     count = 0
-    k = 0.0
+    k = k_start
     while k <= steps:
         f = k / steps
         x, y, z = ax + f * (bx - ax), ay + f * (by - ay), az + f * (bz - az)
         r = math.sqrt(x * x + y * y + z * z)
-        la = math.asin(max(min(z / r, 1.0), -1.0)) / _D2R
+        x, y, z = x / r, y / r, z / r
+        la = math.asin(max(min(z, 1.0), -1.0)) / _D2R
         lo = math.atan2(y, x) / _D2R
         i = min(max(int((la + 90.0) * inv), 0), n_lat - 1)
         j = min(max(int((lo + 180.0) * inv), 0), n_lon - 1)
         d0 = coast_dist[i, j] * L0_UNIT_NM
-        tight = room[i, j] * ROOM_UNIT_NM < tight_room_nm and d0 > -DEEP_LAND_NM
-        if d0 < 0.0 and not tight:  # inland: every sample within -d0 is on land
+        # (the room raster is read only inland: one memory access fewer along coasts)
+        if d0 < 0.0 and not (d0 > -DEEP_LAND_NM and room[i, j] * ROOM_UNIT_NM < tight_room_nm):
+            # inland: every sample within -d0 is on land
             n = min(1 + int(-d0 / per_nm), steps - int(k) + 1)
             count += n
             k += n
         else:
-            k += max(abs(d0), L0_PROBE_NM) / per_nm
+            exit_k = cell_exit_units(x, y, z, (bx - ax) / r, (by - ay) / r, (bz - az) / r,
+                                     la, lo, i, j, cell_deg, float(steps))
+            k += max(abs(d0) / per_nm, exit_k + into_next)
     return count
+
+
+@njit(cache=True, nogil=True)
+def coarse_clear_nm(la: float, lo: float, coarse, clear_deg, coarse_deg: float) -> float:
+    """Arc [NM] from a position to the nearest coarse block with land or coast (0 in one)."""
+    c_lat, c_lon = coarse.shape
+    ci = min(max(int((la + 90.0) / coarse_deg), 0), c_lat - 1)
+    cj = min(max(int((lo + 180.0) / coarse_deg), 0), c_lon - 1)
+    return 0.0 if coarse[ci, cj] else clear_deg[ci, cj] * NM_PER_DEG
+
+
+@njit(cache=True, nogil=True)
+def level1_step(la: float, lo: float, i: int, j: int, q_nm: float, room_nm: float,
+                apart: bool, per_nm: float, cell_deg: float, slots, grids, rule: np.ndarray):
+    """One step of a walk on level 1 at a position (la, lo) [deg] in level-0 cell (i, j),
+    `q_nm` from the nearer span end: (units to advance, samples violating, samples on land
+    in tight water (`apart`), the key of the tile to build or -1)."""
+    v = level1_value(la, lo, slots, grids, rule[8])
+    if v < 0:  # tile not built yet
+        return 1.0, 0, 0, -1 - v
+    eps = rule[4]
+    d1 = -1.0 if v == 0 else (v - 1) * L1_UNIT_NM
+    c = clearance_within_nm(q_nm, max(d1, 0.0), rule)
+    # tight water counts land only, and the points within `inside` share its cell
+    inside = cell_inside_nm(la, lo, i, j, cell_deg) if apart else 0.0
+    if d1 >= c + eps or (apart and min(d1, inside) >= eps):
+        return max(d1 - c, min(d1, inside)) / per_nm, 0, 0, -1
+    if d1 >= (0.0 if apart else clearance_here_nm(q_nm, eps, room_nm, rule)):
+        return eps / per_nm, 0, 0, -1  # hugging the clearance: points within eps keep c - eps
+    if apart:  # on land: so (or tight water) up to the cell's edge
+        n = max(1, int(inside / per_nm))
+        return float(n), 0, n, -1
+    return 1.0, 1, 0, -1
 
 
 @njit(cache=True, nogil=True)
@@ -180,12 +245,9 @@ def clearance_walk(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, coast_
     bound d needs d - L at least the clearance of every point it passes
     (`clearance_within_nm` over d)."""
     n_lat, n_lon = coast_dist.shape
-    c_lat, c_lon = coarse.shape
-    inv, c_inv = 1.0 / cell_deg, 1.0 / coarse_deg
+    inv = 1.0 / cell_deg
     c_max = max(rule[0], rule[1])
-    eps = rule[4]
     search = rule[7] > 0.5
-    level1_lat = rule[8]
     n_miss = 0
     for s in range(lon0.size):
         ax, ay, az, bx, by, bz, arc = segment_ends(lat0[s], lon0[s], lat1[s], lon1[s])
@@ -194,23 +256,29 @@ def clearance_walk(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, coast_
         count = 0
         unresolved = False
         consulted = False  # a search read (or asked for) level 1 on this segment
+        k_read = 0.0  # where it first did: no land level 0 shows lies before it
+        probed = False
+        on_land = 0
         n_miss0 = n_miss
         tight[s] = 0
         k = 0.0
         while k <= steps:
+            if consulted and not probed and (count or unresolved):  # trouble after a read
+                probed = True
+                on_land = level0_land(k_read, ax, ay, az, bx, by, bz, steps, per_nm,
+                                      coast_dist, room, cell_deg, rule[6])
+                if on_land:  # level 0 decides: no grading, no tile
+                    break
             f = k / steps
             x, y, z = ax + f * (bx - ax), ay + f * (by - ay), az + f * (bz - az)
             r = math.sqrt(x * x + y * y + z * z)
             x, y, z = x / r, y / r, z / r
             la = math.asin(max(min(z, 1.0), -1.0)) / _D2R
             lo = math.atan2(y, x) / _D2R
-            if not count:
-                ci = min(max(int((la + 90.0) * c_inv), 0), c_lat - 1)
-                cj = min(max(int((lo + 180.0) * c_inv), 0), c_lon - 1)
-                beyond = clear_deg[ci, cj] * NM_PER_DEG - c_max
-                if not coarse[ci, cj] and beyond > per_nm:
-                    k += beyond / per_nm
-                    continue
+            beyond = 0.0 if count else coarse_clear_nm(la, lo, coarse, clear_deg, coarse_deg)
+            if beyond - c_max > per_nm:
+                k += (beyond - c_max) / per_nm
+                continue
             i = min(max(int((la + 90.0) * inv), 0), n_lat - 1)
             j = min(max(int((lo + 180.0) * inv), 0), n_lon - 1)
             d0 = coast_dist[i, j] * L0_UNIT_NM
@@ -238,31 +306,22 @@ def clearance_walk(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, coast_
                 count += GRADE_STEP
                 k += GRADE_STEP
                 continue
+            if search and not consulted:
+                k_read = k
             consulted = search
-            v = level1_value(la, lo, slots, grids, level1_lat)
-            if v < 0:  # tile not built yet
+            dk, n_out, n_tight, key = level1_step(la, lo, i, j, q, room_nm, apart, per_nm,
+                                                  cell_deg, slots, grids, rule)
+            if key >= 0:  # tile not built yet
                 unresolved = True
-                n_miss = ask_tile(missing, n_miss, -1 - v)
-                k += 1.0
-                continue
-            d1 = -1.0 if v == 0 else (v - 1) * L1_UNIT_NM
-            c = clearance_within_nm(q, max(d1, 0.0), rule)
-            # tight water counts land only, and the points within `inside` share its cell
-            inside = cell_inside_nm(la, lo, i, j, cell_deg) if apart else 0.0
-            if d1 >= c + eps or (apart and min(d1, inside) >= eps):
-                k += max(d1 - c, min(d1, inside)) / per_nm
-            elif d1 >= (0.0 if apart else clearance_here_nm(q, eps, room_nm, rule)):
-                k += eps / per_nm  # hugging the clearance: points within eps keep c - eps
-            elif apart:  # on land: so (or tight water) up to the cell's edge
-                n = max(1, int(inside / per_nm))
-                tight[s] += n
-                k += n
-            else:
-                count += 1
-                k += 1.0
-        out[s] = -1 if unresolved else count
-        on_land = level0_land(consulted, ax, ay, az, bx, by, bz, steps, per_nm, coast_dist,
-                              room, cell_deg, rule[6])
+                n_miss = ask_tile(missing, n_miss, key)
+            count += n_out
+            tight[s] += n_tight
+            k += dk
+        if consulted and not probed and (count or unresolved or tight[s]):
+            on_land = level0_land(k_read, ax, ay, az, bx, by, bz, steps, per_nm, coast_dist,
+                                  room, cell_deg, rule[6])
         if on_land:  # level 0 decides: no tile asked for, nothing counted apart
             out[s], tight[s], n_miss = on_land, 0, n_miss0
+        else:
+            out[s] = -1 if unresolved else count
     return n_miss
