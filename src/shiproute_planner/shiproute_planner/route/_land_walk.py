@@ -56,6 +56,10 @@ L0_MIN_JUMP_NM = 1.0
 # intermediate coastline lies within ~0.5 NM (1 km) of the full one
 DEEP_LAND_NM = 1.0
 L0_PROBE_IN_NM = 0.01  # the level-0 probe's step past a cell's edge [NM]
+# the probe's shortest step off inland cells [NM]: a cell's height, so it crosses each coastal
+# band (three cells) in about three reads; an inland cell it steps past (a corner cut) is
+# found by the walk itself, which then reads level 1 as without the probe
+L0_PROBE_MIN_NM = 3.0
 _D2R = math.pi / 180.0
 
 
@@ -167,10 +171,10 @@ def level0_land(k_start: float, ax: float, ay: float, az: float, bx: float, by: 
                 bz: float, steps: int, per_nm: float, coast_dist, room, cell_deg: float,
                 tight_room_nm: float) -> int:
     """Samples of a segment (unit-vector ends, `steps` sample units of at most `per_nm`) from
-    unit `k_start` on that level 0 alone puts on land (0 when it finds none). It visits every
-    level-0 cell the segment crosses (a cell's value holds for all of it), jumping farther
-    where the distance to land allows. Land within `DEEP_LAND_NM` of tight water's coast is
-    not counted (the search counts it apart)."""
+    unit `k_start` on that level 0 alone puts on land (0 when it finds none). It steps to the
+    next level-0 cell the segment crosses (a cell's value holds for all of it), at least
+    `L0_PROBE_MIN_NM` and farther where the distance to land allows. Land within
+    `DEEP_LAND_NM` of tight water's coast is not counted (the search counts it apart)."""
     n_lat, n_lon = coast_dist.shape
     inv = 1.0 / cell_deg
     into_next = L0_PROBE_IN_NM / per_nm  # units past a cell's edge: inside the next cell
@@ -195,7 +199,7 @@ def level0_land(k_start: float, ax: float, ay: float, az: float, bx: float, by: 
         else:
             exit_k = cell_exit_units(x, y, z, (bx - ax) / r, (by - ay) / r, (bz - az) / r,
                                      la, lo, i, j, cell_deg, float(steps))
-            k += max(abs(d0) / per_nm, exit_k + into_next)
+            k += max(max(abs(d0), L0_PROBE_MIN_NM) / per_nm, exit_k + into_next)
     return count
 
 
