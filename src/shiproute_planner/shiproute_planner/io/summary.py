@@ -56,7 +56,9 @@ def plan_summary(plan: RoutePlan) -> dict:
                      "eta": _iso(plan.baseline_eta_s) if math.isfinite(plan.baseline_eta_s)
                      else None, "feasible": plan.baseline_feasible},
         "fuel_saving_t": plan.fuel_saving_t, "fuel_saving_pct": plan.fuel_saving_pct,
-        "compute_time_s": plan.compute_time_s, "generations": plan.generations,
+        "compute_time_s": plan.compute_time_s,
+        # where the compute time went: set-up, passages, baselines, search, checks [s]
+        "timing_s": plan.extra.get("timing_s"), "generations": plan.generations,
         "evaluations": plan.evaluations, "stage_h": plan.stage_s / 3600.0,
         "legs": legs,
     })

@@ -54,6 +54,11 @@ def test_geojson_and_summary(plan, tmp_path):
     assert data["total_fuel_t"] == pytest.approx(sum(leg["leg_fuel_t"] for leg in data["legs"]))
     assert data["baseline"]["fuel_t"] == pytest.approx(plan.baseline_fuel_t)
     assert len(data["legs"]) == len(plan.waypoints) - 1
+    # where the compute time went: the phases are parts of the plan's total, the search one
+    timing = data["timing_s"]
+    phases = {k: v for k, v in timing.items() if k not in ("budget", "total")}
+    assert timing["budget"] == 120.0 and phases["search"] > 0.0
+    assert sum(phases.values()) <= timing["total"] + 0.001 * len(phases)
 
 
 def test_cli_writes_all_outputs(tmp_path, capsys):
