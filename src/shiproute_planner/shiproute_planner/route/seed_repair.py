@@ -26,7 +26,11 @@ from .clearance import needed_clearance_nm
 from .land_repair import RepairRules, repaired_stretches
 from .problem import RouteProblem
 
-SEED_REPAIR_VERSION = 3  # in the cache key: bump when the repair changes
+SEED_REPAIR_VERSION = 4  # in the cache key: bump when the repair changes
+# stretches each side of a break and corridors round it [NM], tried in turn: the widest lets
+# a detour round an island whose channel is narrower than twice the open-sea clearance (an
+# island ~15 NM across off a coast) keep the rule instead of relaxing it in the channel
+WINDOWS_NM = (4.0, 12.0, 30.0)
 LEVEL1_SLACK_NM = 0.7  # level 1's looseness (a fine diagonal, the coastline band, one step)
 
 
@@ -128,7 +132,8 @@ def _repaired(problem: RouteProblem, lon: np.ndarray, lat: np.ndarray
     # each part of a detour keeps the clearance its own water asks (open sea, approach,
     # narrow or tight water), the largest capped first where it cannot
     rules = dataclasses.replace(rules, clearances_nm=tuple(sorted(
-        {*keep, *rules.clearances_nm}, reverse=True)), need_nm=wider_need_nm)
+        {*keep, *rules.clearances_nm}, reverse=True)), need_nm=wider_need_nm,
+        windows_nm=WINDOWS_NM, corridors_nm=WINDOWS_NM)
     from ..geo.full_land import final_land
 
     polygons, base, skip = (best_land_polygons(), passage_rules(problem.limits.under_keel),

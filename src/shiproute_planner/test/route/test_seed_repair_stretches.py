@@ -76,3 +76,30 @@ def test_busan_yokohama_lane_keeps_the_clearance_of_each_water_through_kanmon():
     assert np.any(need_nm == RULE.open_sea_nm) and np.any(need_nm < RULE.approach_nm + 0.01)
     assert np.all(dist_nm > 0.0)  # off land everywhere
     assert np.all(dist_nm >= need_nm - TOLERANCE_NM)
+
+
+def test_lane_through_a_channel_narrower_than_the_clearance_goes_round_the_island():
+    """Genova -> the Tyrrhenian Sea: the sea lane runs through the Piombino Channel between
+    Elba and the mainland (~5 NM wide with islets, water the room raster reads as open sea);
+    at 2 NM no line through it keeps the clearance, so the repaired seed rounds Elba and keeps
+    at every point the clearance its own water asks."""
+    from shiproute_planner.route.seed_repair import repaired_seed_track, rule_need
+    from shiproute_planner.route.seeding import sea_lane_track
+
+    problem = RouteProblem(8.95, 44.30, 12.0, 40.5, 0.0, 2 * 86400.0,
+                           RouteLimits(40.0, 100.0, clearance=RULE))
+    lane = sea_lane_track(problem)
+    assert lane is not None
+    lane_lon, lane_lat, lane_nm = _points_and_distance_nm(lane[0], lane[1])
+    near_elba = (lane_lon > 10.0) & (lane_lon < 10.9) & (lane_lat > 42.4) & (lane_lat < 43.4)
+    # premise: the lane passes Elba and there breaks the open-sea clearance
+    assert near_elba.any()
+    assert np.any(lane_nm[near_elba] < rule_need(problem)(lane_lon, lane_lat)[near_elba] - 0.5)
+    lon, lat, left = repaired_seed_track(problem, lane[0], lane[1])
+    assert left == 0
+    inside = np.flatnonzero((lon > 9.6) & (lon < 11.2) & (lat > 42.0) & (lat < 43.8))
+    k0, k1 = max(int(inside[0]) - 1, 0), min(int(inside[-1]) + 1, lon.size - 1)
+    p_lon, p_lat, dist_nm = _points_and_distance_nm(lon[k0:k1 + 1], lat[k0:k1 + 1])
+    need_nm = rule_need(problem)(p_lon, p_lat)
+    assert np.all(dist_nm > 0.0)
+    assert np.all(dist_nm >= need_nm - TOLERANCE_NM)
