@@ -169,16 +169,20 @@ def cell_exit_units(x: float, y: float, z: float, dx: float, dy: float, dz: floa
 @njit(cache=True, nogil=True)
 def level0_land(k_start: float, ax: float, ay: float, az: float, bx: float, by: float,
                 bz: float, steps: int, per_nm: float, coast_dist, room, cell_deg: float,
-                tight_room_nm: float) -> int:
+                tight_room_nm: float, near_nm: float) -> int:
     """Samples of a segment (unit-vector ends, `steps` sample units of at most `per_nm`) from
     unit `k_start` on that level 0 alone puts on land (0 when it finds none). It steps to the
     next level-0 cell the segment crosses (a cell's value holds for all of it), at least
     `L0_PROBE_MIN_NM` and farther where the distance to land allows. Land within
-    `DEEP_LAND_NM` of tight water's coast is not counted (the search counts it apart)."""
+    `DEEP_LAND_NM` of tight water's coast is not counted (the search counts it apart). With
+    land found, the samples it passed in sea or coastal cells nearer the coast than `near_nm`
+    count too, as a graded walk counts them: a leg across an island then weighs at least as
+    much as one that only comes too close to its coast over the same stretch."""
     n_lat, n_lon = coast_dist.shape
     inv = 1.0 / cell_deg
     into_next = L0_PROBE_IN_NM / per_nm  # units past a cell's edge: inside the next cell
     count = 0
+    near = 0.0  # units passed nearer the coast than near_nm, off inland cells
     k = k_start
     while k <= steps:
         f = k / steps
@@ -199,8 +203,11 @@ def level0_land(k_start: float, ax: float, ay: float, az: float, bx: float, by: 
         else:
             exit_k = cell_exit_units(x, y, z, (bx - ax) / r, (by - ay) / r, (bz - az) / r,
                                      la, lo, i, j, cell_deg, float(steps))
-            k += max(max(abs(d0), L0_PROBE_MIN_NM) / per_nm, exit_k + into_next)
-    return count
+            step = max(max(abs(d0), L0_PROBE_MIN_NM) / per_nm, exit_k + into_next)
+            if d0 < near_nm:
+                near += min(step, steps - k + 1.0)
+            k += step
+    return count + int(near) if count else 0
 
 
 @njit(cache=True, nogil=True)
@@ -251,6 +258,7 @@ def clearance_walk(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, coast_
     n_lat, n_lon = coast_dist.shape
     inv = 1.0 / cell_deg
     c_max = max(rule[0], rule[1])
+    near_nm = c_max + L0_MIN_JUMP_NM  # the probe counts samples nearer the coast than this
     search = rule[7] > 0.5
     n_miss = 0
     for s in range(lon0.size):
@@ -270,7 +278,7 @@ def clearance_walk(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, coast_
             if consulted and not probed and (count or unresolved):  # trouble after a read
                 probed = True
                 on_land = level0_land(k_read, ax, ay, az, bx, by, bz, steps, per_nm,
-                                      coast_dist, room, cell_deg, rule[6])
+                                      coast_dist, room, cell_deg, rule[6], near_nm)
                 if on_land:  # level 0 decides: no grading, no tile
                     break
             f = k / steps
@@ -323,7 +331,7 @@ def clearance_walk(lon0, lat0, lon1, lat1, coarse, clear_deg, coarse_deg, coast_
             k += dk
         if consulted and not probed and (count or unresolved or tight[s]):
             on_land = level0_land(k_read, ax, ay, az, bx, by, bz, steps, per_nm, coast_dist,
-                                  room, cell_deg, rule[6])
+                                  room, cell_deg, rule[6], near_nm)
         if on_land:  # level 0 decides: no tile asked for, nothing counted apart
             out[s], tight[s], n_miss = on_land, 0, n_miss0
         else:

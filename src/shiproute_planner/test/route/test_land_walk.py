@@ -304,3 +304,36 @@ def test_search_walk_across_land_asks_no_tile_and_gives_the_same_count_with_or_w
         empty.distance_nm(lon0[k] + f * (lon1[k] - lon0[k]), lat0[k] + f * (lat1[k] - lat0[k]))
     got_full, asked = walk(empty)
     assert asked == 0 and np.array_equal(got_full, got_empty)
+
+
+def test_search_walk_counts_a_leg_across_an_island_at_least_by_its_samples_on_land(walk_inputs):
+    # Tyrrhenian Sea -> across Sicily -> Strait of Sicily: a search's count must not be below
+    # the leg's samples on full-resolution land (its sampling: chord fractions k / steps),
+    # or a candidate across the island would rank ahead of one merely too close to a coast
+    from shiproute_planner.geo.land_kernels import FINE, segment_ends
+    from shiproute_planner.route import _land_walk as lw
+
+    final, fine, coarse, clear, coarse_deg, room = walk_inputs
+    lon0, lat0 = np.array([13.6]), np.array([38.4])
+    lon1, lat1 = np.array([14.2]), np.array([36.8])
+    spacing_deg = 0.05
+    ax, ay, az, bx, by, bz, arc = segment_ends(lat0[0], lon0[0], lat1[0], lon1[0])
+    steps = FINE * max(1, int(np.ceil(arc / spacing_deg)))
+    f = np.arange(steps + 1) / steps
+    p = np.stack([ax + f * (bx - ax), ay + f * (by - ay), az + f * (bz - az)])
+    p /= np.linalg.norm(p, axis=0)
+    on_land = final.contains(np.degrees(np.arctan2(p[1], p[0])), np.degrees(np.arcsin(p[2])))
+    assert 0 < on_land.sum() < steps  # the leg starts and ends at sea and crosses land
+    ends = np.array([*lw.unit_vector(0.0, 0.0), *lw.unit_vector(0.5, 0.0)])
+    rule = ClearanceRule(1.0, 0.5, 10.0).kernel_array(search=True)
+    got = np.full(1, -1, dtype=np.int64)
+    for _ in range(50):  # build the tiles the walk asks for, then walk again
+        missing = np.empty(256, dtype=np.int64)
+        n = lw.clearance_walk(lon0, lat0, lon1, lat1, coarse, clear, coarse_deg,
+                              np.asarray(final.mask.coast_distance), final.mask.cell_deg,
+                              spacing_deg, fine.slots, fine.grids, ends, rule, room, missing,
+                              got, np.zeros(1, dtype=np.int64))
+        if got[0] >= 0:
+            break
+        fine.add(missing[:n])
+    assert got[0] >= on_land.sum()
