@@ -119,13 +119,19 @@ def run(budget_s: float, warm_budget_s: float, ref_factor: float, seed: int) -> 
     # level-1 tiles of the voyage's region built as a running planner has them (once per
     # machine: they are saved in the data directory); the region is wide because the
     # random RPMs of `ga_like_population` overshoot the arrival by up to ~60 deg
-    build_region_tiles((w0.lon_deg, w0.lat_deg), (w1.lon_deg, w1.lat_deg),
-                       (40.0, 60.0, 25.0, 30.0), problem.limits.clearance)
+    margins = (40.0, 60.0, 25.0, 30.0)
+    build_region_tiles((w0.lon_deg, w0.lat_deg), (w1.lon_deg, w1.lat_deg), margins,
+                       problem.limits.clearance)
+    # and the intermediate coastline's cells there, which tight water is confirmed on (as a
+    # running planner has them: resolved as plans meet them, saved in the data directory)
+    land.fine_coast.resolve_voyage((w0.lon_deg, w0.lat_deg), (w1.lon_deg, w1.lat_deg), margins)
+    land.fine_coast.save()
     result = _figures(cold, warm, ref, env, land, problem, reference, setup_s, cold_s, warm_s,
                       budget_s)
-    # tiles the timed populations met outside that region, saved too: the figures of the
-    # next run on this machine are not charged with building them again
+    # tiles and cells the timed populations met outside that region, saved too: the figures
+    # of the next run on this machine are not charged with building them again
     default_fine_distance().save()
+    land.fine_coast.save()
     return result
 
 
