@@ -97,7 +97,7 @@ def _warm_up(log) -> None:
     land = default_land_mask()
     a, b = (resolve_port(p, land) for p in (ORIGIN, DESTINATION))
     land.fine_coast.resolve_voyage((a.lon_deg, a.lat_deg), (b.lon_deg, b.lat_deg),
-                                   (10.0, 10.0, 10.0, 25.0))
+                                   REGION_MARGINS_DEG)
     # the search's full-resolution tiles of the coasts its seeds reach (the great circles
     # via points 12 deg off it reach the Aleutians, Alaska and Hawaii; ~2,100 tiles, 30-40 s
     # once per machine): the node's first plan then searches instead of building them

@@ -18,6 +18,7 @@ import numpy as np
 
 from .datadir import load_npz, save_npz_atomic
 from .raster import COAST
+from .region_box import region_box
 
 
 class FineCoast:
@@ -102,15 +103,10 @@ class FineCoast:
 
     def resolve_voyage(self, a: tuple[float, float], b: tuple[float, float],
                        margins_deg: tuple[float, float, float, float]) -> int:
-        """Resolve the coastal cells of a voyage's region: the box from point `a` eastward
-        to point `b` ((lon, lat) [deg]) widened by (west, east, south, north) margins [deg]
-        (latitudes capped at +-85). Returns how many cells were new."""
-        east = a[0] + (b[0] - a[0]) % 360.0
-        lon0, lon1 = sorted((a[0], east))
-        west_m, east_m, south_m, north_m = margins_deg
-        return self.resolve_box(lon0 - west_m, lon1 + east_m,
-                                max(min(a[1], b[1]) - south_m, -85.0),
-                                min(max(a[1], b[1]) + north_m, 85.0))
+        """Resolve the coastal cells of a voyage's region (`region_box`: the box between
+        points `a` and `b` ((lon, lat) [deg]) the shorter way round, widened by (west, east,
+        south, north) margins [deg]). Returns how many cells were new."""
+        return self.resolve_box(*region_box(a, b, margins_deg))
 
     def contains(self, lon_deg: np.ndarray, lat_deg: np.ndarray) -> np.ndarray:
         """Verdict of the fine cell holding each point (coastal cells only; resolves them)."""

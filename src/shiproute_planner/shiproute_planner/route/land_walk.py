@@ -196,18 +196,12 @@ def build_region_tiles(a: tuple[float, float], b: tuple[float, float],
     building tiles. How many were new."""
     from ..geo.fine_distance import default_fine_distance
     from ..geo.full_land import final_land
+    from ..geo.region_box import region_box
 
     finest = final_land().mask
-    if (b[0] - a[0]) % 360.0 > 180.0:  # westward is shorter: the box runs from b east to a
-        a, b = b, a
-    east = a[0] + (b[0] - a[0]) % 360.0
-    west_m, east_m, south_m, north_m = margins_deg
     fine = default_fine_distance()
-    built = fine.add_box(min(a[0], east) - west_m, max(a[0], east) + east_m,
-                         max(min(a[1], b[1]) - south_m, -85.0),
-                         min(max(a[1], b[1]) + north_m, 85.0),
-                         np.asarray(finest.coast_distance), finest.cell_deg,
-                         level1_reach_nm(rule) + 0.1)
+    built = fine.add_box(*region_box(a, b, margins_deg), np.asarray(finest.coast_distance),
+                         finest.cell_deg, level1_reach_nm(rule) + 0.1)
     fine.save()
     return built
 

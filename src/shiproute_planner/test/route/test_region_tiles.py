@@ -25,3 +25,14 @@ def test_region_is_the_same_box_either_way_and_the_short_way_round(empty_tiles):
     lon = -180.0 + cols * fine_distance.TILE_DEG
     assert np.all((lat >= -18.5) & (lat < -16.0))
     assert np.all((lon >= 178.0) | (lon < -179.0))
+
+
+def test_region_box_runs_the_short_way_round_either_way():
+    from shiproute_planner.geo.region_box import region_box
+
+    # 170E -> 170W is 20 deg eastward across the antimeridian (340 deg the other way)
+    box = region_box((170.0, 10.0), (-170.0, 20.0), (1.0, 2.0, 3.0, 4.0))
+    assert box == (169.0, 192.0, 7.0, 24.0)
+    assert region_box((-170.0, 20.0), (170.0, 10.0), (1.0, 2.0, 3.0, 4.0)) == box
+    # latitudes capped short of the poles
+    assert region_box((0.0, 80.0), (10.0, -80.0), (0.0, 0.0, 10.0, 10.0))[2:] == (-85.0, 85.0)

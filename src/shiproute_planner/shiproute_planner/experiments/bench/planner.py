@@ -125,7 +125,6 @@ def run(budget_s: float, warm_budget_s: float, ref_factor: float, seed: int) -> 
     # and the intermediate coastline's cells there, which tight water is confirmed on (as a
     # running planner has them: resolved as plans meet them, saved in the data directory)
     land.fine_coast.resolve_voyage((w0.lon_deg, w0.lat_deg), (w1.lon_deg, w1.lat_deg), margins)
-    land.fine_coast.save()
     result = _figures(cold, warm, ref, env, land, problem, reference, setup_s, cold_s, warm_s,
                       budget_s)
     # tiles and cells the timed populations met outside that region, saved too: the figures
