@@ -15,8 +15,8 @@ from .units import M_PER_NM
 GEOD = Geod(ellps="WGS84")
 EARTH_MEAN_RADIUS_M = 6_371_008.8  # IUGG mean radius R1 = (2a + b) / 3 of WGS 84
 __all__ = ["EARTH_MEAN_RADIUS_M", "GEOD", "M_PER_NM", "bearing_deg", "cross_track_m",
-           "densify_track", "destination", "direct", "distance_m", "great_circle_points",
-           "inverse", "track_length_m", "unwrap_near", "wrap_lon"]
+           "densify_track", "destination", "direct", "distance_m", "distance_within_m",
+           "great_circle_points", "inverse", "track_length_m", "unwrap_near", "wrap_lon"]
 
 
 def wrap_lon(lon_deg: ArrayLike) -> np.ndarray:
@@ -81,6 +81,31 @@ def distance_m(lon0_deg: ArrayLike, lat0_deg: ArrayLike, lon1_deg: ArrayLike,
                lat1_deg: ArrayLike) -> np.ndarray:
     """Geodesic distance [m] from point 0 to point 1 on WGS 84, broadcast over arrays."""
     return inverse(lon0_deg, lat0_deg, lon1_deg, lat1_deg)[1]
+
+
+# largest relative gap between the WGS 84 geodesic and the great circle on the mean sphere
+# (meridian arcs near the poles/equator), with room to spare
+SPHERE_GAP = 0.01
+
+
+def distance_within_m(lon_deg: ArrayLike, lat_deg: ArrayLike, lon1_deg: float, lat1_deg: float,
+                      within_m: float) -> np.ndarray:
+    """Distance [m] from points to one point: the WGS 84 geodesic wherever it may be within
+    `within_m`, the great circle on the mean sphere (then surely beyond `within_m`) elsewhere.
+    A threshold test over a grid costs a haversine instead of a geodesic per cell."""
+    lon, lat = np.broadcast_arrays(np.asarray(lon_deg, dtype=float),
+                                   np.asarray(lat_deg, dtype=float))
+    shape = lon.shape
+    lon, lat = lon.ravel(), lat.ravel()
+    phi0, phi1 = np.radians(lat), np.radians(lat1_deg)
+    h = (np.sin(0.5 * (phi1 - phi0)) ** 2
+         + np.cos(phi0) * np.cos(phi1) * np.sin(0.5 * np.radians(lon1_deg - lon)) ** 2)
+    out = 2.0 * EARTH_MEAN_RADIUS_M * np.arcsin(np.sqrt(np.clip(h, 0.0, 1.0)))
+    near = out <= within_m * (1.0 + SPHERE_GAP) + 1.0
+    if near.any():
+        out[near] = inverse(lon[near], lat[near], np.full(int(near.sum()), lon1_deg),
+                            np.full(int(near.sum()), lat1_deg))[1]
+    return out.reshape(shape)
 
 
 def bearing_deg(lon0_deg: ArrayLike, lat0_deg: ArrayLike, lon1_deg: ArrayLike,

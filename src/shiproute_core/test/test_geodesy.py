@@ -70,3 +70,21 @@ def test_track_length_adds_up_to_the_quarter_meridian() -> None:
     # WGS 84 quarter meridian 10,001,965.729 m, here as ten legs along the meridian
     lat = np.linspace(0.0, 90.0, 11)
     assert geodesy.track_length_m(np.zeros(11), lat) == pytest.approx(10_001_965.729, abs=0.01)
+
+
+def test_distance_within_agrees_with_the_geodesic_on_every_side_of_its_threshold() -> None:
+    # points at every latitude and bearing, 0-40 NM from the target: the threshold test
+    # (<= 10 NM) must come out as the WGS 84 geodesic says, near or far, poles included
+    rng = np.random.default_rng(7)
+    for lat1 in (0.0, 45.0, 89.5, -60.0):
+        n = 4000
+        lon, lat = geodesy.direct(np.full(n, 10.0), np.full(n, lat1), rng.uniform(0, 360, n),
+                                  rng.uniform(0.0, 40.0 * M_PER_NM, n))
+        exact = geodesy.distance_m(lon, lat, np.full(n, 10.0), np.full(n, lat1))
+        got = geodesy.distance_within_m(lon, lat, 10.0, lat1, 10.0 * M_PER_NM)
+        assert np.array_equal(got <= 10.0 * M_PER_NM, exact <= 10.0 * M_PER_NM)
+        near = exact <= 10.0 * M_PER_NM
+        np.testing.assert_allclose(got[near], exact[near], rtol=0, atol=1e-6)
+        assert got.shape == (n,)
+    grid = geodesy.distance_within_m(np.zeros((3, 2)), np.ones((3, 2)), 0.0, 1.0, 1000.0)
+    assert grid.shape == (3, 2) and np.all(grid == 0.0)

@@ -19,7 +19,7 @@ import hashlib
 from collections.abc import Callable
 
 import numpy as np
-from shiproute_core.geodesy import inverse
+from shiproute_core.geodesy import distance_within_m
 from shiproute_core.units import M_PER_NM
 
 from .clearance import needed_clearance_nm
@@ -43,6 +43,7 @@ def rule_need(problem: RouteProblem) -> Callable[[np.ndarray, np.ndarray], np.nd
     room = default_room()
     rule = problem.limits.clearance
     cell = 180.0 / room.shape[0]
+    within_m = max(rule.free_radius_nm, rule.approach_zone_nm) * M_PER_NM
     ends = [(problem.dep_lon_deg, problem.dep_lat_deg),
             (problem.arr_lon_deg, problem.arr_lat_deg)]
 
@@ -50,8 +51,8 @@ def rule_need(problem: RouteProblem) -> Callable[[np.ndarray, np.ndarray], np.nd
         lon, lat = np.asarray(lon, dtype=float), np.asarray(lat, dtype=float)
         if rule.open_sea_nm == 0.0 and rule.approach_nm == 0.0:
             return np.zeros(lon.shape)
-        end_nm = np.min([np.asarray(inverse(lon, lat, np.full(lon.shape, e[0]),
-                                            np.full(lon.shape, e[1]))[1]) / M_PER_NM
+        # only the zone's edges matter: exact within them, a haversine beyond
+        end_nm = np.min([distance_within_m(lon, lat, e[0], e[1], within_m) / M_PER_NM
                          for e in ends], axis=0)
         i = np.clip(((lat + 90.0) // cell).astype(np.int64), 0, room.shape[0] - 1)
         j = np.clip((((lon + 180.0) % 360.0) // cell).astype(np.int64), 0, room.shape[1] - 1)
