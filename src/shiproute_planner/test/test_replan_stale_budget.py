@@ -4,7 +4,8 @@ cold plan from the same position with the same evaluation budget does, and when 
 its seeds stalls (a first use: coastal cells resolved, a kernel compiled, on a loaded
 machine) the seeding phase stops at its share of the budget and the GA still runs its
 generations within the budget, the full-resolution coastline tiles its candidates meet
-built meanwhile excused from its clock and stated."""
+built meanwhile excused from its clock and stated; and a re-plan whose sea lane is repaired
+afresh (a new position, a new lane) keeps its search's time, the repair stated."""
 
 from __future__ import annotations
 
@@ -175,3 +176,33 @@ def test_a_ship_late_for_its_strait_gets_its_own_passage_as_a_cold_plan_would(pr
         p_lon, _, _ = out.track()
         start = out.optimised_spans[0][0]
         assert p_lon[start] > TSUGARU_EAST_LON  # the search starts past the strait
+
+
+TSUGARU_EAST_SHIP = (41.565, 141.231)  # (lat, lon)
+REPAIR_STALL_S = 2.5  # a lane repaired afresh on a loaded machine (the demo's cycle 2: 7.4 s)
+
+
+def test_a_re_plan_whose_lane_is_repaired_afresh_keeps_its_search_time(previous, land_mask,
+                                                                       monkeypatch):
+    from shiproute_planner.geo import datadir
+    from shiproute_planner.route import seed_repair
+
+    # a new position is a new lane: its repair is computed, not read back (here: slowly)
+    computed = seed_repair._repaired
+
+    def slow(*args, **kwargs):
+        time.sleep(REPAIR_STALL_S)
+        return computed(*args, **kwargs)
+
+    monkeypatch.setattr(seed_repair, "SEED_REPAIR_VERSION", f"test-{time.time_ns()}")
+    monkeypatch.setattr(seed_repair, "_repaired", slow)
+    monkeypatch.setattr(datadir, "save_npz_atomic", lambda *a, **k: None)
+    # the demo's ship, just out of the Tsugaru Strait: its great circle to Long Beach
+    # crosses land, so its baseline sails the sea lane, repaired at full resolution
+    now = position_after(previous, 40.0)[2]
+    out = _plan2(previous, (*TSUGARU_EAST_SHIP, now), land_mask, budget_s=BUDGET_S)
+    said = [w for w in out.warnings if w.startswith("baseline: the sea lane ")]
+    assert said and "repaired at full resolution" in said[0], out.warnings
+    # charged to the search, the repair would leave it 3 - 2.5 s minus the checks' reserve
+    assert out.extra["timing_s"]["baselines"] >= REPAIR_STALL_S
+    assert out.extra["timing_s"]["search"] >= 0.6 * BUDGET_S
