@@ -219,6 +219,7 @@ def plan_leg(prep: PreparedVoyage, run: LegRun, k: int, request: VoyageRequest,
     repairs0 = repair_builds()
     base = compute_baseline(problem, prep.env, prep.land) if need else None
     run.warnings += repair_statement(repairs0, a.name, b.name)
+    search.clock.excuse(repair_builds()[1] - repairs0[1])
     search.clock.lap("baselines")
     wall_s, evals = leg_budget(prep, options, search, run, k, problem.n_var)
     ctx = MethodContext(problem, prep.env, prep.land, search.rng, wall_s, seeds,

@@ -6,10 +6,11 @@ search, then the checks of the finished plan (route check at full resolution, fo
 statement). The search of each span gets what the others left of `budget_s`
 (`voyage.spans.budget_share`); a plan that still overran says by how much and which phase
 took the time, so a budget that cannot be kept is never kept silently. Seconds spent building
-full-resolution coastline tiles (once per machine and region) and repairing a sea lane at
-full resolution (once per lane: a re-plan from a new position meets a new one) are not
-counted against the spans still to run (tiles up to the budget, `tile_allowance`), so a span that
-built tiles does not take the time of the next and a re-plan's search keeps its time.
+full-resolution coastline tiles (once per machine and region) and repairing a baseline's sea
+lane at full resolution (once per lane: a re-plan from a new position meets a new one) are
+not counted against the spans still to run (tiles up to the budget, `tile_allowance`), so a
+span that built tiles does not take the time of the next and a re-plan's search keeps its
+time.
 """
 
 from __future__ import annotations
@@ -18,7 +19,6 @@ import time
 from dataclasses import dataclass, field
 
 from .geo.fine_distance import tile_builds
-from .route.seed_repair import repair_builds
 
 PHASES = ("set-up", "passages", "baselines", "search", "checks")
 # a plan may end this much after its budget before it says so: the search stops at its
@@ -65,7 +65,7 @@ class PlanClock:
     spent_s: dict[str, float] = field(default_factory=lambda: dict.fromkeys(PHASES, 0.0))
     mark: float = field(default=0.0)
     tiles_s0: float = field(default_factory=lambda: tile_builds()[1])  # tile builds at start
-    repairs_s0: float = field(default_factory=lambda: repair_builds()[1])  # lane repairs
+    excused_s: float = 0.0  # one-off work before a search (a baseline's lane repair) [s]
 
     def __post_init__(self) -> None:
         self.mark = self.t0
@@ -74,9 +74,10 @@ class PlanClock:
         """Seconds spent building coastline tiles since the plan started."""
         return max(tile_builds()[1] - self.tiles_s0, 0.0)
 
-    def repair_s(self) -> float:
-        """Seconds spent repairing sea lanes at full resolution since the plan started."""
-        return max(repair_builds()[1] - self.repairs_s0, 0.0)
+    def excuse(self, seconds: float) -> None:
+        """Not charge `seconds` of one-off work before a search (a baseline's sea lane
+        repaired afresh, once per span) to the searches still to run."""
+        self.excused_s += max(seconds, 0.0)
 
     def elapsed_s(self) -> float:
         """Seconds since the plan started."""
@@ -91,9 +92,9 @@ class PlanClock:
 
     def left_s(self, budget_s: float) -> float:
         """Budget left for the searches still to run, keeping the checks' reserve (tile
-        builds so far excused up to the budget: a search may meet tiles without end; lane
-        repairs, one per span, in full)."""
-        excused = min(self.tile_build_s(), budget_s) + self.repair_s()
+        builds so far excused up to the budget: a search may meet tiles without end; work
+        `excuse`d before a search, in full)."""
+        excused = min(self.tile_build_s(), budget_s) + self.excused_s
         return (budget_s - self.elapsed_s() + excused
                 - checks_reserve_s(budget_s, self.checks_measured_s))
 
