@@ -33,14 +33,24 @@ SEED_REPAIR_VERSION = 4  # in the cache key: bump when the repair changes
 # island ~15 NM across off a coast) keep the rule instead of relaxing it in the channel
 WINDOWS_NM = (4.0, 12.0, 30.0)
 LEVEL1_SLACK_NM = 0.7  # level 1's looseness (a fine diagonal, the coastline band, one step)
-_COMPUTED = [0, 0.0]  # repairs computed (not read from the data directory) and their seconds
+
+
+@dataclasses.dataclass
+class _Computed:
+    """Repairs this process computed (not read from the data directory) and their seconds."""
+
+    repairs: int = 0
+    seconds: float = 0.0
+
+
+_COMPUTED = _Computed()
 
 
 def repair_builds() -> tuple[int, float]:
     """(repairs, seconds) this process has computed rather than read back: one-off work a
     plan's clock does not charge to its search (a re-plan from a new position repairs its
     lane afresh)."""
-    return _COMPUTED[0], _COMPUTED[1]
+    return _COMPUTED.repairs, _COMPUTED.seconds
 
 
 def rule_need(problem: RouteProblem) -> Callable[[np.ndarray, np.ndarray], np.ndarray]:
@@ -118,8 +128,8 @@ def repaired_seed_track(problem: RouteProblem, lon: np.ndarray, lat: np.ndarray
         pass
     t0 = time.perf_counter()
     out_lon, out_lat, left = _repaired(problem, lon, lat)
-    _COMPUTED[0] += 1
-    _COMPUTED[1] += time.perf_counter() - t0
+    _COMPUTED.repairs += 1
+    _COMPUTED.seconds += time.perf_counter() - t0
     path.parent.mkdir(parents=True, exist_ok=True)
     save_npz_atomic(path, lon=out_lon, lat=out_lat, left=np.array(left))
     return out_lon, out_lat, left
