@@ -16,7 +16,8 @@ GEOD = Geod(ellps="WGS84")
 EARTH_MEAN_RADIUS_M = 6_371_008.8  # IUGG mean radius R1 = (2a + b) / 3 of WGS 84
 __all__ = ["EARTH_MEAN_RADIUS_M", "GEOD", "M_PER_NM", "bearing_deg", "cross_track_m",
            "densify_track", "destination", "direct", "distance_m", "distance_within_m",
-           "great_circle_points", "inverse", "track_length_m", "unwrap_near", "wrap_lon"]
+           "great_circle_points", "inverse", "spherical_m", "track_length_m", "unwrap_near",
+           "wrap_lon"]
 
 
 def wrap_lon(lon_deg: ArrayLike) -> np.ndarray:
@@ -84,8 +85,19 @@ def distance_m(lon0_deg: ArrayLike, lat0_deg: ArrayLike, lon1_deg: ArrayLike,
 
 
 # largest relative gap between the WGS 84 geodesic and the great circle on the mean sphere
-# (meridian arcs near the poles/equator), with room to spare
+# (under 0.6 %: the ellipsoid's flattening is 1/298), with room to spare
 SPHERE_GAP = 0.01
+
+
+def spherical_m(lon_deg: ArrayLike, lat_deg: ArrayLike, to_lon_deg: float,
+                to_lat_deg: float) -> np.ndarray:
+    """Great-circle distances [m] on the mean-radius sphere (haversine): within SPHERE_GAP
+    of the WGS 84 geodesic, at a fraction of its cost."""
+    lon, lat = np.radians(lon_deg), np.radians(lat_deg)
+    lon0, lat0 = np.radians(to_lon_deg), np.radians(to_lat_deg)
+    h = (np.sin((lat - lat0) / 2.0) ** 2
+         + np.cos(lat) * np.cos(lat0) * np.sin((lon - lon0) / 2.0) ** 2)
+    return 2.0 * EARTH_MEAN_RADIUS_M * np.arcsin(np.sqrt(np.clip(h, 0.0, 1.0)))
 
 
 def distance_within_m(lon_deg: ArrayLike, lat_deg: ArrayLike, lon1_deg: float, lat1_deg: float,
@@ -97,10 +109,7 @@ def distance_within_m(lon_deg: ArrayLike, lat_deg: ArrayLike, lon1_deg: float, l
                                    np.asarray(lat_deg, dtype=float))
     shape = lon.shape
     lon, lat = lon.ravel(), lat.ravel()
-    phi0, phi1 = np.radians(lat), np.radians(lat1_deg)
-    h = (np.sin(0.5 * (phi1 - phi0)) ** 2
-         + np.cos(phi0) * np.cos(phi1) * np.sin(0.5 * np.radians(lon1_deg - lon)) ** 2)
-    out = 2.0 * EARTH_MEAN_RADIUS_M * np.arcsin(np.sqrt(np.clip(h, 0.0, 1.0)))
+    out = spherical_m(lon, lat, lon1_deg, lat1_deg)
     near = out <= within_m * (1.0 + SPHERE_GAP) + 1.0
     if near.any():
         out[near] = inverse(lon[near], lat[near], np.full(int(near.sum()), lon1_deg),

@@ -182,10 +182,9 @@ def _keep_clear(a, turn, b, canal: Canal, depth: int = 3) -> list:
 def _farthest_way_round(a, b, passage: str) -> tuple[float, float] | None:
     """(lat, lon) of the point of searoute's lane from a to b that avoids `passage` lying
     farthest from the lane that uses it; None without such a lane."""
-    from shiproute_core.geodesy import densify_track
+    from shiproute_core.geodesy import densify_track, spherical_m
 
     from ..geo.sea_lanes import sea_lane_between
-    from .nearest import spherical_m
 
     ends = (a.lon_deg, a.lat_deg, b.lon_deg, b.lat_deg)
     around, through = sea_lane_between(*ends, avoid=(passage,)), sea_lane_between(*ends)

@@ -11,21 +11,10 @@ every plan's set-up with a geodesic to every node."""
 from __future__ import annotations
 
 import numpy as np
-from shiproute_core.geodesy import inverse
+from shiproute_core.geodesy import SPHERE_GAP, inverse, spherical_m
 
-MEAN_EARTH_RADIUS_M = 6_371_008.8  # IUGG mean radius R1 of the WGS 84 ellipsoid
-SPHERE_TOLERANCE = 0.01  # > the sphere's largest relative error against WGS 84 geodesics
+SPHERE_TOLERANCE = SPHERE_GAP  # > the sphere's largest relative error against WGS 84 geodesics
 SPHERE_SLACK_M = 1.0  # and an absolute one for nodes on top of the point
-
-
-def spherical_m(lon_deg: np.ndarray, lat_deg: np.ndarray, to_lon_deg: float,
-                to_lat_deg: float) -> np.ndarray:
-    """Great-circle distances [m] on the mean-radius sphere (haversine)."""
-    lon, lat = np.radians(lon_deg), np.radians(lat_deg)
-    lon0, lat0 = np.radians(to_lon_deg), np.radians(to_lat_deg)
-    h = (np.sin((lat - lat0) / 2.0) ** 2
-         + np.cos(lat) * np.cos(lat0) * np.sin((lon - lon0) / 2.0) ** 2)
-    return 2.0 * MEAN_EARTH_RADIUS_M * np.arcsin(np.sqrt(np.clip(h, 0.0, 1.0)))
 
 
 def nearest_node(lon_deg: np.ndarray, lat_deg: np.ndarray, to_lon_deg: float,
