@@ -30,7 +30,7 @@ from .route.passages import (
     passage_length_nm,
 )
 
-PASSAGE_CACHE_VERSION = 7
+PASSAGE_CACHE_VERSION = 8
 SQUAT_SPEED_KN = 12.0  # speed whose squat the passage's depth limit includes
 _MEMO: dict[str, Passage | None] = {}
 

@@ -28,9 +28,10 @@ from .route.land_repair import RepairRules, repaired_track
 from .route.passages import best_land_polygons
 from .route.problem import RouteLimits, RouteProblem
 from .route.sail import sail_tracks
+from .route_check import BERTH_RADIUS_M
 from .seed_ga import with_land_legs
 
-PORT_RADIUS_M = 3000.0  # round a berth the land is not checked (the route check's default)
+PORT_RADIUS_M = BERTH_RADIUS_M  # round a berth the land is not checked (the route check's)
 INSERTED = (" gate", " entrance", " exit")  # names of points the planner inserts in a leg
 KEEP_ETA_ROUNDS = 3  # RPM corrections that bring a repaired span back to its arrival time
 

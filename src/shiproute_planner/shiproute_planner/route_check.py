@@ -53,6 +53,10 @@ class CheckResult:
         return not self.violations
 
 
+#: round a berth (along the track from it) land is not tested: harbour basins and the snap of a
+#: gazetteer position onto water are the pilot's
+BERTH_RADIUS_M = 3000.0
+
 #: sample spacing along each leg (0.25 NM): the planner's final choice samples its candidates at
 #: the same points, so a plan it chooses never fails this check for land between samples
 CHECK_STEP_M = M_PER_NM / 4.0
@@ -68,7 +72,7 @@ def check_track(lon_deg: np.ndarray, lat_deg: np.ndarray, speed_kn: np.ndarray,
                 clearance_nm: float = 0.0, land_near: Callable | None = None,
                 under_keel: UnderKeel | None = None,
                 hs_m: np.ndarray | None = None, zones: Zones | None = None,
-                step_m: float = CHECK_STEP_M, port_clearance_m: float = 3000.0,
+                step_m: float = CHECK_STEP_M, port_clearance_m: float = BERTH_RADIUS_M,
                 skip_legs: frozenset[int] = frozenset()) -> CheckResult:
     """Check a polyline (continuous longitudes) sailed at `speed_kn` per leg; the first and
     last `port_clearance_m` (berths) are not tested for land, clearance or depth, nor are

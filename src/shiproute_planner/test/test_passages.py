@@ -99,6 +99,45 @@ def test_narrows_keep_the_largest_clearance_that_fits():
     assert 0.25 - half_diagonal_nm <= _min_distance_nm(p.lon_deg, p.lat_deg, land) <= 0.5
 
 
+def _lagoon(east_gap_nm: float) -> tuple[LandPolygons, shapely.MultiPolygon]:
+    """A square frame of land (outer half-width 2.5 NM, inner 1 NM) round a lagoon centred
+    on (0, LAT0), its east side open `east_gap_nm` wide (0: closed) on the centre line."""
+    def box(x0: float, y0: float, x1: float, y1: float) -> list[tuple[float, float]]:
+        return _box(x0 * NM_LON, LAT0 + y0 * NM_LAT, x1 * NM_LON, LAT0 + y1 * NM_LAT)
+
+    h = 0.5 * east_gap_nm
+    parts = [box(-2.5, 1.0, 2.5, 2.5), box(-2.5, -2.5, 2.5, -1.0), box(-2.5, -1.0, -1.0, 1.0)]
+    parts += ([box(1.0, -1.0, 2.5, 1.0)] if h == 0.0 else
+              [box(1.0, h, 2.5, 1.0), box(1.0, -1.0, 2.5, -h)])
+    return _land(*parts), shapely.MultiPolygon([shapely.Polygon(b) for b in parts])
+
+
+LAGOON_LANE_LON = np.array([0.0, 8.0 * NM_LON])  # berth mid-lagoon, lane east to open sea
+LAGOON_LANE_LAT = np.array([LAT0, LAT0])
+
+
+def test_a_departure_never_cuts_across_land_past_the_berths_radius_to_reach_the_sea():
+    from shiproute_planner.route_check import BERTH_RADIUS_M
+
+    # a closed lagoon: the sea lies 1.5 NM of land away, 2.5 NM (4.6 km) from the berth, inside
+    # the berth zone (3 NM) where a passage keeps no clearance, but past the 3 km round the
+    # berth that the route check leaves to the pilot: no passage may jump the land there
+    exact, land = _lagoon(0.0)
+    p = compute_passage(LAGOON_LANE_LON, LAGOON_LANE_LAT, PassageRules(), polygons=exact)
+    if p is not None:
+        d_lon, d_lat = densify_track(p.lon_deg, p.lat_deg, 20.0)
+        along = np.arange(np.asarray(d_lon).size) * 20.0
+        far = along > BERTH_RADIUS_M
+        assert not shapely.intersects_xy(land, np.asarray(d_lon)[far],
+                                         np.asarray(d_lat)[far]).any()
+    # opened by a 0.6 NM channel east, the lagoon has a way out, and the passage takes it
+    exact, land = _lagoon(0.6)
+    p = compute_passage(LAGOON_LANE_LON, LAGOON_LANE_LAT, PassageRules(), polygons=exact)
+    assert p is not None
+    d_lon, d_lat = densify_track(p.lon_deg, p.lat_deg, 20.0)
+    assert not shapely.intersects_xy(land, np.asarray(d_lon), np.asarray(d_lat)).any()
+
+
 def _flat_grid(depth_m: float, cell_deg: float, shoal=None) -> DepthGrid:
     """A regular grid of constant depth round the test area, with an optional shoal
     (lon0, lat0, lon1, lat1, depth) where it reads shallower."""

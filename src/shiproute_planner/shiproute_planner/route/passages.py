@@ -298,7 +298,6 @@ def compute_passage(lane_lon: np.ndarray, lane_lat: np.ndarray, rules: PassageRu
                     polygons=None) -> Passage | None:
     """Passage from `lane[0]` (port) to `lane[-1]` (sea end), continuous longitudes; None
     when no corridor has a way through or the result fails the dense land check."""
-    from shiproute_core.geodesy import densify_track
 
     polygons = polygons if polygons is not None else best_land_polygons()
     lane_lon = np.asarray(lane_lon, dtype=float)
@@ -321,12 +320,7 @@ def compute_passage(lane_lon: np.ndarray, lane_lat: np.ndarray, rules: PassageRu
         p = solve_on_grid(grid, lon_f, lane_lat, rules, corridor_nm)
         if p is None:
             continue
-        d_lon, d_lat = densify_track(p.lon_deg, p.lat_deg, 0.4 * p.cell_nm * M_PER_NM)
-        d_lon, d_lat = np.asarray(d_lon, dtype=float), np.asarray(d_lat, dtype=float)
-        _, from_port = inverse(np.full(d_lon.size, p.lon_deg[0]),
-                               np.full(d_lat.size, p.lat_deg[0]), d_lon, d_lat)
-        out = np.asarray(from_port) > rules.berth_nm * M_PER_NM
-        if np.any(on_land(land, d_lon[out], d_lat[out])):
+        if _crosses_land(p, land, rules):
             continue
         p = Passage(p.lon_deg + shift, p.lat_deg, p.clearance_nm, p.depth_limited,
                     corridor_nm, p.cell_nm)
@@ -340,6 +334,23 @@ def compute_passage(lane_lon: np.ndarray, lane_lat: np.ndarray, rules: PassageRu
         found = p  # narrow water: finer cells may leave a wider clearance; shallow water:
         # a wider corridor may hold the deep-water route
     return found
+
+
+def _crosses_land(p: Passage, land: list, rules: PassageRules) -> bool:
+    """True when the passage's dense samples (0.4 cells apart) touch land beyond the berth's:
+    past `BERTH_RADIUS_M` along the track from the port, as the route check tests it (the
+    berth zone keeps no clearance, but a leg from the berth to a basin the grid reaches only
+    round a headland must not cut across it)."""
+    from shiproute_core.geodesy import densify_track
+
+    from ..route_check import BERTH_RADIUS_M
+
+    d_lon, d_lat = densify_track(p.lon_deg, p.lat_deg, 0.4 * p.cell_nm * M_PER_NM)
+    d_lon, d_lat = np.asarray(d_lon, dtype=float), np.asarray(d_lat, dtype=float)
+    _, step = inverse(d_lon[:-1], d_lat[:-1], d_lon[1:], d_lat[1:])
+    along = np.concatenate([[0.0], np.cumsum(np.atleast_1d(np.asarray(step, dtype=float)))])
+    out = along > min(rules.berth_nm * M_PER_NM, BERTH_RADIUS_M)
+    return bool(np.any(on_land(land, d_lon[out], d_lat[out])))
 
 
 def _keeps_depth(p: Passage, rules: PassageRules) -> bool:
