@@ -33,6 +33,30 @@ ALIASES: dict[str, str] = {
     "hamilton, bermuda": "hamilton",
     "leghorn": "livorno",
     "copenhagen": "kobenhavn",
+    "algiers": "alger",
+    "marseilles": "marseille",
+    "athens": "piraeus",
+    "oporto": "leixoes",
+    "nantes": "montoir de bretagne",  # Nantes-Saint-Nazaire's terminals at the Loire mouth
+    "saint-nazaire": "montoir de bretagne",
+    "st nazaire": "montoir de bretagne",
+    "nantes saint-nazaire": "montoir de bretagne",
+    "gqeberha": "port elizabeth",
+    "vizag": "vishakhapatnam",
+    "visakhapatnam": "vishakhapatnam",
+    "canton": "guangzhou",
+    "amoy": "xiamen",
+    "tientsin": "tianjin",
+    "batavia": "jakarta",
+    "smyrna": "izmir",
+    "salonica": "thessaloniki",
+    "salonika": "thessaloniki",
+    "constantinople": "istanbul",
+    "flushing": "vlissingen",
+    "bruges": "zeebgrugge",
+    "lourenco marques": "maputo",
+    "lima": "callao",
+    "glasgow": "greenock",  # the Clyde's deep-water port
     # the gazetteer's spellings and qualified names that a typed name does not reach
     "dunkirk": "dunkerque",  # the gazetteer's "Dunkirk" is Dunkirk, New York, on Lake Erie
     "dunkirk, france": "dunkerque",
@@ -71,6 +95,9 @@ RIVER_PORTS: dict[str, tuple[str, float, float]] = {
     "ESSVQ": ("Guadalquivir (mouth, off Chipiona)", 36.78, -6.47),
     "GBMNC": ("Manchester Ship Canal and the Mersey (Mersey Bar)", 53.53, -3.30),
     "VNSGN": ("Saigon River (Long Tau channel, pilot boarding off Vung Tau)", 10.28, 107.05),
+    "MMRGN": ("Yangon River (bar south of Elephant Point, pilot boarding area)", 16.35, 96.30),
+    "BDCGP": ("Karnaphuli River (mouth, pilot boarding off Patenga)", 22.18, 91.77),
+    "CNCAN": ("Pearl River (Lingding Yang off Nansha, below the Humen narrows)", 22.60, 113.68),
     # an archipelago fairway narrower than the finest passage grid (0.1 NM: Oxdjupet is
     # ~150 m wide), under compulsory pilotage
     "SESTO": ("Stockholm archipelago fairway (Sandhamn approach, pilot boarding area)",

@@ -13,7 +13,8 @@ from shiproute_planner.geo.ports import lookup_port, resolve_port
 @pytest.mark.parametrize(("typed", "locode"), [
     ("Genoa", "ITGOA"), ("Genova", "ITGOA"), ("Hamilton", "BMBDA"), ("Bermuda", "BMBDA"),
     ("Naples", "ITNAP"), ("Antwerp", "BEANR"), ("Gothenburg", "SEGOT"), ("itgoa", "ITGOA"),
-    ("DE HAM", "DEHAM"),
+    ("DE HAM", "DEHAM"), ("Algiers", "DZALG"), ("Nantes", "FRMTX"), ("Gqeberha", "ZAPLZ"),
+    ("Glasgow", "GBGRK"), ("Athens", "GRPIR"),
 ])
 def test_aliases_and_locodes(typed, locode):
     assert lookup_port(typed).locode == locode
@@ -24,6 +25,10 @@ def test_aliases_and_locodes(typed, locode):
     ("Houston", (29.33, -94.70), 10), ("Hamburg", (53.95, 8.30), 15),
     ("Antwerp", (51.42, 3.50), 15), ("Montreal", (48.30, -69.40), 15),
     ("Portland", (46.25, -124.08), 10),  # Columbia River entrance between the jetties
+    # river mouths' landmarks: Elephant Point (Yangon River), Patenga (Karnaphuli), the Humen
+    # narrows (Pearl River); the pilot areas lie seaward of them
+    ("Yangon", (16.48, 96.32), 15), ("Chittagong", (22.23, 91.79), 10),
+    ("Guangzhou", (22.80, 113.65), 20),
 ])
 def test_river_ports_start_at_sea_and_say_so(land_mask, name, sea_end, max_nm):
     port = resolve_port(name, land_mask)
