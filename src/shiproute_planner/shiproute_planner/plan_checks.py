@@ -13,10 +13,11 @@ from __future__ import annotations
 
 import dataclasses
 import itertools
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from pathlib import Path
 
 import numpy as np
+from shiproute_core.flags import FLAG_LAND, FLAG_NAMES
 from shiproute_core.geodesy import inverse
 
 from .geo.full_land import final_land
@@ -146,11 +147,28 @@ def checked_plan(plan: RoutePlan, land: LandMask, limits: RouteLimits,
     # deciding; elsewhere the optimiser's own UKC constraint has decided already. Land
     # decides on every leg checked (approaches and straits are repaired like the spans).
     bad = [v for v in found if v.kind == "land" or (planned[v.leg] and v.kind != "depth")]
+    plan = with_clearance_reason(plan, found)
     if bad and plan.feasible:
         return dataclasses.replace(
             plan, warnings=tuple(warnings), feasible=False, infeasible_reasons=tuple(
                 dict.fromkeys(f"route check: {v.kind} on leg {v.leg}" for v in bad)))
     return dataclasses.replace(plan, warnings=tuple(warnings))
+
+
+CLEARANCE_REASON = ("closer to land than the clearance rule (the route check finds no land at "
+                    "full resolution: see the clearance check)")
+
+
+def with_clearance_reason(plan: RoutePlan, found: Iterable[Violation]) -> RoutePlan:
+    """The plan with its search's land verdict named for what it is when the route check
+    finds no land on any leg: the search counts legs closer to land than its clearance rule
+    with those on land (one constraint), so "crosses land" would misstate a shortfall."""
+    land = FLAG_NAMES[FLAG_LAND]
+    if plan.feasible or land not in plan.infeasible_reasons or any(
+            v.kind == "land" for v in found):
+        return plan
+    return dataclasses.replace(plan, infeasible_reasons=tuple(
+        CLEARANCE_REASON if r == land else r for r in plan.infeasible_reasons))
 
 
 def clearance_shortfalls(plan: RoutePlan, limits: RouteLimits) -> list[tuple[int, float, float]]:

@@ -198,3 +198,24 @@ def test_plan_check_decides_on_land_on_any_leg_at_full_resolution():
                        default_land_mask(), limits)
     assert out.feasible and not out.baseline_feasible
     assert any(w.startswith("baseline (constant RPM) touches land") for w in out.warnings)
+
+
+def test_a_search_land_verdict_without_land_at_full_resolution_is_named_a_clearance_shortfall():
+    """The search counts legs nearer land than its clearance with legs on land; the plan's
+    reason says which it was, by the route check on the full-resolution coastline."""
+    from shiproute_core.flags import FLAG_LAND, FLAG_NAMES
+    from shiproute_planner.geo.landmask import default_land_mask
+    from shiproute_planner.plan_checks import CLEARANCE_REASON, checked_plan
+
+    (lon0, lat0), (lon1, lat1) = SCILLY
+    limits = route_limits(make_environment("container_4600teu")[1])
+    flagged = {"feasible": False, "infeasible_reasons": (FLAG_NAMES[FLAG_LAND],)}
+    clear = dataclasses.replace(_plan_through(
+        [lon0 - 0.5, lon0, lon0 + 0.1], [lat0, lat0, lat0 - 0.2], ((0, 1),),
+        {0: "a", 2: "b"}), **flagged)
+    out = checked_plan(clear, default_land_mask(), limits)
+    assert out.infeasible_reasons == (CLEARANCE_REASON,)
+    over = dataclasses.replace(_plan_through(
+        [lon0 - 0.5, lon0, lon1], [lat0, lat0, lat1], ((0, 1),), {0: "a", 2: "b"}), **flagged)
+    out = checked_plan(over, default_land_mask(), limits)
+    assert out.infeasible_reasons == (FLAG_NAMES[FLAG_LAND],)
