@@ -22,13 +22,13 @@ import numpy as np
 from .coastal_passages import passage_rules
 from .geo.full_land import FinalLand, final_land
 from .geo.ports import Port
+from .route.berths import BERTH_RADIUS_M
 from .route.environment import Environment
 from .route.evaluation import RouteEvaluation
 from .route.land_repair import RepairRules, repaired_track
 from .route.passages import best_land_polygons
 from .route.problem import RouteLimits, RouteProblem
 from .route.sail import sail_tracks
-from .route_check import BERTH_RADIUS_M
 from .seed_ga import with_land_legs
 
 PORT_RADIUS_M = BERTH_RADIUS_M  # round a berth the land is not checked (the route check's)

@@ -18,6 +18,7 @@ from shiproute_core.geodesy import densify_track, inverse, wrap_lon
 from shiproute_core.units import M_PER_NM
 
 from .geo.zones import Zones
+from .route.berths import BERTH_RADIUS_M
 from .route.track_samples import track_samples
 from .route.under_keel import UnderKeel
 
@@ -52,10 +53,6 @@ class CheckResult:
         """True when nothing is violated."""
         return not self.violations
 
-
-#: round a berth (along the track from it) land is not tested: harbour basins and the snap of a
-#: gazetteer position onto water are the pilot's
-BERTH_RADIUS_M = 3000.0
 
 #: sample spacing along each leg (0.25 NM): the planner's final choice samples its candidates at
 #: the same points, so a plan it chooses never fails this check for land between samples

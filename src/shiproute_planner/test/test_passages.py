@@ -117,7 +117,7 @@ LAGOON_LANE_LAT = np.array([LAT0, LAT0])
 
 
 def test_a_departure_never_cuts_across_land_past_the_berths_radius_to_reach_the_sea():
-    from shiproute_planner.route_check import BERTH_RADIUS_M
+    from shiproute_planner.route.berths import BERTH_RADIUS_M
 
     # a closed lagoon: the sea lies 1.5 NM of land away, 2.5 NM (4.6 km) from the berth, inside
     # the berth zone (3 NM) where a passage keeps no clearance, but past the 3 km round the

@@ -42,6 +42,7 @@ from shiproute_core.geodesy import M_PER_NM, inverse
 
 from ..geo.gshhg import finest_resolution as best_land_resolution
 from ..geo.nav_grid import NavGrid, build_nav_grid, grid_box, land_in_box, on_land
+from .berths import BERTH_RADIUS_M
 
 # (d_row, d_col) of the 8 "forward" moves of a 16-neighbour stencil and the cells they cross
 _MOVES = ((0, 1), (1, 0), (1, 1), (1, -1), (1, 2), (2, 1), (1, -2), (2, -1))
@@ -342,8 +343,6 @@ def _crosses_land(p: Passage, land: list, rules: PassageRules) -> bool:
     berth zone keeps no clearance, but a leg from the berth to a basin the grid reaches only
     round a headland must not cut across it)."""
     from shiproute_core.geodesy import densify_track
-
-    from ..route_check import BERTH_RADIUS_M
 
     d_lon, d_lat = densify_track(p.lon_deg, p.lat_deg, 0.4 * p.cell_nm * M_PER_NM)
     d_lon, d_lat = np.asarray(d_lon, dtype=float), np.asarray(d_lat, dtype=float)
