@@ -30,7 +30,7 @@ from .route.passages import (
     passage_length_nm,
 )
 
-PASSAGE_CACHE_VERSION = 8
+PASSAGE_CACHE_VERSION = 9
 SQUAT_SPEED_KN = 12.0  # speed whose squat the passage's depth limit includes
 _MEMO: dict[str, Passage | None] = {}
 
@@ -104,7 +104,7 @@ def computed_approach(ap: Approach | None, port_name: str, arrival: bool,
                            "own geometry is sailed, not land-checked before the route check"]
     else:
         failed = [f"coastal passage ({where}): no way through navigable water at "
-                  f"{rules.fine_cell_nm:g} NM resolution within "
+                  f"{rules.finest_cell_nm:g} NM resolution within "
                   f"{max(rules.corridors_nm):g} NM of the sea lane; the lane's own geometry "
                   "is sailed (see the route check)"]
     if ap.fallback is not None and (p is None or not _keeps_depth(p, rules)):

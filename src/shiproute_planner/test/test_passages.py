@@ -4,10 +4,12 @@ shallows next to the coast, and a real estuary (the Elbe) clean at GSHHG full re
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 import shapely
-from shiproute_core.geodesy import densify_track
+from shiproute_core.geodesy import densify_track, inverse
 from shiproute_planner.geo.bathymetry import DepthGrid
 from shiproute_planner.geo.depth import Bathymetry
 from shiproute_planner.geo.gshhg import LandPolygons
@@ -308,3 +310,28 @@ def test_a_ship_too_deep_for_the_sound_goes_through_the_great_belt_on_water():
     # west of the Sound all the way: the passage never enters it (east of 12.4 E north of
     # 55.3 N)
     assert not np.any((d_lon > 12.4) & (d_lat > 55.3))
+
+
+def test_sydneys_inner_harbour_berth_is_left_on_a_finer_grid_and_off_land(land_mask):
+    """The gazetteer's Sydney lies in the inner harbour, whose basins join Port Jackson through
+    channels of a few hundred metres: nothing connects at 0.1-NM cells, 0.05-NM cells do, and
+    the passage stays off GSHHG full-resolution land past the berth's 3 km."""
+    from shiproute_planner.coastal_passages import passage_rules
+    from shiproute_planner.geo.ports import resolve_port
+    from shiproute_planner.route.approach import lane_approaches
+    from shiproute_planner.route.berths import BERTH_RADIUS_M
+
+    if best_land_resolution() != "f":
+        pytest.skip("needs GSHHG full resolution")
+    dep = lane_approaches(resolve_port("Sydney", land_mask), resolve_port("Brisbane", land_mask),
+                          25 * 1852.0)[0]
+    rules = passage_rules(None)
+    no_finest = dataclasses.replace(rules, finest_cell_nm=rules.fine_cell_nm)
+    assert compute_passage(dep.lon_deg, dep.lat_deg, no_finest) is None
+    p = compute_passage(dep.lon_deg, dep.lat_deg, rules)
+    assert p is not None and p.cell_nm == rules.finest_cell_nm
+    d_lon, d_lat = (np.asarray(a) for a in densify_track(p.lon_deg, p.lat_deg, 20.0))
+    _, step = inverse(d_lon[:-1], d_lat[:-1], d_lon[1:], d_lat[1:])
+    along = np.concatenate([[0.0], np.cumsum(step)])
+    far = along > BERTH_RADIUS_M
+    assert not _on_full_land(d_lon[far], d_lat[far])

@@ -14,7 +14,9 @@ against the land polygons every 0.4 cells. Where nothing fits at `cell_nm` (a ri
 sound or fjord narrower than a few cells), or only with less than the full clearance (a
 strait's narrows lose a cell of width to each rasterised shore), the grid is refined to
 `fine_cell_nm` before the corridor is widened, and the finer passage is kept when it leaves
-more clearance.
+more clearance. Where nothing at all fits at `fine_cell_nm` (an inner harbour whose basins
+join the sea through channels of a few hundred metres: Sydney's), `finest_cell_nm` is tried
+on grids of at most `FINEST_MAX_CELLS` before the corridor is widened.
 
 Clearance: the passage keeps `clearances_nm[0]` (0.5 NM) from land where it can; a strait or
 channel too narrow for it (Bosphorus, Dardanelles, an estuary) gets the largest clearance of
@@ -55,6 +57,9 @@ _CROSSED = {(0, 1): (), (1, 0): (), (1, 1): ((0, 1), (1, 0)), (1, -1): ((0, -1),
 #: for a ship with a depth limit: a passage keeps to water known deep enough where it can
 #: (the smeared band between a coast and its offshore banks is often shallower still)
 UNKNOWN_DEPTH_COST = 1.0
+#: the largest grid [cells] `finest_cell_nm` is tried on (~1-2 s to solve; a long strait's
+#: corridor at 0.05 NM would take far longer)
+FINEST_MAX_CELLS = 1_500_000
 
 
 @dataclass(frozen=True)
@@ -64,6 +69,7 @@ class PassageRules:
     clearances_nm: tuple[float, ...] = (0.5, 0.25, 0.1, 0.0)
     cell_nm: float = 0.25
     fine_cell_nm: float = 0.1  # tried when nothing fits at `cell_nm` (rivers, sounds, fjords)
+    finest_cell_nm: float = 0.05  # tried when nothing fits at `fine_cell_nm` (inner harbours)
     corridors_nm: tuple[float, ...] = (10.0, 30.0)
     berth_nm: float = 3.0
     pilotage_nm: float = 10.0
@@ -306,14 +312,21 @@ def compute_passage(lane_lon: np.ndarray, lane_lat: np.ndarray, rules: PassageRu
     shift = 360.0 * np.round(np.mean(lane_lon) / 360.0)
     lon_f = lane_lon - shift
     tries = [(rules.corridors_nm[0], rules.cell_nm), (rules.corridors_nm[0], rules.fine_cell_nm),
+             *([(rules.corridors_nm[0], rules.finest_cell_nm)]
+               if rules.finest_cell_nm < rules.fine_cell_nm else []),
              *((w, rules.cell_nm) for w in rules.corridors_nm[1:])]
     found: Passage | None = None
     for corridor_nm, cell_nm in tries:
         if found is not None and _keeps_depth(found, rules) and (
                 cell_nm >= found.cell_nm or corridor_nm > found.corridor_nm):
             return found
+        finest = cell_nm < rules.fine_cell_nm
+        if finest and found is not None:
+            continue  # the finest grid only where nothing fits at all
         box = grid_box(lon_f, lane_lat, corridor_nm + 2.0, cell_nm)
         lon0, lat0, dlon, dlat, rows, cols = box
+        if finest and rows * cols > FINEST_MAX_CELLS:
+            continue
         if lon0 < -180.0 or lon0 + cols * dlon > 180.0:
             return None  # a box across the antimeridian: not supported, the lane is kept
         land = land_in_box(polygons, lon0, lat0, lon0 + cols * dlon, lat0 + rows * dlat)
