@@ -10,7 +10,8 @@ and does not, ocean crossings, high latitudes, voyages with port calls in the op
 column, separated by ';'), for checking on voyages the planner was not developed on.
 
 A lane is land-clean when no sample of its track (every 0.25 NM) lies on GSHHG
-full-resolution land outside 3 NM round each port and outside canals (fixed passages under
+full-resolution land outside 3 NM round each port (port calls included: the track is checked
+berth to berth, as the plan checks itself) and outside canals (fixed passages under
 their authorities' rules), and depth-checked when the plan was made
 with bathymetry and every planned leg's depth was known or named by the plan as crossing a
 coarse grid's coastal cells (`geo.coarse_coast`: no UKC constraint there, the coastline
@@ -23,6 +24,8 @@ from __future__ import annotations
 import argparse
 import contextlib
 import csv
+import dataclasses
+import itertools
 import json
 import statistics
 import time
@@ -36,6 +39,7 @@ from shiproute_core.units import M_PER_NM
 from ... import planning
 from ...errors import PlannerError
 from ...io.files import write_plan_files
+from ...plan_checks import berth_cuts
 from ...request import PlanOptions, VoyageRequest, voyage_times
 from ...route_check import check_track
 
@@ -110,6 +114,23 @@ def _warm_process(lane: dict[str, str]) -> float:
     return time.perf_counter() - t0
 
 
+def _land_findings(plan, lon: np.ndarray, lat: np.ndarray, fixed: frozenset[int], contains
+                   ) -> list:
+    """Land findings on the plan's track from berth to berth (port calls included), each
+    part outside 3 NM round its berths and off the canals sailed as fixed passages."""
+    speed = np.array([w.stw_kn for w in plan.waypoints[:-1]])
+    found = []
+    for a, b in itertools.pairwise(berth_cuts(plan)):
+        if b <= a:
+            continue
+        part = check_track(lon[a:b + 1], lat[a:b + 1], speed[a:b], contains,
+                           port_clearance_m=3.0 * M_PER_NM,
+                           skip_legs=frozenset(k - a for k in fixed if a <= k < b))
+        found += [dataclasses.replace(v, leg=v.leg + a) for v in part.violations
+                  if v.kind == "land"]
+    return found
+
+
 def run(budget_s: float, only: list[str], lanes: list[dict[str, str]] | None = None,
         out_dir: str | None = None) -> dict:
     """Plan and check every lane (`lanes`: rows of `_lanes`, the public set by default); the
@@ -137,10 +158,7 @@ def run(budget_s: float, only: list[str], lanes: list[dict[str, str]] | None = N
         lon, lat, _ = plan.track()
         fixed = frozenset(k for a, b in plan.extra.get("fixed_passages", ())
                           for k in range(a, b))
-        result = check_track(lon, lat, np.array([w.stw_kn for w in plan.waypoints[:-1]]),
-                             land_full.contains, port_clearance_m=3.0 * M_PER_NM,
-                             skip_legs=fixed)
-        land = [v for v in result.violations if v.kind == "land"]
+        land = _land_findings(plan, lon, lat, fixed, land_full.contains)
         depths = np.array([w.min_depth_m for w in plan.waypoints[:-1]])
         planned = np.zeros(depths.size, dtype=bool)
         for a, b in plan.optimised_spans:
