@@ -13,6 +13,7 @@ from __future__ import annotations
 import dataclasses
 import hashlib
 import os
+import time
 
 import numpy as np
 from shiproute_core.geodesy import M_PER_NM
@@ -54,6 +55,23 @@ def _key(lon: np.ndarray, lat: np.ndarray, rules: PassageRules) -> str:
     return h.hexdigest()[:20]
 
 
+@dataclasses.dataclass
+class _Computed:
+    """Passages this process computed (not read back) and their seconds."""
+
+    passages: int = 0
+    seconds: float = 0.0
+
+
+_COMPUTED = _Computed()
+
+
+def passage_builds() -> tuple[int, float]:
+    """(passages, seconds) this process has computed rather than read back: one-off work
+    (once per lane and rules on a machine) a plan's clock does not charge to its search."""
+    return _COMPUTED.passages, _COMPUTED.seconds
+
+
 def cached_passage(lon: np.ndarray, lat: np.ndarray, rules: PassageRules) -> Passage | None:
     """`compute_passage` through the process memo and the data directory's cache."""
     key = _key(lon, lat, rules)
@@ -71,7 +89,10 @@ def cached_passage(lon: np.ndarray, lat: np.ndarray, rules: PassageRules) -> Pas
         return p
     except (OSError, ValueError, KeyError):
         pass
+    t0 = time.perf_counter()
     p = compute_passage(lon, lat, rules)
+    _COMPUTED.passages += 1
+    _COMPUTED.seconds += time.perf_counter() - t0
     _MEMO[key] = p
     try:
         folder.mkdir(parents=True, exist_ok=True)

@@ -7,8 +7,9 @@ statement). The search of each span gets what the others left of `budget_s`
 (`voyage.spans.budget_share`); a plan that still overran says by how much and which phase
 took the time, so a budget that cannot be kept is never kept silently. Seconds spent building
 full-resolution coastline tiles (once per machine and region) and repairing a baseline's sea
-lane at full resolution (once per lane: a re-plan from a new position meets a new one) are
-not counted against the spans still to run (tiles up to the budget, `tile_allowance`), so a
+lane at full resolution (once per lane: a re-plan from a new position meets a new one) and
+computing a coastal or strait passage first met on the machine are not counted against the
+spans still to run (tiles up to the budget, `tile_allowance`), so a
 span that built tiles does not take the time of the next and a re-plan's search keeps its
 time.
 """
@@ -18,6 +19,7 @@ from __future__ import annotations
 import time
 from dataclasses import dataclass, field
 
+from .coastal_passages import passage_builds
 from .geo.fine_distance import tile_builds
 
 PHASES = ("set-up", "passages", "baselines", "search", "checks")
@@ -66,6 +68,7 @@ class PlanClock:
     mark: float = field(default=0.0)
     tiles_s0: float = field(default_factory=lambda: tile_builds()[1])  # tile builds at start
     excused_s: float = 0.0  # one-off work before a search (a baseline's lane repair) [s]
+    passages0: tuple[int, float] = field(default_factory=passage_builds)  # computed at start
 
     def __post_init__(self) -> None:
         self.mark = self.t0
@@ -73,6 +76,21 @@ class PlanClock:
     def tile_build_s(self) -> float:
         """Seconds spent building coastline tiles since the plan started."""
         return max(tile_builds()[1] - self.tiles_s0, 0.0)
+
+    def passages_built(self) -> tuple[int, float]:
+        """(passages, seconds) computed afresh since the plan started (coastal approaches and
+        straits first met on this machine; later plans read them back)."""
+        n, seconds = passage_builds()
+        return n - self.passages0[0], max(seconds - self.passages0[1], 0.0)
+
+    def passage_statement(self) -> tuple[str, ...]:
+        """The plan's word on passages it computed afresh (none when all were read back)."""
+        n, seconds = self.passages_built()
+        if n == 0:
+            return ()
+        return (f"passages: {n} coastal or strait passage(s) computed afresh in {seconds:.2f} s "
+                "(first met on this machine, kept for later plans); the search's clock was "
+                "extended by as much",)
 
     def excuse(self, seconds: float) -> None:
         """Not charge `seconds` of one-off work before a search (a baseline's sea lane
@@ -93,8 +111,10 @@ class PlanClock:
     def left_s(self, budget_s: float) -> float:
         """Budget left for the searches still to run, keeping the checks' reserve (tile
         builds so far excused up to the budget: a search may meet tiles without end; work
-        `excuse`d before a search, in full)."""
-        excused = min(self.tile_build_s(), budget_s) + self.excused_s
+        `excuse`d before a search and passages computed afresh, in full: one per approach
+        or strait)."""
+        excused = (min(self.tile_build_s(), budget_s) + self.excused_s
+                   + self.passages_built()[1])
         return (budget_s - self.elapsed_s() + excused
                 - checks_reserve_s(budget_s, self.checks_measured_s))
 

@@ -131,6 +131,7 @@ def finished_plan(request: VoyageRequest, options: PlanOptions, prep: PreparedVo
     clock.lap("checks")
     late = clock.overrun_warning(options.budget_s)
     return dataclasses.replace(out, warnings=(*out.warnings, *said, *prep.terms.notes,
+                                              *clock.passage_statement(),
                                               *([late] if late else [])),
                                extra={**out.extra, "forecast": block, "objective": goal,
                                       "timing_s": clock.block(options.budget_s),

@@ -206,3 +206,36 @@ def test_a_re_plan_whose_lane_is_repaired_afresh_keeps_its_search_time(previous,
     # charged to the search, the repair would leave it 3 - 2.5 s minus the checks' reserve
     assert out.extra["timing_s"]["baselines"] >= REPAIR_STALL_S
     assert out.extra["timing_s"]["search"] >= 0.6 * BUDGET_S
+
+
+def test_a_plan_that_computes_a_passage_afresh_keeps_its_search_time(previous, land_mask,
+                                                                     monkeypatch):
+    from shiproute_planner import coastal_passages
+
+    # passages first met on this machine are computed, not read back (here: slowly)
+    computed = coastal_passages.compute_passage
+    stalled = []
+
+    def slow(*args, **kwargs):
+        time.sleep(REPAIR_STALL_S)
+        stalled.append(1)
+        return computed(*args, **kwargs)
+
+    monkeypatch.setattr(coastal_passages, "PASSAGE_CACHE_VERSION", f"test-{time.time_ns()}")
+    monkeypatch.setattr(coastal_passages, "_MEMO", {})
+    monkeypatch.setattr(coastal_passages, "compute_passage", slow)
+    monkeypatch.setattr(coastal_passages, "data_dir", lambda: _unwritable())
+    now = position_after(previous, 40.0)[2]
+    out = _plan2(previous, (*TSUGARU_EAST_SHIP, now), land_mask, budget_s=BUDGET_S)
+    assert stalled  # the arrival's coastal passage at Long Beach was computed
+    said = [w for w in out.warnings if w.startswith("passages: ")]
+    assert said and "computed afresh" in said[0], out.warnings
+    # charged to the search, each stall would leave it 3 - 2.5 s minus the checks' reserve
+    assert out.extra["timing_s"]["search"] >= 0.6 * BUDGET_S
+
+
+def _unwritable():
+    """A data directory where nothing can be read or written (a fresh machine's passages)."""
+    from pathlib import Path
+
+    return Path("/proc/shiproute-no-such-dir")
