@@ -22,6 +22,7 @@ from shiproute_planner.route.approach import Approach
 
 from .errors import PlannerError
 from .geo.datadir import data_dir
+from .one_off_work import OneOffWork
 from .route.passages import (
     Passage,
     PassageRules,
@@ -55,21 +56,13 @@ def _key(lon: np.ndarray, lat: np.ndarray, rules: PassageRules) -> str:
     return h.hexdigest()[:20]
 
 
-@dataclasses.dataclass
-class _Computed:
-    """Passages this process computed (not read back) and their seconds."""
-
-    passages: int = 0
-    seconds: float = 0.0
-
-
-_COMPUTED = _Computed()
+_COMPUTED = OneOffWork()  # passages this process computed (not read back)
 
 
 def passage_builds() -> tuple[int, float]:
     """(passages, seconds) this process has computed rather than read back: one-off work
     (once per lane and rules on a machine) a plan's clock does not charge to its search."""
-    return _COMPUTED.passages, _COMPUTED.seconds
+    return _COMPUTED.totals()
 
 
 def cached_passage(lon: np.ndarray, lat: np.ndarray, rules: PassageRules) -> Passage | None:
@@ -91,8 +84,7 @@ def cached_passage(lon: np.ndarray, lat: np.ndarray, rules: PassageRules) -> Pas
         pass
     t0 = time.perf_counter()
     p = compute_passage(lon, lat, rules)
-    _COMPUTED.passages += 1
-    _COMPUTED.seconds += time.perf_counter() - t0
+    _COMPUTED.add(time.perf_counter() - t0)
     _MEMO[key] = p
     try:
         folder.mkdir(parents=True, exist_ok=True)
