@@ -22,8 +22,9 @@ from shiproute_planner.route.approach import Approach
 
 from .errors import PlannerError
 from .geo.datadir import data_dir
-from .one_off_work import OneOffWork
+from .one_off_work import PASSAGES
 from .route.passages import (
+    FINEST_MAX_CELLS,
     Passage,
     PassageRules,
     best_land_name,
@@ -56,15 +57,6 @@ def _key(lon: np.ndarray, lat: np.ndarray, rules: PassageRules) -> str:
     return h.hexdigest()[:20]
 
 
-_COMPUTED = OneOffWork()  # passages this process computed (not read back)
-
-
-def passage_builds() -> tuple[int, float]:
-    """(passages, seconds) this process has computed rather than read back: one-off work
-    (once per lane and rules on a machine) a plan's clock does not charge to its search."""
-    return _COMPUTED.totals()
-
-
 def cached_passage(lon: np.ndarray, lat: np.ndarray, rules: PassageRules) -> Passage | None:
     """`compute_passage` through the process memo and the data directory's cache."""
     key = _key(lon, lat, rules)
@@ -84,7 +76,7 @@ def cached_passage(lon: np.ndarray, lat: np.ndarray, rules: PassageRules) -> Pas
         pass
     t0 = time.perf_counter()
     p = compute_passage(lon, lat, rules)
-    _COMPUTED.add(time.perf_counter() - t0)
+    PASSAGES.add(time.perf_counter() - t0)
     _MEMO[key] = p
     try:
         folder.mkdir(parents=True, exist_ok=True)
@@ -117,7 +109,8 @@ def computed_approach(ap: Approach | None, port_name: str, arrival: bool,
                            "own geometry is sailed, not land-checked before the route check"]
     else:
         failed = [f"coastal passage ({where}): no way through navigable water at "
-                  f"{rules.finest_cell_nm:g} NM resolution within "
+                  f"{rules.fine_cell_nm:g} NM resolution (nor at {rules.finest_cell_nm:g} NM, "
+                  f"tried on corridors of at most {FINEST_MAX_CELLS:,} cells) within "
                   f"{max(rules.corridors_nm):g} NM of the sea lane; the lane's own geometry "
                   "is sailed (see the route check)"]
     if ap.fallback is not None and (p is None or not _keeps_depth(p, rules)):

@@ -22,3 +22,7 @@ class OneOffWork:
     def totals(self) -> tuple[int, float]:
         """(pieces, seconds) so far."""
         return self.count, self.seconds
+
+
+LANE_REPAIRS = OneOffWork()  # sea lanes repaired at full resolution (`route.seed_repair`)
+PASSAGES = OneOffWork()  # coastal and strait passages (`coastal_passages.cached_passage`)

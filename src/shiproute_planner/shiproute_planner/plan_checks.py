@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import dataclasses
 import itertools
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
 
 import numpy as np
@@ -58,21 +58,27 @@ def check_berth_to_berth(plan: RoutePlan, limits: RouteLimits, clearance_nm: flo
     """The route check of a plan, berth to berth, on the final coastline (leg numbers are
     the plan's)."""
     land = final_land()
+    hs = np.nan_to_num(np.array([w.hs_m for w in plan.waypoints[:-1]]), nan=0.0)
+    return berth_parts_checked(plan, lambda lon, lat, speed, a, b, skip: check_track(
+        lon, lat, speed, land.contains, clearance_nm=clearance_nm, land_near=land.clipped,
+        under_keel=limits.under_keel, hs_m=hs[a:b], zones=limits.zones,
+        port_clearance_m=PORT_RADIUS_M, skip_legs=skip))
+
+
+def berth_parts_checked(plan: RoutePlan, check: Callable[..., CheckResult]) -> CheckResult:
+    """`check(lon, lat, speed_kn, a, b, skip_legs)` on each part of the plan's track between
+    two berths (legs a..b; the fixed passages in it skipped), findings numbered as the
+    plan's legs."""
     lon, lat, _ = plan.track()
-    wps = plan.waypoints[:-1]
-    speed = np.array([w.stw_kn for w in wps])
-    hs = np.nan_to_num(np.array([w.hs_m for w in wps]), nan=0.0)
+    speed = np.array([w.stw_kn for w in plan.waypoints[:-1]])
     fixed = {k for a, b in plan.extra.get("fixed_passages", ()) for k in range(a, b)}
     found: list[Violation] = []
     notes: list[str] = []
     for a, b in itertools.pairwise(berth_cuts(plan)):
         if b <= a:
             continue
-        part = check_track(lon[a:b + 1], lat[a:b + 1], speed[a:b], land.contains,
-                           clearance_nm=clearance_nm, land_near=land.clipped,
-                           under_keel=limits.under_keel, hs_m=hs[a:b], zones=limits.zones,
-                           port_clearance_m=PORT_RADIUS_M,
-                           skip_legs=frozenset(k - a for k in fixed if a <= k < b))
+        part = check(lon[a:b + 1], lat[a:b + 1], speed[a:b], a, b,
+                     frozenset(k - a for k in fixed if a <= k < b))
         found += [dataclasses.replace(v, leg=v.leg + a) for v in part.violations]
         notes += [n for n in part.notes if n not in notes]
     return CheckResult(tuple(found), tuple(notes))

@@ -19,8 +19,8 @@ from __future__ import annotations
 import time
 from dataclasses import dataclass, field
 
-from .coastal_passages import passage_builds
 from .geo.fine_distance import tile_builds
+from .one_off_work import PASSAGES
 
 PHASES = ("set-up", "passages", "baselines", "search", "checks")
 # a plan may end this much after its budget before it says so: the search stops at its
@@ -68,7 +68,7 @@ class PlanClock:
     mark: float = field(default=0.0)
     tiles_s0: float = field(default_factory=lambda: tile_builds()[1])  # tile builds at start
     excused_s: float = 0.0  # one-off work before a search (a baseline's lane repair) [s]
-    passages0: tuple[int, float] = field(default_factory=passage_builds)  # computed at start
+    passages0: tuple[int, float] = field(default_factory=PASSAGES.totals)  # computed at start
 
     def __post_init__(self) -> None:
         self.mark = self.t0
@@ -80,7 +80,7 @@ class PlanClock:
     def passages_built(self) -> tuple[int, float]:
         """(passages, seconds) computed afresh since the plan started (coastal approaches and
         straits first met on this machine; later plans read them back)."""
-        n, seconds = passage_builds()
+        n, seconds = PASSAGES.totals()
         return n - self.passages0[0], max(seconds - self.passages0[1], 0.0)
 
     def passage_statement(self) -> tuple[str, ...]:

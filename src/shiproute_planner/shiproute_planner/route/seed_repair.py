@@ -23,7 +23,7 @@ import numpy as np
 from shiproute_core.geodesy import distance_within_m
 from shiproute_core.units import M_PER_NM
 
-from ..one_off_work import OneOffWork
+from ..one_off_work import LANE_REPAIRS
 from .clearance import needed_clearance_nm
 from .land_repair import RepairRules, repaired_stretches
 from .problem import RouteProblem
@@ -36,14 +36,13 @@ WINDOWS_NM = (4.0, 12.0, 30.0)
 LEVEL1_SLACK_NM = 0.7  # level 1's looseness (a fine diagonal, the coastline band, one step)
 
 
-_COMPUTED = OneOffWork()  # repairs this process computed (not read back)
 
 
 def repair_builds() -> tuple[int, float]:
     """(repairs, seconds) this process has computed rather than read back: one-off work a
     plan's clock does not charge to its search (a re-plan from a new position repairs its
     lane afresh)."""
-    return _COMPUTED.totals()
+    return LANE_REPAIRS.totals()
 
 
 def rule_need(problem: RouteProblem) -> Callable[[np.ndarray, np.ndarray], np.ndarray]:
@@ -121,7 +120,7 @@ def repaired_seed_track(problem: RouteProblem, lon: np.ndarray, lat: np.ndarray
         pass
     t0 = time.perf_counter()
     out_lon, out_lat, left = _repaired(problem, lon, lat)
-    _COMPUTED.add(time.perf_counter() - t0)
+    LANE_REPAIRS.add(time.perf_counter() - t0)
     path.parent.mkdir(parents=True, exist_ok=True)
     save_npz_atomic(path, lon=out_lon, lat=out_lat, left=np.array(left))
     return out_lon, out_lat, left

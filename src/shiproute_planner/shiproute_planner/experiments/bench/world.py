@@ -24,8 +24,6 @@ from __future__ import annotations
 import argparse
 import contextlib
 import csv
-import dataclasses
-import itertools
 import json
 import statistics
 import time
@@ -39,7 +37,7 @@ from shiproute_core.units import M_PER_NM
 from ... import planning
 from ...errors import PlannerError
 from ...io.files import write_plan_files
-from ...plan_checks import berth_cuts
+from ...plan_checks import berth_parts_checked
 from ...request import PlanOptions, VoyageRequest, voyage_times
 from ...route_check import check_track
 
@@ -114,21 +112,12 @@ def _warm_process(lane: dict[str, str]) -> float:
     return time.perf_counter() - t0
 
 
-def _land_findings(plan, lon: np.ndarray, lat: np.ndarray, fixed: frozenset[int], contains
-                   ) -> list:
+def _land_findings(plan, contains) -> list:
     """Land findings on the plan's track from berth to berth (port calls included), each
     part outside 3 NM round its berths and off the canals sailed as fixed passages."""
-    speed = np.array([w.stw_kn for w in plan.waypoints[:-1]])
-    found = []
-    for a, b in itertools.pairwise(berth_cuts(plan)):
-        if b <= a:
-            continue
-        part = check_track(lon[a:b + 1], lat[a:b + 1], speed[a:b], contains,
-                           port_clearance_m=3.0 * M_PER_NM,
-                           skip_legs=frozenset(k - a for k in fixed if a <= k < b))
-        found += [dataclasses.replace(v, leg=v.leg + a) for v in part.violations
-                  if v.kind == "land"]
-    return found
+    result = berth_parts_checked(plan, lambda lon, lat, speed, a, b, skip: check_track(
+        lon, lat, speed, contains, port_clearance_m=3.0 * M_PER_NM, skip_legs=skip))
+    return [v for v in result.violations if v.kind == "land"]
 
 
 def run(budget_s: float, only: list[str], lanes: list[dict[str, str]] | None = None,
@@ -155,10 +144,7 @@ def run(budget_s: float, only: list[str], lanes: list[dict[str, str]] | None = N
         times.append(dt)
         if out_dir:
             write_plan_files(plan, out_dir, stem=lane["name"], png=False)
-        lon, lat, _ = plan.track()
-        fixed = frozenset(k for a, b in plan.extra.get("fixed_passages", ())
-                          for k in range(a, b))
-        land = _land_findings(plan, lon, lat, fixed, land_full.contains)
+        land = _land_findings(plan, land_full.contains)
         depths = np.array([w.min_depth_m for w in plan.waypoints[:-1]])
         planned = np.zeros(depths.size, dtype=bool)
         for a, b in plan.optimised_spans:
