@@ -88,6 +88,9 @@ RIVER_PORTS: dict[str, tuple[str, float, float]] = {
     "DEBRE": ("Weser (mouth, off Bremerhaven approach)", 53.86, 8.05),
     "GBLON": ("Thames (estuary, Sunk pilot area)", 51.85, 1.60),
     "USMSY": ("Mississippi (Southwest Pass entrance)", 28.87, -89.45),
+    # up the same river (~125 NM above New Orleans); the sea-lane network's nearest node to
+    # it lies in Lake Pontchartrain, which no deep-sea ship reaches
+    "USBTR": ("Mississippi (Southwest Pass entrance)", 28.87, -89.45),
     "USPHL": ("Delaware Bay (entrance, Cape Henlopen pilot area)", 38.78, -75.02),
     "USPDX": ("Columbia River (bar pilot boarding area off the entrance)", 46.22, -124.18),
     "FRURO": ("Seine (estuary, pilot boarding area off Le Havre)", 49.47, -0.02),

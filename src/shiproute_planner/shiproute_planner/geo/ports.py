@@ -25,6 +25,7 @@ from shiproute_core.geodesy import inverse
 from ..errors import PortNotFoundError, PositionOnLandError
 from .landmask import LandMask
 from .port_aliases import ALIASES, LOCODE_FIXES, RIVER_PORTS
+from .river_ends import SNAP_KM, river_note, seaward_end
 
 _AMBIGUOUS_KM = 50.0  # ports sharing a name this far apart are different ports
 _LATLON = re.compile(r"^\s*([-+]?\d+(?:\.\d*)?)\s*[, ]\s*([-+]?\d+(?:\.\d*)?)\s*$")
@@ -197,5 +198,35 @@ def snap_to_sea(port: Port, land: LandMask, max_snap_km: float = 25.0) -> Port:
 
 
 def resolve_port(text: str, land: LandMask, max_snap_km: float = 25.0) -> Port:
-    """Look up `text` and make sure the position is at sea (snapping short distances)."""
-    return snap_to_sea(lookup_port(text), land, max_snap_km)
+    """Look up `text` and make sure the position is at sea: snapped within
+    `river_ends.SNAP_KM`; a gazetteer port farther from water the coastline resolves lies up
+    a river or channel and is planned from its seaward end on the sea lane
+    (`river_ends.seaward_end`), else snapped within `max_snap_km`."""
+    port = lookup_port(text)
+    if _LATLON.match(text.strip()) or port.is_river_port:
+        return snap_to_sea(port, land, max_snap_km)
+    try:
+        snapped = snap_to_sea(port, land, max_snap_km)
+    except PositionOnLandError as exc:
+        river = _river_port(port, land, max_snap_km, beyond=True)
+        if river is None:
+            raise PositionOnLandError(
+                f"{exc}; nor does the sea-lane network lead from it down a river to water the "
+                "coastline resolves: give the river's seaward end as 'lat,lon'") from None
+        return river
+    if snapped.snapped_km <= SNAP_KM:
+        return snapped
+    return _river_port(port, land, snapped.snapped_km) or snapped
+
+
+def _river_port(port: Port, land: LandMask, gap_km: float, beyond: bool = False
+                ) -> Port | None:
+    """`port` planned from its river's seaward end on the sea lane (None when none is
+    found); `gap_km`: how far the nearest resolved water is (`beyond`: none within it)."""
+    end = seaward_end(port.lat_deg, port.lon_deg, land)
+    if end is None:
+        return None
+    note = river_note(port.name, port.lat_deg, port.lon_deg, end, gap_km, beyond)
+    return Port(port.name, port.locode, end.lat_deg, end.lon_deg,
+                note=_join_notes(port.note, note), berth_lat_deg=port.lat_deg,
+                berth_lon_deg=port.lon_deg)

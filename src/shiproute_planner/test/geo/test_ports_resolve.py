@@ -108,3 +108,53 @@ def test_ports_up_rivers_resolve_at_sea_at_full_resolution(land_mask, name, up_r
     _, d = inverse(port.lon_deg, port.lat_deg, port.berth_lon_deg, port.berth_lat_deg)
     # the straight line is shorter than the winding river, and not absurdly so
     assert 0.3 * up_river_nm < float(d) / M_PER_NM < 1.2 * up_river_nm
+
+
+@pytest.mark.parametrize(("name", "landmark", "max_nm"), [
+    # ports up rivers with no entry in the river-port table, found along the sea lane; the
+    # landmarks are the rivers' mouths or estuaries: Tybee Island light (Savannah River),
+    # Sabine Pass (Sabine-Neches Waterway), Chipiona (Guadalquivir), Pauillac (Gironde),
+    # Phra Samut Chedi (Chao Phraya), Astoria (Columbia), Buenos Aires (Rio de la Plata)
+    ("Savannah", (32.02, -80.85), 5), ("Beaumont", (29.73, -93.87), 10),
+    ("Seville", (36.74, -6.43), 10), ("Bordeaux", (45.20, -0.75), 20),
+    ("Bangkok", (13.60, 100.58), 10), ("Longview", (46.19, -123.83), 25),
+    ("Rosario", (-34.60, -58.37), 30),
+])
+def test_ports_up_unlisted_rivers_start_where_the_lane_reaches_resolved_water(
+        land_mask, name, landmark, max_nm):
+    import shapely
+    from shiproute_planner.geo.gshhg import load_land_polygons
+    from shiproute_planner.geo.port_aliases import RIVER_PORTS
+    from shiproute_planner.river_passages import RIVER_TRANSIT_KN, river_passage
+
+    port = resolve_port(name, land_mask)
+    assert port.locode not in RIVER_PORTS  # found, not looked up
+    assert port.is_river_port and "seaward end" in port.note and "pilotage" in port.note
+    _, d = inverse(port.lon_deg, port.lat_deg, landmark[1], landmark[0])
+    assert float(d) / M_PER_NM < max_nm
+    polygons = load_land_polygons("f")  # at sea by an independent point-in-polygon test
+    b = polygons.bounds
+    near = np.flatnonzero((b[:, 0] <= port.lon_deg) & (b[:, 2] >= port.lon_deg)
+                          & (b[:, 1] <= port.lat_deg) & (b[:, 3] >= port.lat_deg))
+    point = shapely.Point(port.lon_deg, port.lat_deg)
+    assert not any(shapely.Polygon(polygons.ring(int(i))).contains(point) for i in near)
+    # the river passage is timed: at least the straight line from the berth at 10 kn (the
+    # lane's ends are rounded to 1e-4 deg, ~10 m, so within 0.1 % of it)
+    passage = river_passage(port)
+    _, straight = inverse(port.lon_deg, port.lat_deg, port.berth_lon_deg, port.berth_lat_deg)
+    assert passage is not None
+    assert passage.hours >= 0.999 * float(straight) / M_PER_NM / RIVER_TRANSIT_KN
+
+
+def test_a_port_the_lane_network_does_not_reach_asks_for_its_seaward_end(land_mask):
+    # Wuhan lies ~500 NM up the Yangtze; the lane network's nearest node is at its mouth
+    from shiproute_planner.errors import PositionOnLandError
+
+    with pytest.raises(PositionOnLandError, match=r"Wuhan.*seaward end as 'lat,lon'"):
+        resolve_port("Wuhan", land_mask)
+
+
+def test_a_terminal_near_water_is_snapped_not_made_a_river_port(land_mask):
+    # Ras Tanura's gazetteer position is 2.5 km inland of its own pier head
+    port = resolve_port("Ras Tanura", land_mask)
+    assert not port.is_river_port and 0.0 < port.snapped_km <= 5.0
