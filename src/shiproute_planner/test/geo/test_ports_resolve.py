@@ -158,3 +158,20 @@ def test_a_terminal_near_water_is_snapped_not_made_a_river_port(land_mask):
     # Ras Tanura's gazetteer position is 2.5 km inland of its own pier head
     port = resolve_port("Ras Tanura", land_mask)
     assert not port.is_river_port and 0.0 < port.snapped_km <= 5.0
+
+
+@pytest.mark.parametrize("name", ["Lae", "Ras Tanura", "Cape Town"])
+def test_a_snapped_port_lies_in_water_at_full_resolution(land_mask, name):
+    # Lae's gazetteer position is 2.5 km from the sea; the search's mask alone snapped it
+    # onto a river bank the full-resolution coastline has as land, with no way out
+    import shapely
+    from shiproute_planner.geo.gshhg import load_land_polygons
+
+    port = resolve_port(name, land_mask)
+    assert port.snapped_km > 0.0 and not port.is_river_port
+    polygons = load_land_polygons("f")
+    b = polygons.bounds
+    near = np.flatnonzero((b[:, 0] <= port.lon_deg) & (b[:, 2] >= port.lon_deg)
+                          & (b[:, 1] <= port.lat_deg) & (b[:, 3] >= port.lat_deg))
+    point = shapely.Point(port.lon_deg, port.lat_deg)
+    assert not any(shapely.Polygon(polygons.ring(int(i))).contains(point) for i in near)
