@@ -133,6 +133,7 @@ def route_canals(ports: list, spec, via_rta: list) -> tuple[list, dict[int, tupl
                                   f"; {p.name} ({p.lat_deg:.1f}, {p.lon_deg:.1f})"
                                   for p in extra if p is not turn))
                 continue
+            canal = joined_at_ports(canal, rev, a, b)
             lon, lat = canal_line(canal, rev)
             legs[len(out)] = (canal, rev)  # the whole fixed line: lead-in, canal, lead-out
             out.append(Port(f"{canal.name} entrance", "", float(lat[0]), float(lon[0])))
@@ -146,6 +147,29 @@ def route_canals(ports: list, spec, via_rta: list) -> tuple[list, dict[int, tupl
         if k < len(ports) - 2:
             out_rta.append(rtas[k])
     return out, legs, out_rta, notes
+
+
+def joined_at_ports(canal: Canal, reverse: bool, a, b) -> Canal:
+    """The canal with its lead-in (or lead-out) cut at the line point nearest to a port
+    beside it: a ship from Ain Sokhna, on the Gulf of Suez, joins the Suez Canal's line
+    there instead of sailing 150 NM down the gulf to its entrance and back. `a` is the port
+    the transit starts from, `b` the one it heads for; the canal proper is never cut."""
+    import dataclasses
+
+    from shiproute_core.geodesy import spherical_m
+
+    lat = np.array([p[0] for p in canal.line])
+    lon = np.array([p[1] for p in canal.line])
+    last = lat.size - 1
+    s0, s1 = canal.slow[0] % lat.size, canal.slow[1] % lat.size
+    first_side, last_side = (b, a) if reverse else (a, b)  # ports at line[0] and line[-1]
+    lo = int(np.argmin(spherical_m(lon, lat, first_side.lon_deg, first_side.lat_deg)))
+    hi = int(np.argmin(spherical_m(lon, lat, last_side.lon_deg, last_side.lat_deg)))
+    lo = lo if 0 < lo <= s0 else 0
+    hi = hi if s1 <= hi < last else last
+    if lo == 0 and hi == last:
+        return canal
+    return dataclasses.replace(canal, line=canal.line[lo:hi + 1], slow=(s0 - lo, s1 - lo))
 
 
 def _lane_through(a, b, canal: Canal) -> bool:

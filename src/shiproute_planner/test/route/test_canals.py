@@ -80,3 +80,21 @@ def test_ship_over_panama_limits_keeps_clear_of_the_isthmus_on_every_lane():
         _, _, d = geod.inv(np.full(len(lane), -79.7), np.full(len(lane), 9.1),
                            lane[:, 0], lane[:, 1])
         assert d.min() > 300_000.0, (a.name, b.name)  # Gatun Lake is at 9.1 N, 79.7 W
+
+
+@pytest.mark.parametrize(("origin", "destination", "canal_end"), [
+    # Ain Sokhna lies on the Gulf of Suez ~20 NM south of Port Tewfik, the canal's southern
+    # end; its transit joins the line there, not 150 NM south at the gulf's mouth
+    ("Ain Sokhna", "Rotterdam", "entrance"), ("Rotterdam", "Ain Sokhna", "exit"),
+])
+def test_a_port_beside_a_canals_lead_in_joins_its_line_nearby(origin, destination, canal_end):
+    a, b = lookup_port(origin), lookup_port(destination)
+    ports, legs, _, _ = route_canals([a, b], _ship(), [])
+    gulf_port = a if canal_end == "entrance" else b
+    end = next(p for p in ports if p.name == f"Suez Canal {canal_end}")
+    _, d = inverse(gulf_port.lon_deg, gulf_port.lat_deg, end.lon_deg, end.lat_deg)
+    assert float(d) / M_PER_NM < 30.0
+    canal, _ = next(iter(legs.values()))
+    tewfik, port_said = (29.93, 32.57), (31.26, 32.31)  # the canal proper stays whole
+    for lat, lon in (tewfik, port_said):
+        assert min(abs(p[0] - lat) + abs(p[1] - lon) for p in canal.line) < 1e-9
