@@ -111,8 +111,8 @@ def computed_approach(ap: Approach | None, port_name: str, arrival: bool,
         failed = [f"coastal passage ({where}): no way through navigable water at "
                   f"{rules.fine_cell_nm:g} NM resolution (nor at {rules.finest_cell_nm:g} NM, "
                   f"tried on corridors of at most {FINEST_MAX_CELLS:,} cells) within "
-                  f"{max(rules.corridors_nm):g} NM of the sea lane; the lane's own geometry "
-                  "is sailed (see the route check)"]
+                  f"{max(*rules.corridors_nm, rules.widest_corridor_nm):g} NM of the sea "
+                  "lane; the lane's own geometry is sailed (see the route check)"]
     if ap.fallback is not None and (p is None or not _keeps_depth(p, rules)):
         back, said = computed_approach(ap.fallback, port_name, arrival, rules)
         return back, [f"coastal passage ({where}): no way round the shallow water next to "

@@ -335,3 +335,17 @@ def test_sydneys_inner_harbour_berth_is_left_on_a_finer_grid_and_off_land(land_m
     along = np.concatenate([[0.0], np.cumsum(step)])
     far = along > BERTH_RADIUS_M
     assert not _on_full_land(d_lon[far], d_lat[far])
+
+
+def test_a_port_behind_a_peninsula_is_left_round_it_in_the_widest_corridor():
+    # a wall of land 1 NM thick across the lane, ending 0.7 deg (41 NM) either side of it:
+    # past the 30-NM corridor (plus its 2-NM margin), within the widest (80 NM)
+    wall = _box(-0.7, LAT0, 0.7, LAT0 + NM_LAT)
+    exact, land = _land(wall), shapely.Polygon(wall)
+    narrow = PassageRules(berth_nm=1.0, widest_corridor_nm=0.0)
+    assert compute_passage(LANE_LON, LANE_LAT, narrow, polygons=exact) is None
+    p = compute_passage(LANE_LON, LANE_LAT, PassageRules(berth_nm=1.0), polygons=exact)
+    assert p is not None and p.corridor_nm == 80.0
+    assert (p.lon_deg[-1], p.lat_deg[-1]) == (LANE_LON[-1], LANE_LAT[-1])
+    assert np.max(np.abs(p.lon_deg)) > 0.7  # round one of the wall's ends
+    assert _min_distance_nm(p.lon_deg, p.lat_deg, land) >= 0.5 - HALF_DIAGONAL_NM

@@ -71,6 +71,10 @@ class PassageRules:
     fine_cell_nm: float = 0.1  # tried when nothing fits at `cell_nm` (rivers, sounds, fjords)
     finest_cell_nm: float = 0.05  # tried when nothing fits at `fine_cell_nm` (inner harbours)
     corridors_nm: tuple[float, ...] = (10.0, 30.0)
+    # tried only when no corridor above has any way through: a port whose nearest sea-lane
+    # node lies behind a peninsula (Lae: the lane's first hop crosses 50 NM of the Huon
+    # Peninsula) is left round it; a shallow-water detour this far off is not sought
+    widest_corridor_nm: float = 80.0
     berth_nm: float = 3.0
     pilotage_nm: float = 10.0
     prefer_off_nm: float = 2.0
@@ -314,12 +318,16 @@ def compute_passage(lane_lon: np.ndarray, lane_lat: np.ndarray, rules: PassageRu
     tries = [(rules.corridors_nm[0], rules.cell_nm), (rules.corridors_nm[0], rules.fine_cell_nm),
              *([(rules.corridors_nm[0], rules.finest_cell_nm)]
                if rules.finest_cell_nm < rules.fine_cell_nm else []),
-             *((w, rules.cell_nm) for w in rules.corridors_nm[1:])]
+             *((w, rules.cell_nm) for w in rules.corridors_nm[1:]),
+             *([(rules.widest_corridor_nm, rules.cell_nm)]
+               if rules.widest_corridor_nm > max(rules.corridors_nm) else [])]
     found: Passage | None = None
     for corridor_nm, cell_nm in tries:
         if found is not None and _keeps_depth(found, rules) and (
                 cell_nm >= found.cell_nm or corridor_nm > found.corridor_nm):
             return found
+        if found is not None and corridor_nm > max(rules.corridors_nm):
+            return found  # the widest corridor only where nothing has a way through
         finest = cell_nm < rules.fine_cell_nm
         if finest and found is not None:
             continue  # the finest grid only where nothing fits at all
