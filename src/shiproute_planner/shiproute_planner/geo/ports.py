@@ -25,7 +25,7 @@ from shiproute_core.geodesy import inverse
 from ..errors import PortNotFoundError, PositionOnLandError
 from .landmask import LandMask
 from .port_aliases import ALIASES, LOCODE_FIXES, RIVER_PORTS
-from .river_ends import SNAP_KM, river_note, seaward_end
+from .river_ends import MAX_RIVER_NM, SNAP_KM, river_note, seaward_end
 
 _AMBIGUOUS_KM = 50.0  # ports sharing a name this far apart are different ports
 _LATLON = re.compile(r"^\s*([-+]?\d+(?:\.\d*)?)\s*[, ]\s*([-+]?\d+(?:\.\d*)?)\s*$")
@@ -219,8 +219,10 @@ def resolve_port(text: str, land: LandMask, max_snap_km: float = 25.0) -> Port:
         river = _river_port(port, land, max_snap_km, beyond=True)
         if river is None:
             raise PositionOnLandError(
-                f"{exc}; nor does the sea-lane network lead from it down a river to water the "
-                "coastline resolves: give the river's seaward end as 'lat,lon'") from None
+                f"{exc}; nor does the sea-lane network lead from it, within "
+                f"{MAX_RIVER_NM:g} NM down a river, to water the coastline resolves (lakes and "
+                "inland seas, the Great Lakes and the Caspian among them, are land in the "
+                "GSHHG coastline used here): give the river's seaward end as 'lat,lon'") from None
         return river
     if snapped.snapped_km <= SNAP_KM:
         return snapped

@@ -2,14 +2,15 @@
 the sea lane: for ports without an entry in `port_aliases.RIVER_PORTS`.
 
 A gazetteer port whose position lies farther than `SNAP_KM` from water the coastline
-resolves (Baton Rouge, Seville, Rosario, Nanjing, Longview, ...) sits on a river or channel
+resolves (Seville, Rosario, Nanjing, Longview, Beaumont, ...) sits on a river or channel
 narrower than the data. The `searoute` lane network follows such rivers, and a river leads
 out one way whatever the destination: the lane from the port towards the nearest
 `OCEAN_HUBS` point leaves by it. Walking that lane from the port, the seaward end is the
 first sample (every `SAMPLE_NM`) from which the lane runs on in water of the full-resolution
 coastline for `CLEAR_RUN_NM`, with water `WIDTH_NM` round it in every direction: there the
 coastal passages (0.25-0.05 NM grids) can start. The river passage from the berth to it is
-pilotage, timed as for the table's river ports (`river_passages`).
+pilotage, timed as for the table's river ports (`river_passages`); one longer than
+`MAX_RIVER_NM`, or from a berth the lane network does not reach, is not guessed.
 """
 
 from __future__ import annotations
@@ -26,7 +27,11 @@ SNAP_KM = 5.0  # a port this close to resolved water is snapped to it (harbour b
 SAMPLE_NM = 0.25  # lane sample spacing: the route check's
 CLEAR_RUN_NM = 5.0  # the lane runs on in water this far from the seaward end
 WIDTH_NM = 0.5  # water round the seaward end in 8 directions: room for a passage's grid
-MAX_RIVER_NM = 2000.0  # the longest river passage looked for (Manaus: ~900 NM up the Amazon)
+# the longest river passage taken without a table entry [NM], berth to seaward end: the
+# rivers found so far are 10-150 NM (Savannah 14, Seville 50, Rosario 135); beyond, the lane
+# runs through inland waterways whose locks and depths nothing here knows (Turkmenbasy's,
+# on the Caspian, leads 977 NM up the Volga and through the Volga-Don canal)
+MAX_RIVER_NM = 300.0
 # the lane network's nearest node to a berth farther than this: the network does not reach
 # the port (Wuhan's nearest node is the Yangtze's mouth, 529 km away; Iquitos's is on the
 # Pacific coast, over the Andes), and the lane says nothing of its river
@@ -60,8 +65,8 @@ def nearest_hub(lat_deg: float, lon_deg: float) -> tuple[float, float]:
 def seaward_end(lat_deg: float, lon_deg: float, land: LandMask) -> SeawardEnd | None:
     """The seaward end of the river or channel from a berth (None when the lane network finds
     no way to the ocean, its nearest node lies farther than `LANE_START_KM`, or no water the
-    coastline resolves lies within `MAX_RIVER_NM` along it): off land in `land` (the search's
-    mask) and in the full-resolution coastline."""
+    coastline resolves lies within `MAX_RIVER_NM` of the berth along it): off land in `land`
+    (the search's mask) and in the full-resolution coastline."""
     from .full_land import final_land
 
     hub = nearest_hub(lat_deg, lon_deg)
@@ -71,9 +76,10 @@ def seaward_end(lat_deg: float, lon_deg: float, land: LandMask) -> SeawardEnd | 
     _, start_m = inverse(lon_deg, lat_deg, float(lane[0, 0]), float(lane[0, 1]))
     if float(start_m) > LANE_START_KM * 1000.0:
         return None
+    hop_nm = float(start_m) / M_PER_NM
     lon, lat = densify_track(np.unwrap(lane[:, 0], period=360.0), lane[:, 1],
                              SAMPLE_NM * M_PER_NM)
-    limit = min(lon.size, int(MAX_RIVER_NM / SAMPLE_NM) + 1)
+    limit = min(lon.size, int(max(MAX_RIVER_NM - hop_nm, 0.0) / SAMPLE_NM) + 1)
     lon, lat = np.asarray(lon[:limit]), np.asarray(lat[:limit])
     wet = ~final_land().contains(lon, lat) & ~land.is_land(lon, lat)
     run = round(CLEAR_RUN_NM / SAMPLE_NM)

@@ -146,12 +146,18 @@ def test_ports_up_unlisted_rivers_start_where_the_lane_reaches_resolved_water(
     assert passage.hours >= 0.999 * float(straight) / M_PER_NM / RIVER_TRANSIT_KN
 
 
-def test_a_port_the_lane_network_does_not_reach_asks_for_its_seaward_end(land_mask):
+@pytest.mark.parametrize("name", [
     # Wuhan lies ~500 NM up the Yangtze; the lane network's nearest node is at its mouth
+    "Wuhan",
+    # on the Caspian: the lane network leads ~980 NM up the Volga and through the Volga-Don
+    # canal (locks for ships under ~140 m) to the Sea of Azov
+    "Turkmenbasy",
+])
+def test_a_port_no_river_passage_reaches_asks_for_its_seaward_end(land_mask, name):
     from shiproute_planner.errors import PositionOnLandError
 
-    with pytest.raises(PositionOnLandError, match=r"Wuhan.*seaward end as 'lat,lon'"):
-        resolve_port("Wuhan", land_mask)
+    with pytest.raises(PositionOnLandError, match=rf"{name}.*seaward end as 'lat,lon'"):
+        resolve_port(name, land_mask)
 
 
 def test_a_terminal_near_water_is_snapped_not_made_a_river_port(land_mask):
