@@ -10,6 +10,20 @@ from shiproute_planner.errors import PortNotFoundError
 from shiproute_planner.geo.ports import lookup_port, resolve_port
 
 
+def _on_full_land(lon_deg: float, lat_deg: float) -> bool:
+    """Independent reference: the point lies inside a GSHHG full-resolution land polygon
+    (shapely on the polygons' rings, not the planner's rasters)."""
+    import shapely
+    from shiproute_planner.geo.gshhg import load_land_polygons
+
+    polygons = load_land_polygons("f")
+    b = polygons.bounds
+    near = np.flatnonzero((b[:, 0] <= lon_deg) & (b[:, 2] >= lon_deg)
+                          & (b[:, 1] <= lat_deg) & (b[:, 3] >= lat_deg))
+    point = shapely.Point(lon_deg, lat_deg)
+    return any(shapely.Polygon(polygons.ring(int(i))).contains(point) for i in near)
+
+
 @pytest.mark.parametrize(("typed", "locode"), [
     ("Genoa", "ITGOA"), ("Genova", "ITGOA"), ("Hamilton", "BMBDA"), ("Bermuda", "BMBDA"),
     ("Naples", "ITNAP"), ("Antwerp", "BEANR"), ("Gothenburg", "SEGOT"), ("itgoa", "ITGOA"),
@@ -94,17 +108,9 @@ def test_a_name_shared_by_ports_far_apart_says_which_was_chosen():
     ("Ho Chi Minh City", 45), ("Stockholm", 40),
 ])
 def test_ports_up_rivers_resolve_at_sea_at_full_resolution(land_mask, name, up_river_nm):
-    import shapely
-    from shiproute_planner.geo.gshhg import load_land_polygons
-
     port = resolve_port(name, land_mask)
     assert port.is_river_port and "seaward end" in port.note
-    polygons = load_land_polygons("f")
-    b = polygons.bounds
-    near = np.flatnonzero((b[:, 0] <= port.lon_deg) & (b[:, 2] >= port.lon_deg)
-                          & (b[:, 1] <= port.lat_deg) & (b[:, 3] >= port.lat_deg))
-    point = shapely.Point(port.lon_deg, port.lat_deg)
-    assert not any(shapely.Polygon(polygons.ring(int(i))).contains(point) for i in near)
+    assert not _on_full_land(port.lon_deg, port.lat_deg)
     _, d = inverse(port.lon_deg, port.lat_deg, port.berth_lon_deg, port.berth_lat_deg)
     # the straight line is shorter than the winding river, and not absurdly so
     assert 0.3 * up_river_nm < float(d) / M_PER_NM < 1.2 * up_river_nm
@@ -122,8 +128,6 @@ def test_ports_up_rivers_resolve_at_sea_at_full_resolution(land_mask, name, up_r
 ])
 def test_ports_up_unlisted_rivers_start_where_the_lane_reaches_resolved_water(
         land_mask, name, landmark, max_nm):
-    import shapely
-    from shiproute_planner.geo.gshhg import load_land_polygons
     from shiproute_planner.geo.port_aliases import RIVER_PORTS
     from shiproute_planner.river_passages import RIVER_TRANSIT_KN, river_passage
 
@@ -132,12 +136,7 @@ def test_ports_up_unlisted_rivers_start_where_the_lane_reaches_resolved_water(
     assert port.is_river_port and "seaward end" in port.note and "pilotage" in port.note
     _, d = inverse(port.lon_deg, port.lat_deg, landmark[1], landmark[0])
     assert float(d) / M_PER_NM < max_nm
-    polygons = load_land_polygons("f")  # at sea by an independent point-in-polygon test
-    b = polygons.bounds
-    near = np.flatnonzero((b[:, 0] <= port.lon_deg) & (b[:, 2] >= port.lon_deg)
-                          & (b[:, 1] <= port.lat_deg) & (b[:, 3] >= port.lat_deg))
-    point = shapely.Point(port.lon_deg, port.lat_deg)
-    assert not any(shapely.Polygon(polygons.ring(int(i))).contains(point) for i in near)
+    assert not _on_full_land(port.lon_deg, port.lat_deg)  # an independent polygon test
     # the river passage is timed: at least the straight line from the berth at 10 kn (the
     # lane's ends are rounded to 1e-4 deg, ~10 m, so within 0.1 % of it)
     passage = river_passage(port)
@@ -170,14 +169,6 @@ def test_a_terminal_near_water_is_snapped_not_made_a_river_port(land_mask):
 def test_a_snapped_port_lies_in_water_at_full_resolution(land_mask, name):
     # Lae's gazetteer position is 2.5 km from the sea; the search's mask alone snapped it
     # onto a river bank the full-resolution coastline has as land, with no way out
-    import shapely
-    from shiproute_planner.geo.gshhg import load_land_polygons
-
     port = resolve_port(name, land_mask)
     assert port.snapped_km > 0.0 and not port.is_river_port
-    polygons = load_land_polygons("f")
-    b = polygons.bounds
-    near = np.flatnonzero((b[:, 0] <= port.lon_deg) & (b[:, 2] >= port.lon_deg)
-                          & (b[:, 1] <= port.lat_deg) & (b[:, 3] >= port.lat_deg))
-    point = shapely.Point(port.lon_deg, port.lat_deg)
-    assert not any(shapely.Polygon(polygons.ring(int(i))).contains(point) for i in near)
+    assert not _on_full_land(port.lon_deg, port.lat_deg)
