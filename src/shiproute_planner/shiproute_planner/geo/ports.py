@@ -170,17 +170,9 @@ def _join_notes(*notes: str) -> str:
     return "; ".join(n for n in notes if n)
 
 
-def _on_land(land: LandMask, lon: np.ndarray, lat: np.ndarray) -> np.ndarray:
-    """True where a point is land in the search's mask `land` or at full resolution (the
-    route check's): a port must start in water both agree on."""
-    from .full_land import final_land
-
-    return land.is_land(lon, lat) | final_land().contains(lon, lat)
-
-
 def snap_to_sea(port: Port, land: LandMask, max_snap_km: float = 25.0) -> Port:
     """Move a port on land to the nearest water sample within `max_snap_km`, else raise."""
-    if not _on_land(land, np.array([port.lon_deg]), np.array([port.lat_deg]))[0]:
+    if not land.is_land(np.array([port.lon_deg]), np.array([port.lat_deg]))[0]:
         return port
     step_km = 0.5
     radii = np.arange(step_km, max_snap_km + 1e-9, step_km)
@@ -190,7 +182,7 @@ def snap_to_sea(port: Port, land: LandMask, max_snap_km: float = 25.0) -> Port:
     dlon = rr * np.sin(aa) / (111.2 * max(np.cos(np.radians(port.lat_deg)), 0.05))
     lat = port.lat_deg + dlat.ravel()
     lon = port.lon_deg + dlon.ravel()
-    wet = ~_on_land(land, lon, lat)
+    wet = ~land.is_land(lon, lat)
     if not wet.any():
         raise PositionOnLandError(
             f"{port.name} ({port.lat_deg:.4f}, {port.lon_deg:.4f}) is on land and no "

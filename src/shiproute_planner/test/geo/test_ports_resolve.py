@@ -163,12 +163,3 @@ def test_a_terminal_near_water_is_snapped_not_made_a_river_port(land_mask):
     # Ras Tanura's gazetteer position is 2.5 km inland of its own pier head
     port = resolve_port("Ras Tanura", land_mask)
     assert not port.is_river_port and 0.0 < port.snapped_km <= 5.0
-
-
-@pytest.mark.parametrize("name", ["Lae", "Ras Tanura", "Cape Town"])
-def test_a_snapped_port_lies_in_water_at_full_resolution(land_mask, name):
-    # Lae's gazetteer position is 2.5 km from the sea; the search's mask alone snapped it
-    # onto a river bank the full-resolution coastline has as land, with no way out
-    port = resolve_port(name, land_mask)
-    assert port.snapped_km > 0.0 and not port.is_river_port
-    assert not _on_full_land(port.lon_deg, port.lat_deg)
