@@ -38,6 +38,11 @@ SQUAT_SPEED_KN = 12.0  # speed whose squat the passage's depth limit includes
 _MEMO: dict[str, Passage | None] = {}
 
 
+# a port approach with no way through 10-30 NM round its lane tries this corridor: the lane's
+# first hop may cross a peninsula (Lae: 52 NM of the Huon Peninsula)
+APPROACH_WIDEST_CORRIDOR_NM = 80.0
+
+
 def passage_rules(under_keel) -> PassageRules:
     """Default rules with the depth limit of a ship (`UnderKeel` or None)."""
     if under_keel is None:
@@ -45,6 +50,12 @@ def passage_rules(under_keel) -> PassageRules:
     need = float(under_keel.required_depth_m(np.array([SQUAT_SPEED_KN * M_PER_NM / 3600.0]),
                                              np.array([0.0]))[0])
     return PassageRules(required_depth_m=need, bathymetry=under_keel.bathymetry)
+
+
+def approach_rules(under_keel) -> PassageRules:
+    """A port approach's rules: `passage_rules` with the widest corridor as a last resort."""
+    return dataclasses.replace(passage_rules(under_keel),
+                               widest_corridor_nm=APPROACH_WIDEST_CORRIDOR_NM)
 
 
 def _key(lon: np.ndarray, lat: np.ndarray, rules: PassageRules) -> str:

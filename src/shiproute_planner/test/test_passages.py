@@ -342,9 +342,10 @@ def test_a_port_behind_a_peninsula_is_left_round_it_in_the_widest_corridor():
     # past the 30-NM corridor (plus its 2-NM margin), within the widest (80 NM)
     wall = _box(-0.7, LAT0, 0.7, LAT0 + NM_LAT)
     exact, land = _land(wall), shapely.Polygon(wall)
-    narrow = PassageRules(berth_nm=1.0, widest_corridor_nm=0.0)
+    narrow = PassageRules(berth_nm=1.0)  # repairs' and straits' rules: no widest corridor
     assert compute_passage(LANE_LON, LANE_LAT, narrow, polygons=exact) is None
-    p = compute_passage(LANE_LON, LANE_LAT, PassageRules(berth_nm=1.0), polygons=exact)
+    wide = PassageRules(berth_nm=1.0, widest_corridor_nm=80.0)  # a port approach's
+    p = compute_passage(LANE_LON, LANE_LAT, wide, polygons=exact)
     assert p is not None and p.corridor_nm == 80.0
     assert (p.lon_deg[-1], p.lat_deg[-1]) == (LANE_LON[-1], LANE_LAT[-1])
     assert np.max(np.abs(p.lon_deg)) > 0.7  # round one of the wall's ends

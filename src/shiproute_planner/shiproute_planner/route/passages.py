@@ -71,10 +71,11 @@ class PassageRules:
     fine_cell_nm: float = 0.1  # tried when nothing fits at `cell_nm` (rivers, sounds, fjords)
     finest_cell_nm: float = 0.05  # tried when nothing fits at `fine_cell_nm` (inner harbours)
     corridors_nm: tuple[float, ...] = (10.0, 30.0)
-    # tried only when no corridor above has any way through: a port whose nearest sea-lane
-    # node lies behind a peninsula (Lae: the lane's first hop crosses 50 NM of the Huon
-    # Peninsula) is left round it; a shallow-water detour this far off is not sought
-    widest_corridor_nm: float = 80.0
+    # tried only when no corridor above has any way through (0: never): a port approach
+    # (`coastal_passages.passage_rules`) whose nearest sea-lane node lies behind a peninsula
+    # (Lae: the lane's first hop crosses 50 NM of the Huon Peninsula) is left round it; a
+    # shallow-water detour this far off is not sought, nor by repairs and straits
+    widest_corridor_nm: float = 0.0
     berth_nm: float = 3.0
     pilotage_nm: float = 10.0
     prefer_off_nm: float = 2.0

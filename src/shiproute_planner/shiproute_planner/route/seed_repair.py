@@ -28,7 +28,7 @@ from .clearance import needed_clearance_nm
 from .land_repair import RepairRules, repaired_stretches
 from .problem import RouteProblem
 
-SEED_REPAIR_VERSION = 5  # in the cache key: bump when the repair changes
+SEED_REPAIR_VERSION = 6  # in the cache key: bump when the repair changes
 # stretches each side of a break and corridors round it [NM], tried in turn: the widest lets
 # a detour round an island whose channel is narrower than twice the open-sea clearance (an
 # island ~15 NM across off a coast) keep the rule instead of relaxing it in the channel

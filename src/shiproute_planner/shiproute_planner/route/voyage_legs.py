@@ -12,7 +12,7 @@ import numpy as np
 from shiproute_core.geodesy import inverse, unwrap_near
 from shiproute_core.units import M_PER_NM
 
-from ..coastal_passages import computed_approach, passage_rules
+from ..coastal_passages import approach_rules, computed_approach
 from ..geo.landmask import LandMask
 from ..geo.ports import Port
 from ..objective_window import search_window_s
@@ -76,7 +76,7 @@ def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMa
             coastal=coastal, dep_min_m=0.0 if under_way else None)
     notes: list[str] = []
     if coastal is not None:  # computed on the fine grid, not the lane's cut
-        rules = passage_rules(lim.under_keel)
+        rules = approach_rules(lim.under_keel)
         if rest is None and (kept is None or own_dep):
             ap_dep, said = computed_approach(ap_dep, a.name, False, rules)
             notes += said
