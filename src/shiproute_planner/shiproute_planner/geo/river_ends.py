@@ -67,8 +67,6 @@ def seaward_end(lat_deg: float, lon_deg: float, land: LandMask) -> SeawardEnd | 
     no way to the ocean, its nearest node lies farther than `LANE_START_KM`, or no water the
     coastline resolves lies within `MAX_RIVER_NM` of the berth along it): off land in `land`
     (the search's mask) and in the full-resolution coastline."""
-    from .full_land import final_land
-
     hub = nearest_hub(lat_deg, lon_deg)
     lane = sea_lane_between(lon_deg, lat_deg, hub[1], hub[0])
     if lane is None or len(lane) < 2:
@@ -81,7 +79,7 @@ def seaward_end(lat_deg: float, lon_deg: float, land: LandMask) -> SeawardEnd | 
                              SAMPLE_NM * M_PER_NM)
     limit = min(lon.size, int(max(MAX_RIVER_NM - hop_nm, 0.0) / SAMPLE_NM) + 1)
     lon, lat = np.asarray(lon[:limit]), np.asarray(lat[:limit])
-    wet = ~final_land().contains(lon, lat) & ~land.is_land(lon, lat)
+    wet = _water(lon, lat, land)
     run = round(CLEAR_RUN_NM / SAMPLE_NM)
     # samples k with k..k+run all in water: a run of `run + 1` wet samples starts at k
     ok = np.convolve(wet.astype(np.int64), np.ones(run + 1, dtype=np.int64), "valid") == run + 1
@@ -95,13 +93,19 @@ def seaward_end(lat_deg: float, lon_deg: float, land: LandMask) -> SeawardEnd | 
 def _wide(lon_deg: float, lat_deg: float, land: LandMask) -> bool:
     """True when the points `WIDTH_NM` from a position in 8 directions are all water (full
     resolution and the search's mask)."""
-    from .full_land import final_land
-
     az = np.arange(0.0, 360.0, 45.0)
     lon, lat = direct(np.full(az.size, lon_deg), np.full(az.size, lat_deg), az,
                       np.full(az.size, WIDTH_NM * M_PER_NM))
     lon, lat = np.asarray(lon), np.asarray(lat)
-    return not (final_land().contains(lon, lat).any() or land.is_land(lon, lat).any())
+    return bool(_water(lon, lat, land).all())
+
+
+def _water(lon: np.ndarray, lat: np.ndarray, land: LandMask) -> np.ndarray:
+    """True where a point is water in both the search's mask and the full-resolution
+    coastline (the route check's)."""
+    from .full_land import final_land
+
+    return ~final_land().contains(lon, lat) & ~land.is_land(lon, lat)
 
 
 def river_note(name: str, lat_deg: float, lon_deg: float, end: SeawardEnd, gap_km: float,
