@@ -15,7 +15,8 @@ from .ensemble_report import MemberLeg
 from .errors import PlanCancelledError
 from .ga.pool import SeedPool
 from .geo.fine_distance import default_fine_distance
-from .method_context import MethodContext, MethodFn, compute_baseline
+from .geo.landmask import LandMask
+from .method_context import MethodContext, MethodFn, baseline_track, compute_baseline
 from .methods import get_method
 from .plan_prepare import PreparedVoyage
 from .plan_repair import (
@@ -31,8 +32,10 @@ from .plan_timing import PlanClock
 from .request import PlanOptions, VoyageRequest
 from .route.approach import sail_approach
 from .route.canals import sail_canal
+from .route.clearance import NARROWS_REACH_NM
 from .route.evaluation import RouteEvaluation
 from .route.given_approach import approaches_at
+from .route.lane_narrows import lane_narrows, narrows_statement, with_narrows
 from .route.problem import RouteProblem
 from .route.seed_repair import repair_builds
 from .route.voyage_legs import leg_setup
@@ -217,6 +220,15 @@ def plan_leg(prep: PreparedVoyage, run: LegRun, k: int, request: VoyageRequest,
     search.clock.lap("passages")
     need = options.with_baseline or (options.method == "seed_ga" and not seeds)
     repairs0, seconds0 = repair_builds()
+    kept = (options.previous_plan.extra.get("lane_narrows")
+            if under_way and options.previous_plan is not None else None)
+    inherited = None if kept is None else tuple((float(p[0]), float(p[1])) for p in kept)
+    problem = leg_narrows(problem, prep.land, inherited)
+    narrows = problem.limits.clearance.narrows
+    if narrows and inherited is None:
+        rule = problem.limits.clearance
+        run.warnings.append(narrows_statement(narrows, a.name, b.name, rule.open_sea_nm,
+                                              rule.approach_nm, NARROWS_REACH_NM))
     base = compute_baseline(problem, prep.env, prep.land) if need else None
     repairs, seconds = repair_builds()
     if repairs > repairs0:  # the lane repaired afresh: one-off work, not the search's time
@@ -253,6 +265,17 @@ def plan_leg(prep: PreparedVoyage, run: LegRun, k: int, request: VoyageRequest,
     run.add(span, res.seed_source, problem, (pre, post), kept)
     run.arrive(float(post.eta_s[0]) if post is not None else end_s, prep.call_at.get(k + 1))
     search.clock.lap("passages")
+
+
+def leg_narrows(problem: RouteProblem, land: LandMask,
+                inherited: tuple[tuple[float, float], ...] | None) -> RouteProblem:
+    """The leg's problem with the narrows its repaired sea lane passes (`route.lane_narrows`;
+    none when the great circle stays off land); a re-plan under way keeps the previous
+    plan's (`inherited`) instead of repairing the lane from the ship's position."""
+    if inherited is not None:
+        return with_narrows(problem, inherited)
+    name, lon, lat = baseline_track(problem, land)
+    return with_narrows(problem, lane_narrows(problem, lon, lat)) if name == "sea_lane" else problem
 
 
 def repair_statement(seconds: float, a: str, b: str) -> str:

@@ -119,8 +119,11 @@ def finished_plan(request: VoyageRequest, options: PlanOptions, prep: PreparedVo
         out = dataclasses.replace(out, warnings=(*out.warnings, *model_warnings))
     if prep.rta_warning:
         out = dataclasses.replace(out, warnings=(*out.warnings, prep.rta_warning))
+    narrows = tuple(dict.fromkeys(pt for p in run.problems for pt in p.limits.clearance.narrows))
+    check_limits = dataclasses.replace(prep.limits, clearance=dataclasses.replace(
+        prep.limits.clearance, narrows=narrows))
     out = checked_plan(with_depth_report(out, prep.limits.under_keel, run.warnings), prep.land,
-                       prep.limits, request.clearance_nm)
+                       check_limits, request.clearance_nm)
     out = with_coarse_coast_note(with_river_passages(out, list(prep.river_rows)),
                                  prep.limits.under_keel, prep.land)
     out = with_ensemble(out, *ensemble_block(out, prep.env, prep.land, run.member_legs,
@@ -136,6 +139,9 @@ def finished_plan(request: VoyageRequest, options: PlanOptions, prep: PreparedVo
                                extra={**out.extra, "forecast": block, "objective": goal,
                                       "timing_s": clock.block(options.budget_s),
                                       "land_repairs": run.repairs,
+                                      # where the search kept the narrow-water clearance
+                                      # (`route.lane_narrows`); a re-plan under way keeps them
+                                      "lane_narrows": [list(p) for p in narrows],
                                       **loading_block(prep.spec)})
 
 

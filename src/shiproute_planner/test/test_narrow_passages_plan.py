@@ -1,5 +1,5 @@
 """A voyage through narrow water at the default clearance (0.5 NM near the span ends and in
-narrow water, 1 NM in open sea): Busan -> Yokohama goes through the Kanmon Strait and the
+narrow water, 2 NM in open sea): Busan -> Yokohama goes through the Kanmon Strait and the
 Seto Inland Sea, as the sea lane does, not round Kyushu (~100 NM longer), and its plan is
 feasible."""
 
@@ -35,4 +35,4 @@ def test_busan_yokohama_goes_through_kanmon_at_the_default_clearance():
     # as long as the sea lane, not round Kyushu (at least ~100 NM more)
     _, _, d = pyproj.Geod(ellps="WGS84").inv(lon[:-1], lat[:-1], lon[1:], lat[1:])
     assert float(np.sum(d)) / M_PER_NM < 1.08 * _lane_nm("Busan", "Yokohama")
-    assert any("clearance 1 NM open sea / 0.5 NM" in w for w in plan.warnings)
+    assert any("clearance 2 NM open sea / 0.5 NM" in w for w in plan.warnings)

@@ -103,3 +103,40 @@ def default_room() -> np.ndarray:
     except OSError:
         tmp.unlink(missing_ok=True)
     return room
+
+
+NARROWS_ROOM_UNITS = 10  # room written round a lane's narrows: narrow water, not tight water
+
+
+@functools.lru_cache(maxsize=4)
+def room_with_narrows(narrows: tuple[tuple[float, float], ...], reach_nm: float) -> np.ndarray:
+    """The room raster with every cell within `reach_nm` of a narrows point ((lon, lat)
+    [deg]; `route.lane_narrows`) lowered to narrow water (1 NM: the approach clearance
+    there, land still tested at full resolution)."""
+    base = default_room()
+    if not narrows:
+        return base
+    room = np.array(base)
+    n_lat, n_lon = room.shape
+    cell = 180.0 / n_lat
+    rows = math.ceil(reach_nm / (cell * 60.0)) + 1
+    for lon, lat in narrows:
+        i0 = int((lat + 90.0) // cell)
+        shrink = max(math.cos(math.radians(min(abs(lat) + rows * cell, 89.0))), 0.05)
+        cols = math.ceil(reach_nm / (cell * 60.0 * shrink)) + 1
+        i = np.arange(max(i0 - rows, 0), min(i0 + rows + 1, n_lat))
+        j = (int(((lon + 180.0) % 360.0) // cell) + np.arange(-cols, cols + 1)) % n_lon
+        c_lat = -90.0 + (i + 0.5) * cell
+        c_lon = -180.0 + (j + 0.5) * cell
+        d_lat = (c_lat[:, None] - lat) * 60.0
+        d_lon = ((c_lon[None, :] - lon + 180.0) % 360.0 - 180.0) * 60.0 * np.cos(
+            np.radians(c_lat[:, None]))
+        near = np.hypot(d_lat, d_lon) <= reach_nm + cell * 60.0  # any part of the cell
+        block = room[np.ix_(i, j)]
+        room[np.ix_(i, j)] = np.where(near, np.minimum(block, NARROWS_ROOM_UNITS), block)
+    return room
+
+
+def room_for(narrows: tuple[tuple[float, float], ...], reach_nm: float) -> np.ndarray:
+    """The room raster a clearance rule with `narrows` reads (the shared one without)."""
+    return room_with_narrows(narrows, reach_nm) if narrows else default_room()

@@ -49,6 +49,7 @@ def plan_summary(plan: RoutePlan) -> dict:
         "forecast": plan.extra.get("forecast"),
         "ensemble": plan.extra.get("ensemble"),
         "land_repairs": plan.extra.get("land_repairs", []),
+        "lane_narrows": plan.extra.get("lane_narrows", []),
         "total_fuel_t": plan.total_fuel_t, "total_distance_nm": plan.total_distance_nm,
         "total_time_h": plan.total_time_s / 3600.0,
         "baseline": {"method": plan.baseline_method, "fuel_t": plan.baseline_fuel_t,

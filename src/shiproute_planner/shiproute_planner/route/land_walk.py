@@ -32,7 +32,7 @@ from ..geo.landmask import LandMask
 from . import _fast_kernels as fk
 from . import _land_walk as lw
 from . import _route_kernel as rk
-from .clearance import ClearanceRule
+from .clearance import NARROWS_REACH_NM, ClearanceRule
 from .problem import RouteProblem
 
 COARSE_FACTOR = 10  # 0.05 deg raster -> 0.5 deg near-land filter
@@ -52,13 +52,14 @@ class LandWalk:
         from ..geo.fine_distance import default_fine_distance
         from ..geo.full_land import final_land
         from ..geo.landmask import default_land_mask
-        from ..geo.narrow_water import default_room
+        from ..geo.narrow_water import room_for
         finest = final_land().mask
         self.coarse, self.clear, self.coarse_deg = coarse_land(finest)
         self.coast_dist = np.asarray(finest.coast_distance)
         self.cell_deg = finest.cell_deg
         self.fine = default_fine_distance()
-        self.room = np.asarray(default_room())
+        rule = problem.limits.clearance
+        self.room = np.asarray(room_for(rule.narrows, NARROWS_REACH_NM))
         self.spacing_deg = problem.land_spacing_deg
         # a search reads no level-1 tile beyond its latitude bound (or its ends, if farther):
         # a population's strays into the Arctic would build (and save) tiles no feasible

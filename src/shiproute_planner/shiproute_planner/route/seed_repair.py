@@ -38,6 +38,15 @@ LEVEL1_SLACK_NM = 0.7  # level 1's looseness (a fine diagonal, the coastline ban
 
 
 
+def without_narrows(problem: RouteProblem) -> RouteProblem:
+    """The problem under the user's clearance rule (no narrows found by a lane's repair)."""
+    limits = problem.limits
+    if not limits.clearance.narrows:
+        return problem
+    return dataclasses.replace(problem, limits=dataclasses.replace(
+        limits, clearance=limits.clearance.without_narrows()))
+
+
 def repair_builds() -> tuple[int, float]:
     """(repairs, seconds) this process has computed rather than read back: one-off work a
     plan's clock does not charge to its search (a re-plan from a new position repairs its
@@ -101,6 +110,7 @@ def repaired_seed_track(problem: RouteProblem, lon: np.ndarray, lat: np.ndarray
     from ..geo.datadir import data_dir, save_npz_atomic
     from .passages import best_land_resolution
 
+    problem = without_narrows(problem)  # a lane is repaired under the user's rule
     rule = problem.limits.clearance
     under_keel = problem.limits.under_keel
     depth = (None if under_keel is None else float(under_keel.required_depth_m(
