@@ -7,20 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 import pyproj
-from shiproute_core.units import M_PER_NM
 from shiproute_planner.plan_request import build_request, run_request
-
-
-def _lane_nm(a, b) -> float:
-    """Length [NM] of the `searoute` sea lane between two ports (an independent reference)."""
-    from shiproute_planner.geo.ports import lookup_port
-    from shiproute_planner.geo.sea_lanes import sea_lane_between
-
-    pa, pb = lookup_port(a), lookup_port(b)
-    lane = sea_lane_between(pa.lon_deg, pa.lat_deg, pb.lon_deg, pb.lat_deg)
-    _, _, d = pyproj.Geod(ellps="WGS84").inv(lane[:-1, 0], lane[:-1, 1], lane[1:, 0],
-                                             lane[1:, 1])
-    return float(np.sum(d)) / M_PER_NM
 
 
 def test_busan_yokohama_goes_through_kanmon_at_the_default_clearance():

@@ -35,7 +35,9 @@ def test_the_demo_re_plan_27_h_out_on_cycle_2_is_feasible(land_mask):
     cycle2 = ForecastSampler(scenario_dataset("storm_march_cycle2"), dtype=np.float16)
     depart_s, rta_s = voyage_times("2026-03-03T18:00:00Z", "2026-03-16T18:00:00Z")
     voyage = VoyageRequest("Busan", "Long Beach", depart_s, rta_s, "container_4600teu")
-    out = plan(voyage, PlanOptions(land=land_mask, budget_s=600.0, max_evaluations=6_000,
+    # 12,000 evaluations (what ~4 s buy on an idle 2-core machine): at the 2-NM open-sea
+    # clearance 6,000 left this re-plan 3.5 h early (seed 0) or in the storm (seed 1)
+    out = plan(voyage, PlanOptions(land=land_mask, budget_s=600.0, max_evaluations=12_000,
                                    seed=0, position=(*SHIP_27H, depart_s + 27 * 3600.0)),
                cycle2)
     assert out.feasible, out.infeasible_reasons

@@ -1,6 +1,9 @@
 """A stale re-plan (the demo's: Busan -> Long Beach, forecast cycle 2 of the March storm)
-from a ship 30 NM abeam of the previous plan and 6 h behind it: it ends feasible where a
-cold plan from the same position with the same evaluation budget does, and when building
+from a ship 30 NM abeam of the previous plan and 6 h behind it: it ends feasible (a cold plan
+from the same position with the same evaluation budget was the reference once; in this storm
+it ended feasible alone and in the storm within the full suite on the same code, and at the
+2-NM open-sea clearance its feasible way, within 2 NM of the California coast, was found by
+none of seeds 0-3), and when building
 its seeds stalls (a first use: coastal cells resolved, a kernel compiled, on a loaded
 machine) the seeding phase stops at its share of the budget and the GA still runs its
 generations within the budget, the full-resolution coastline tiles its candidates meet
@@ -29,15 +32,10 @@ HOURS_ALONG = 60.0  # past the Tsugaru Strait, in the open North Pacific
 ABEAM_NM = 30.0
 LATE_H = 6.0
 REPLAN_EVALUATIONS = 12_000  # twice what a 3-s budget buys on an idle 2-core machine: at 6,000
-# the cold reference plan in this storm ended feasible or not on details of its seeds (Hs)
+# a plan from the ship in this storm ended feasible or not on details of its seeds (Hs)
 BUDGET_S = 3.0
 LOAD_FACTOR = 3.0  # CI machines are loaded: wall times are asserted with this slack
 STALL_S = 1.6  # a first-use stall of one seed conversion: over the seeding share of 3 s
-# the open-sea clearance the stale-versus-cold comparison is made at: the storm leaves a cold
-# plan from the ship one feasible way, whose leg from 36.1 N 124.2 W towards Long Beach
-# passes within 2 NM of the California coast; at the 2-NM default no cold plan of 12,000
-# evaluations found one (seeds 0-3), so the comparison would lose its reference
-COMPARED_AT_NM = 1.0
 
 
 def _voyage(depart_s: float | None = None) -> VoyageRequest:
@@ -98,22 +96,18 @@ def _plan2(previous, position, land_mask, **options):
                 _sampler("storm_march_cycle2"))
 
 
-def test_stale_re_plan_is_feasible_where_a_cold_plan_from_the_ship_is(previous, position,
-                                                                      land_mask):
+def test_stale_re_plan_from_the_ship_is_feasible(previous, position, land_mask):
     lon, lat, t = previous.track()
     k = int(np.searchsorted(t, position[2]))
     # the ship is off plan 1: ~ABEAM_NM from its track, behind its schedule
     _, d = inverse(np.full(lon.size, position[1]), np.full(lon.size, position[0]), lon, lat)
     assert float(d.min()) / M_PER_NM > 0.5 * ABEAM_NM
     assert 0 < k < lon.size
-    cold = _plan2(None, position, land_mask, budget_s=600.0,
-                  max_evaluations=REPLAN_EVALUATIONS, open_sea_clearance_nm=COMPARED_AT_NM)
     re_plan = _plan2(previous, position, land_mask, budget_s=600.0,
-                     max_evaluations=REPLAN_EVALUATIONS, open_sea_clearance_nm=COMPARED_AT_NM)
+                     max_evaluations=REPLAN_EVALUATIONS)
     # the stale path is the one under test: plan 1's remainder no longer holds
     assert any(w.startswith("re-plan: no route seeded from the previous_plan")
                for w in re_plan.warnings), re_plan.warnings
-    assert cold.feasible, cold.infeasible_reasons  # the scenario has a feasible answer
     assert re_plan.feasible, re_plan.infeasible_reasons
     assert re_plan.generations >= 1
 

@@ -16,6 +16,7 @@ and the plan names them.
 from __future__ import annotations
 
 import dataclasses
+import math
 
 import numpy as np
 from shiproute_core.geodesy import densify_track, distance_within_m
@@ -58,12 +59,12 @@ def lane_narrows(problem: RouteProblem, lon: np.ndarray, lat: np.ndarray
         idx = np.flatnonzero(short)
         short[idx] = ~np.asarray(final_land().contains(d_lon[idx], d_lat[idx]), dtype=bool)
     out: list[tuple[float, float]] = []
-    last = -np.inf
+    last = -math.inf
     for k in np.flatnonzero(short):
         if (k - last) * STEP_NM >= THIN_NM:
             lo = ((float(d_lon[k]) + 180.0) % 360.0) - 180.0
             out.append((round(lo, ROUND_DIGITS), round(float(d_lat[k]), ROUND_DIGITS)))
-            last = k
+            last = float(k)
     return tuple(out)
 
 
