@@ -176,6 +176,10 @@ def _figures(cold, warm, ref, env, land, problem, reference, setup_s, cold_s, wa
         "route_evals_per_s": best(rates),
         "route_evals_per_s_median": round(float(np.median(rates)), 1),
         "route_evals_per_s_slowest": round(min(rates), 1),
+        # the span they were measured on (lon, lat of its ends [deg]): the cold plan's last
+        # optimised span, which moves with the plan it chose
+        "route_evals_span_deg": [round(v, 2) for v in (problem.dep_lon_deg, problem.dep_lat_deg,
+                                                       problem.arr_lon_deg, problem.arr_lat_deg)],
         "route_evals_per_s_without_land": best(evals_per_s(env, None, problem)),
         # at the size of one GA generation (its offspring): per-call overheads weigh more
         "route_evals_per_s_ga_population": best(evals_per_s(
