@@ -16,7 +16,7 @@ import os
 import time
 
 import numpy as np
-from shiproute_core.geodesy import M_PER_NM
+from shiproute_core.geodesy import M_PER_NM, inverse
 
 from shiproute_planner.route.approach import Approach
 
@@ -33,9 +33,10 @@ from .route.passages import (
     passage_length_nm,
 )
 
-PASSAGE_CACHE_VERSION = 9
+PASSAGE_CACHE_VERSION = 12
 SQUAT_SPEED_KN = 12.0  # speed whose squat the passage's depth limit includes
 _MEMO: dict[str, Passage | None] = {}
+SEA_END_MOVED_NM = 0.01  # a passage ending farther than this from its lane's end says so
 
 
 # a port approach with no way through 10-30 NM round its lane tries this corridor: the lane's
@@ -147,6 +148,13 @@ def computed_approach(ap: Approach | None, port_name: str, arrival: bool,
     if p.corridor_nm > rules.corridors_nm[0]:
         notes.append(f"coastal passage ({where}): found only {p.corridor_nm:g} NM off the sea "
                      "lane")
+    moved_nm = float(inverse(lon[-1], lat[-1], p.lon_deg[-1], p.lat_deg[-1])[1]) / M_PER_NM
+    if moved_nm > SEA_END_MOVED_NM:
+        notes.append(f"coastal passage ({where}): the sea lane's point where it ends "
+                     f"({lat[-1]:.3f}, {lon[-1]:.3f}) is reached from the port only across "
+                     f"land ({best_land_name()}: on land, or in a basin behind breakwaters); "
+                     f"the passage ends {moved_nm:.2f} NM from it in navigable water, where "
+                     f"the {'search ends' if arrival else 'search starts'}")
     lon_p, lat_p = (p.lon_deg[::-1], p.lat_deg[::-1]) if arrival else (p.lon_deg, p.lat_deg)
     return Approach(np.asarray(lon_p, dtype=float), np.asarray(lat_p, dtype=float)), notes
 

@@ -7,6 +7,12 @@ time searches in the window it needs, while the RTA stays the constraint:
 - cost: the same distance at the calm-water speed that minimises the cost per metre,
   (fuel price x fuel rate + charter rate) / speed, x 1.1, and never below the eta window;
 - fuel, distance, co2: the whole window up to the RTA.
+
+Whatever the objective, the encoding spans no more than the leg takes at the engine's lowest
+RPM in calm water over its sea lane (the great circle where there is none) x 1.1
+(`slowest_window_s`): with stages filling a window the ship cannot fill at its lowest RPM,
+the GA's routes sail round to use it (a 235-NM passage with 3 days to its RTA became
+550-925 NM long; a window of 1.5 times its lane, ~320 NM).
 """
 
 from __future__ import annotations
@@ -46,3 +52,22 @@ def search_window_s(terms: ObjectiveTerms | None, model: Any, distance_m: float,
     per_m = (terms.per_t_fuel * np.asarray(perf.fuel_t_per_h)[ok] + terms.per_h) / v[ok]
     best_v = float(v[ok][int(np.argmin(per_m))])
     return min(max(MARGIN * distance_m / best_v, fastest_s), window_s)
+
+
+def slowest_window_s(model: Any, distance_m: float) -> float:
+    """Seconds `MARGIN` x `distance_m` [m] (a leg's sea lane) take at the ship's lowest RPM
+    in calm water (inf when the model cannot tell)."""
+    from .ship import SeaState
+
+    spec = getattr(model, "ship", None)
+    if spec is None or distance_m <= 0.0:
+        return float("inf")
+    try:
+        perf = model.evaluate(np.array([float(spec.engine.rpm_min)]), np.zeros(1),
+                              SeaState.calm(1))
+    except (ValueError, ArithmeticError):
+        return float("inf")
+    v = float(np.asarray(perf.stw_m_s, dtype=float)[0])
+    if not (np.isfinite(v) and v > 0.1):
+        return float("inf")
+    return MARGIN * distance_m / v

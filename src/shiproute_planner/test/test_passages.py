@@ -141,6 +141,25 @@ def test_a_departure_never_cuts_across_land_past_the_berths_radius_to_reach_the_
     assert not shapely.intersects_xy(land, np.asarray(d_lon), np.asarray(d_lat)).any()
 
 
+
+@pytest.mark.parametrize("gap_nm", [0.0, 0.02])  # closed, or a breakwater gap no grid resolves
+def test_a_lane_ending_in_a_closed_basin_ends_the_passage_in_the_nearest_open_water(gap_nm):
+    # the lane's sea end lies mid-lagoon (a harbour behind breakwaters, like Peterhead's),
+    # its port 8 NM west in open water: no way reaches the end without crossing the frame,
+    # so the passage ends outside it, where 0.5 NM off the frame is first kept
+    exact, land = _lagoon(gap_nm)
+    p = compute_passage(np.array([-8.0 * NM_LON, 0.0]), np.array([LAT0, LAT0]),
+                        PassageRules(berth_nm=1.0), polygons=exact)
+    assert p is not None
+    assert (p.lon_deg[0], p.lat_deg[0]) == (-8.0 * NM_LON, LAT0)  # the port end is kept
+    d_lon, d_lat = densify_track(p.lon_deg, p.lat_deg, 20.0)
+    assert not shapely.intersects_xy(land, np.asarray(d_lon), np.asarray(d_lat)).any()
+    # the frame's outer edge is 2.5 NM from the lane's end: the passage stops outside it,
+    # no farther than 0.5 NM (the clearance) and a cell's diagonal beyond
+    moved_nm = inverse(0.0, LAT0, p.lon_deg[-1], p.lat_deg[-1])[1] / 1852.0
+    assert 2.5 < moved_nm <= 2.5 + 0.5 + 2.0 * HALF_DIAGONAL_NM + 0.01
+
+
 def _flat_grid(depth_m: float, cell_deg: float, shoal=None) -> DepthGrid:
     """A regular grid of constant depth round the test area, with an optional shoal
     (lon0, lat0, lon1, lat1, depth) where it reads shallower."""

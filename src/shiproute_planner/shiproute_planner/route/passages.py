@@ -40,6 +40,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy import ndimage
 from shiproute_core.geodesy import M_PER_NM, inverse
 
 from ..geo.gshhg import finest_resolution as best_land_resolution
@@ -234,9 +235,12 @@ def _cell_need_m(grid: NavGrid, need_nm: Callable[[np.ndarray, np.ndarray], np.n
 
 
 def solve_on_grid(grid: NavGrid, lane_lon: np.ndarray, lane_lat: np.ndarray,
-                  rules: PassageRules, corridor_nm: float) -> Passage | None:
+                  rules: PassageRules, corridor_nm: float,
+                  to_lane_end: bool = True) -> Passage | None:
     """Passage from the lane's first point (the port) to its last (the sea end) inside a
-    corridor of `corridor_nm` round the lane, relaxing clearance then depth as needed."""
+    corridor of `corridor_nm` round the lane, relaxing clearance then depth as needed.
+    `to_lane_end=False`: to the centre of the free cell nearest to the sea end among those
+    the port reaches (4-connected, as the path's diagonal moves need both sides free)."""
     d_lon, d_lat = _dense_lane(lane_lon, lane_lat, 0.5 * min(grid.dlat_deg, grid.dlon_deg))
     li, lj = grid.cell_of(d_lon, d_lat)
     corridor = _distance_from_m(grid, li, lj) <= corridor_nm * M_PER_NM
@@ -267,8 +271,12 @@ def solve_on_grid(grid: NavGrid, lane_lon: np.ndarray, lane_lat: np.ndarray,
                 free &= ~shallow
             pool = free & berth if (free & berth).any() else free
             gi, gj = grid.cell_of(lane_lon[-1:], lane_lat[-1:])
-            goal = _nearest_free(free & ~berth if (free & ~berth).any() else free,
-                                 int(gi[0]), int(gj[0]))
+            targets = free & ~berth if (free & ~berth).any() else free
+            if not to_lane_end:
+                labels, _ = ndimage.label(free)
+                reached = np.unique(labels[pool])
+                targets &= np.isin(labels, reached[reached > 0])
+            goal = _nearest_free(targets, int(gi[0]), int(gj[0]))
             if goal is None:
                 continue
             cells = _shortest_path(free, cost, grid.cell_m, pool, (int(pi[0]), int(pj[0])),
@@ -278,8 +286,9 @@ def solve_on_grid(grid: NavGrid, lane_lon: np.ndarray, lane_lat: np.ndarray,
             cells = _straighten(_sight(free, unknown, cells), cells,
                                 20.0 / (60.0 * grid.dlat_deg))
             lon, lat = grid.centre(cells[:, 0], cells[:, 1])
-            lon = np.concatenate([lane_lon[:1], lon, lane_lon[-1:]])
-            lat = np.concatenate([lane_lat[:1], lat, lane_lat[-1:]])
+            end = slice(-1, None) if to_lane_end else slice(0, 0)
+            lon = np.concatenate([lane_lon[:1], lon, lane_lon[end]])
+            lat = np.concatenate([lane_lat[:1], lat, lane_lat[end]])
             return Passage(lon, lat, c_nm, use_depth, corridor_nm,
                            float(grid.dlat_deg * 60.0))
     return None
@@ -309,13 +318,28 @@ def passage_length_nm(lon: np.ndarray, lat: np.ndarray) -> float:
 def compute_passage(lane_lon: np.ndarray, lane_lat: np.ndarray, rules: PassageRules,
                     polygons=None) -> Passage | None:
     """Passage from `lane[0]` (port) to `lane[-1]` (sea end), continuous longitudes; None
-    when no corridor has a way through or the result fails the dense land check."""
+    when no corridor has a way through or the result fails the dense land check. A sea end
+    no way reaches (on land, or in a harbour basin behind breakwaters no grid resolves:
+    Peterhead's) is replaced by the free water nearest to it that the port reaches."""
 
     polygons = polygons if polygons is not None else best_land_polygons()
     lane_lon = np.asarray(lane_lon, dtype=float)
     lane_lat = np.asarray(lane_lat, dtype=float)
     shift = 360.0 * np.round(np.mean(lane_lon) / 360.0)
     lon_f = lane_lon - shift
+    for to_lane_end in (True, False):
+        p = _passage_on_grids(lon_f, lane_lat, rules, polygons, to_lane_end)
+        if p is not None:
+            return Passage(p.lon_deg + shift, p.lat_deg, p.clearance_nm, p.depth_limited,
+                           p.corridor_nm, p.cell_nm)
+    return None
+
+
+def _passage_on_grids(lon_f: np.ndarray, lane_lat: np.ndarray, rules: PassageRules, polygons,
+                      to_lane_end: bool) -> Passage | None:
+    """`compute_passage` on its grids, coarsest and narrowest corridor first, in longitudes
+    within -180..180; to the lane's sea end, or (`to_lane_end=False`) to the free water
+    nearest to it that the port reaches."""
     tries = [(rules.corridors_nm[0], rules.cell_nm), (rules.corridors_nm[0], rules.fine_cell_nm),
              *([(rules.corridors_nm[0], rules.finest_cell_nm)]
                if rules.finest_cell_nm < rules.fine_cell_nm else []),
@@ -340,13 +364,9 @@ def compute_passage(lane_lon: np.ndarray, lane_lat: np.ndarray, rules: PassageRu
             return None  # a box across the antimeridian: not supported, the lane is kept
         land = land_in_box(polygons, lon0, lat0, lon0 + cols * dlon, lat0 + rows * dlat)
         grid = build_nav_grid(land, box, rules.bathymetry)
-        p = solve_on_grid(grid, lon_f, lane_lat, rules, corridor_nm)
-        if p is None:
+        p = solve_on_grid(grid, lon_f, lane_lat, rules, corridor_nm, to_lane_end)
+        if p is None or _crosses_land(p, land, rules):
             continue
-        if _crosses_land(p, land, rules):
-            continue
-        p = Passage(p.lon_deg + shift, p.lat_deg, p.clearance_nm, p.depth_limited,
-                    corridor_nm, p.cell_nm)
         if not _better(p, found):
             if found is not None and _keeps_depth(found, rules):
                 return found

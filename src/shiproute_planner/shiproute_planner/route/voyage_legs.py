@@ -15,7 +15,7 @@ from shiproute_core.units import M_PER_NM
 from ..coastal_passages import approach_rules, computed_approach
 from ..geo.landmask import LandMask
 from ..geo.ports import Port
-from ..objective_window import search_window_s
+from ..objective_window import MARGIN, search_window_s, slowest_window_s
 from ..objectives import ObjectiveTerms
 from ..plan_types import RoutePlan
 from ..shoal_passages import lane_shoal_limit
@@ -100,11 +100,19 @@ def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMa
     d_lon, d_lat = (ap_dep.lon_deg[-1], ap_dep.lat_deg[-1]) if ap_dep else (a.lon_deg, a.lat_deg)
     a_lon, a_lat = (ap_arr.lon_deg[0], ap_arr.lat_deg[0]) if ap_arr else (b.lon_deg, b.lat_deg)
     rta_leg = max(rta_leg, t_leg + 60.0)
+    gc_m = float(inverse(d_lon, d_lat, a_lon, a_lat)[1])
+    window_s = rta_leg - t_leg
+    # the sea lane's length: round a peninsula (Peterhead -> Stornoway round Cape Wrath)
+    # a leg sails far more than its great circle
+    sea_m = sea_distance_m(*(round(float(v), 4) for v in (d_lon, d_lat, a_lon, a_lat)))
+    slow_s = slowest_window_s(env.model, sea_m)
+    if slow_s < window_s:
+        notes.append(early_arrival_note(a.name, b.name, window_s, slow_s))
+    fits_s = min(window_s, slow_s)
     stage_h = stage_hours or leg_stage_hours(
-        rta_leg - t_leg, turns_to_round(land, float(d_lon), float(d_lat), float(a_lon),
-                                        float(a_lat)), target_stages)
-    span_s = search_window_s(terms, env.model,
-                             float(inverse(d_lon, d_lat, a_lon, a_lat)[1]), rta_leg - t_leg)
+        fits_s, turns_to_round(land, float(d_lon), float(d_lat), float(a_lon),
+                               float(a_lat)), target_stages)
+    span_s = search_window_s(terms, env.model, gc_m, fits_s)
     n_stages = (max(1, math.ceil(span_s / (stage_h * 3600.0)) - 1)
                 if span_s < rta_leg - t_leg else 0)  # 0: the whole window
     problem = RouteProblem(float(d_lon), float(d_lat), float(a_lon), float(a_lat), t_leg,
@@ -176,3 +184,14 @@ def lane_rpm(env: Environment, a: Port, b: Port, ap_dep, ap_arr, depart_s: float
             # outside the model's range: an RTA beyond reach is sailed at full RPM
             return lim.rpm_max if speed > 10.0 else 0.5 * (lim.rpm_min + lim.rpm_max)
     return 0.5 * (lim.rpm_min + lim.rpm_max)
+
+
+def early_arrival_note(dep: str, arr: str, window_s: float, slow_s: float) -> str:
+    """The plan's words for a leg whose RTA leaves more time than it takes at the lowest
+    RPM: the search spans the shorter time and the ship arrives early."""
+    return (f"{dep} -> {arr}: the RTA leaves {window_s / 3600.0:.1f} h for the open-sea part, "
+            f"more than it takes at the engine's lowest RPM ({slow_s / 3600.0:.1f} h over "
+            f"{MARGIN:g} times its sea lane in calm water): the search spans "
+            f"{slow_s / 3600.0:.1f} h and the ship arrives early (wait or slow down further "
+            "outside the plan)")
+
