@@ -33,7 +33,7 @@ from .route.passages import (
     passage_length_nm,
 )
 
-PASSAGE_CACHE_VERSION = 12
+PASSAGE_CACHE_VERSION = 13
 SQUAT_SPEED_KN = 12.0  # speed whose squat the passage's depth limit includes
 _MEMO: dict[str, Passage | None] = {}
 SEA_END_MOVED_NM = 0.01  # a passage ending farther than this from its lane's end says so
@@ -42,6 +42,11 @@ SEA_END_MOVED_NM = 0.01  # a passage ending farther than this from its lane's en
 # a port approach with no way through 10-30 NM round its lane tries this corridor: the lane's
 # first hop may cross a peninsula (Lae: 52 NM of the Huon Peninsula)
 APPROACH_WIDEST_CORRIDOR_NM = 80.0
+
+
+# a port approach whose lane ends in a harbour basin no way reaches (Peterhead's, 1.2 NM
+# across its breakwaters) ends in the nearest water the port reaches within this
+APPROACH_END_REACH_NM = 5.0
 
 
 def passage_rules(under_keel) -> PassageRules:
@@ -56,7 +61,8 @@ def passage_rules(under_keel) -> PassageRules:
 def approach_rules(under_keel) -> PassageRules:
     """A port approach's rules: `passage_rules` with the widest corridor as a last resort."""
     return dataclasses.replace(passage_rules(under_keel),
-                               widest_corridor_nm=APPROACH_WIDEST_CORRIDOR_NM)
+                               widest_corridor_nm=APPROACH_WIDEST_CORRIDOR_NM,
+                               end_reach_nm=APPROACH_END_REACH_NM)
 
 
 def _key(lon: np.ndarray, lat: np.ndarray, rules: PassageRules) -> str:

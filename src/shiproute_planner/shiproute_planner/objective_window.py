@@ -10,9 +10,10 @@ time searches in the window it needs, while the RTA stays the constraint:
 
 Whatever the objective, the encoding spans no more than the leg takes at the engine's lowest
 RPM in calm water over its sea lane (the great circle where there is none) x 1.1
-(`slowest_window_s`): with stages filling a window the ship cannot fill at its lowest RPM,
-the GA's routes sail round to use it (a 235-NM passage with 3 days to its RTA became
-550-925 NM long; a window of 1.5 times its lane, ~320 NM).
+(`slowest_window_s`): stages filling a window the ship cannot fill at its lowest RPM make
+the GA's routes sail round to use it (Genoa -> Barcelona with 5 days, 20,000 evaluations:
+387 NM and 8.47 t with the whole window, 373 NM and 8.16 t with this one; a window of 1.5
+times the lane led Aberdeen -> Stornoway ~320 NM round a 235-NM lane).
 """
 
 from __future__ import annotations

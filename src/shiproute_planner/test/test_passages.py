@@ -146,10 +146,13 @@ def test_a_departure_never_cuts_across_land_past_the_berths_radius_to_reach_the_
 def test_a_lane_ending_in_a_closed_basin_ends_the_passage_in_the_nearest_open_water(gap_nm):
     # the lane's sea end lies mid-lagoon (a harbour behind breakwaters, like Peterhead's),
     # its port 8 NM west in open water: no way reaches the end without crossing the frame,
-    # so the passage ends outside it, where 0.5 NM off the frame is first kept
+    # so a port approach's passage ends outside it, where 0.5 NM off the frame is first kept
     exact, land = _lagoon(gap_nm)
-    p = compute_passage(np.array([-8.0 * NM_LON, 0.0]), np.array([LAT0, LAT0]),
-                        PassageRules(berth_nm=1.0), polygons=exact)
+    lane_lon, lane_lat = np.array([-8.0 * NM_LON, 0.0]), np.array([LAT0, LAT0])
+    # a strait's or a repair's passage must reach its end: none
+    assert compute_passage(lane_lon, lane_lat, PassageRules(berth_nm=1.0), polygons=exact) is None
+    p = compute_passage(lane_lon, lane_lat, PassageRules(berth_nm=1.0, end_reach_nm=5.0),
+                        polygons=exact)
     assert p is not None
     assert (p.lon_deg[0], p.lat_deg[0]) == (-8.0 * NM_LON, LAT0)  # the port end is kept
     d_lon, d_lat = densify_track(p.lon_deg, p.lat_deg, 20.0)

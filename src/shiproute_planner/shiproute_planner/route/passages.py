@@ -46,6 +46,7 @@ from shiproute_core.geodesy import M_PER_NM, inverse
 from ..geo.gshhg import finest_resolution as best_land_resolution
 from ..geo.nav_grid import NavGrid, build_nav_grid, grid_box, land_in_box, on_land
 from .berths import BERTH_RADIUS_M
+from .grid_path_lines import sight, straighten
 
 # (d_row, d_col) of the 8 "forward" moves of a 16-neighbour stencil and the cells they cross
 _MOVES = ((0, 1), (1, 0), (1, 1), (1, -1), (1, 2), (2, 1), (1, -2), (2, -1))
@@ -77,6 +78,10 @@ class PassageRules:
     # (Lae: the lane's first hop crosses 50 NM of the Huon Peninsula) is left round it; a
     # shallow-water detour this far off is not sought, nor by repairs and straits
     widest_corridor_nm: float = 0.0
+    # a port approach whose sea end no way reaches (a harbour basin behind breakwaters no
+    # grid resolves: Peterhead's) ends in the water the port reaches within this of it
+    # (0: never; repairs and straits must reach their ends)
+    end_reach_nm: float = 0.0
     berth_nm: float = 3.0
     pilotage_nm: float = 10.0
     prefer_off_nm: float = 2.0
@@ -167,52 +172,6 @@ def _shortest_path(free: np.ndarray, cost: np.ndarray, cell_m: tuple[float, floa
     return np.stack([fi[idx], fj[idx]], axis=1)
 
 
-def _line_free(free: np.ndarray, a: np.ndarray, b: np.ndarray) -> bool:
-    """True when the straight line between two cell centres stays in free cells."""
-    n = int(np.ceil(np.abs(b - a).max() * 3.0)) + 1
-    t = np.linspace(0.0, 1.0, n + 1)[:, None]
-    p = a[None, :] + t * (b - a)[None, :]
-    for oi, oj in ((0.0, 0.0), (0.3, 0.3), (-0.3, -0.3), (0.3, -0.3), (-0.3, 0.3)):
-        i = np.floor(p[:, 0] + 0.5 + oi).astype(np.int64)
-        j = np.floor(p[:, 1] + 0.5 + oj).astype(np.int64)
-        i = np.clip(i, 0, free.shape[0] - 1)
-        j = np.clip(j, 0, free.shape[1] - 1)
-        if not free[i, j].all():
-            return False
-    return True
-
-
-def _straighten(free: np.ndarray, cells: np.ndarray, max_cells: float) -> np.ndarray:
-    """Path vertices kept where the straight line between kept ones would leave free water
-    (greedy: from each kept vertex, the farthest next one still in sight, capped in length)."""
-    pts = cells.astype(float)
-    keep = [0]
-    k = 0
-    while k < len(pts) - 1:
-        nxt = k + 1
-        for m in range(k + 2, len(pts)):
-            if np.abs(pts[m] - pts[k]).max() > max_cells or not _line_free(free, pts[k],
-                                                                           pts[m]):
-                break
-            nxt = m
-        keep.append(nxt)
-        k = nxt
-    return cells[keep]
-
-
-def _sight(free: np.ndarray, unknown: np.ndarray, cells: np.ndarray) -> np.ndarray:
-    """Cells a straightened leg may cross: free ones, but water of unknown depth only next
-    to the path (straightening must not cut back into what the path kept out of)."""
-    if not unknown.any():
-        return free
-    from scipy import ndimage
-
-    near = np.zeros(free.shape, dtype=bool)
-    near[cells[:, 0], cells[:, 1]] = True
-    near = ndimage.binary_dilation(near, iterations=1)
-    return free & (~unknown | near)
-
-
 def _nearest_free(free: np.ndarray, i: int, j: int) -> tuple[int, int] | None:
     """The free cell nearest (i, j) (in cells), None if there is none."""
     fi, fj = np.nonzero(free)
@@ -240,7 +199,8 @@ def solve_on_grid(grid: NavGrid, lane_lon: np.ndarray, lane_lat: np.ndarray,
     """Passage from the lane's first point (the port) to its last (the sea end) inside a
     corridor of `corridor_nm` round the lane, relaxing clearance then depth as needed.
     `to_lane_end=False`: to the centre of the free cell nearest to the sea end among those
-    the port reaches (4-connected, as the path's diagonal moves need both sides free)."""
+    the port reaches (4-connected, as the path's diagonal moves need both sides free) within
+    `rules.end_reach_nm` of it."""
     d_lon, d_lat = _dense_lane(lane_lon, lane_lat, 0.5 * min(grid.dlat_deg, grid.dlon_deg))
     li, lj = grid.cell_of(d_lon, d_lat)
     corridor = _distance_from_m(grid, li, lj) <= corridor_nm * M_PER_NM
@@ -276,6 +236,7 @@ def solve_on_grid(grid: NavGrid, lane_lon: np.ndarray, lane_lat: np.ndarray,
                 labels, _ = ndimage.label(free)
                 reached = np.unique(labels[pool])
                 targets &= np.isin(labels, reached[reached > 0])
+                targets &= _distance_from_m(grid, gi, gj) <= rules.end_reach_nm * M_PER_NM
             goal = _nearest_free(targets, int(gi[0]), int(gj[0]))
             if goal is None:
                 continue
@@ -283,7 +244,7 @@ def solve_on_grid(grid: NavGrid, lane_lon: np.ndarray, lane_lat: np.ndarray,
                                    goal)
             if cells is None:
                 continue
-            cells = _straighten(_sight(free, unknown, cells), cells,
+            cells = straighten(sight(free, unknown, cells), cells,
                                 20.0 / (60.0 * grid.dlat_deg))
             lon, lat = grid.centre(cells[:, 0], cells[:, 1])
             end = slice(-1, None) if to_lane_end else slice(0, 0)
@@ -318,16 +279,17 @@ def passage_length_nm(lon: np.ndarray, lat: np.ndarray) -> float:
 def compute_passage(lane_lon: np.ndarray, lane_lat: np.ndarray, rules: PassageRules,
                     polygons=None) -> Passage | None:
     """Passage from `lane[0]` (port) to `lane[-1]` (sea end), continuous longitudes; None
-    when no corridor has a way through or the result fails the dense land check. A sea end
-    no way reaches (on land, or in a harbour basin behind breakwaters no grid resolves:
-    Peterhead's) is replaced by the free water nearest to it that the port reaches."""
+    when no corridor has a way through or the result fails the dense land check. With
+    `end_reach_nm`, a sea end no way reaches (on land, or in a harbour basin behind
+    breakwaters no grid resolves: Peterhead's) gives way to the free water nearest to it
+    that the port reaches within that distance."""
 
     polygons = polygons if polygons is not None else best_land_polygons()
     lane_lon = np.asarray(lane_lon, dtype=float)
     lane_lat = np.asarray(lane_lat, dtype=float)
     shift = 360.0 * np.round(np.mean(lane_lon) / 360.0)
     lon_f = lane_lon - shift
-    for to_lane_end in (True, False):
+    for to_lane_end in (True, False) if rules.end_reach_nm > 0 else (True,):
         p = _passage_on_grids(lon_f, lane_lat, rules, polygons, to_lane_end)
         if p is not None:
             return Passage(p.lon_deg + shift, p.lat_deg, p.clearance_nm, p.depth_limited,
