@@ -33,15 +33,12 @@ def search_window_s(terms: ObjectiveTerms | None, model: Any, distance_m: float,
     """Seconds the encoding should span (at most `window_s`, the time to the RTA)."""
     if terms is None or terms.name not in ("eta", "cost"):
         return window_s
-    from .ship import SeaState
-
     spec = getattr(model, "ship", None)
     if spec is None:
         return window_s
     rpm = np.linspace(spec.engine.rpm_min, spec.engine.rpm_max, N_RPM)
-    try:
-        perf = model.evaluate(rpm, np.zeros(N_RPM), SeaState.calm(N_RPM))
-    except (ValueError, ArithmeticError):
+    perf = _calm(model, rpm)
+    if perf is None:
         return window_s
     v = np.asarray(perf.stw_m_s, dtype=float)
     ok = np.isfinite(v) & (v > 0.1)
@@ -58,17 +55,22 @@ def search_window_s(terms: ObjectiveTerms | None, model: Any, distance_m: float,
 def slowest_window_s(model: Any, distance_m: float) -> float:
     """Seconds `MARGIN` x `distance_m` [m] (a leg's sea lane) take at the ship's lowest RPM
     in calm water (inf when the model cannot tell)."""
-    from .ship import SeaState
-
     spec = getattr(model, "ship", None)
-    if spec is None or distance_m <= 0.0:
-        return float("inf")
-    try:
-        perf = model.evaluate(np.array([float(spec.engine.rpm_min)]), np.zeros(1),
-                              SeaState.calm(1))
-    except (ValueError, ArithmeticError):
+    perf = None if spec is None else _calm(model, np.array([float(spec.engine.rpm_min)]))
+    if perf is None or distance_m <= 0.0:
         return float("inf")
     v = float(np.asarray(perf.stw_m_s, dtype=float)[0])
     if not (np.isfinite(v) and v > 0.1):
         return float("inf")
     return MARGIN * distance_m / v
+
+
+def _calm(model: Any, rpm: np.ndarray) -> Any:
+    """The model's performance at `rpm` on a heading in calm water (None when it cannot
+    tell)."""
+    from .ship import SeaState
+
+    try:
+        return model.evaluate(rpm, np.zeros(rpm.size), SeaState.calm(rpm.size))
+    except (ValueError, ArithmeticError):
+        return None

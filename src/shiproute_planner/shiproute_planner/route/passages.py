@@ -222,6 +222,9 @@ def solve_on_grid(grid: NavGrid, lane_lon: np.ndarray, lane_lat: np.ndarray,
     modes = ((False,) if rules.required_depth_m is None else
              (True, False) if shallow.any() else (True,))
     need_m = None if rules.need_nm is None else _cell_need_m(grid, rules.need_nm)
+    gi, gj = grid.cell_of(lane_lon[-1:], lane_lat[-1:])
+    near_end = (None if to_lane_end else
+                _distance_from_m(grid, gi, gj) <= rules.end_reach_nm * M_PER_NM)
     for use_depth in modes:
         for c_nm in rules.clearances_nm:
             keep_m = (c_nm * M_PER_NM if need_m is None
@@ -230,13 +233,11 @@ def solve_on_grid(grid: NavGrid, lane_lon: np.ndarray, lane_lat: np.ndarray,
             if use_depth:
                 free &= ~shallow
             pool = free & berth if (free & berth).any() else free
-            gi, gj = grid.cell_of(lane_lon[-1:], lane_lat[-1:])
             targets = free & ~berth if (free & ~berth).any() else free
-            if not to_lane_end:
+            if near_end is not None:  # not to the lane's end
                 labels, _ = ndimage.label(free)
                 reached = np.unique(labels[pool])
-                targets &= np.isin(labels, reached[reached > 0])
-                targets &= _distance_from_m(grid, gi, gj) <= rules.end_reach_nm * M_PER_NM
+                targets &= np.isin(labels, reached[reached > 0]) & near_end
             goal = _nearest_free(targets, int(gi[0]), int(gj[0]))
             if goal is None:
                 continue

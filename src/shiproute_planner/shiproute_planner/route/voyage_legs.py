@@ -102,10 +102,11 @@ def leg_setup(a: Port, b: Port, env: Environment, lim: RouteLimits, land: LandMa
     rta_leg = max(rta_leg, t_leg + 60.0)
     gc_m = float(inverse(d_lon, d_lat, a_lon, a_lat)[1])
     window_s = rta_leg - t_leg
-    # the sea lane's length: round a peninsula (Peterhead -> Stornoway round Cape Wrath)
-    # a leg sails far more than its great circle
-    sea_m = sea_distance_m(*(round(float(v), 4) for v in (d_lon, d_lat, a_lon, a_lat)))
-    slow_s = slowest_window_s(env.model, sea_m)
+    slow_s = slowest_window_s(env.model, gc_m)
+    if slow_s < window_s:  # loose even over the great circle: measured along the sea lane,
+        # which round a peninsula (Peterhead -> Stornoway round Cape Wrath) is far longer
+        slow_s = slowest_window_s(env.model, sea_distance_m(
+            *(round(float(v), 4) for v in (d_lon, d_lat, a_lon, a_lat))))
     if slow_s < window_s:
         notes.append(early_arrival_note(a.name, b.name, window_s, slow_s))
     fits_s = min(window_s, slow_s)
